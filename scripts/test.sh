@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# Every test: the GCC release build (warnings are errors), then the same suite built with Clang 14
+# under AddressSanitizer + UndefinedBehaviorSanitizer.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh
+status=0
+for preset in release sanitize; do
+  echo "== building and testing preset '$preset' =="
+  bash scripts/build.sh "$preset"
+  ctest --preset "$preset" -j "$(nproc)" || status=1
+done
+exit $status

@@ -1,0 +1,34 @@
+#include "tumble/mass/mass_spec.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+
+#include "tumble/error.hpp"
+
+namespace tumble {
+
+MassSpec MassSpec::density(double rho) {
+  if (!std::isfinite(rho) || !(rho > 0.0)) {
+    throw InvalidArgument(fmt::format("density {} kg/m^3 is invalid: give a positive number", rho));
+  }
+  return MassSpec(Kind::density, rho);
+}
+
+MassSpec MassSpec::mass(double m) {
+  if (!std::isfinite(m) || !(m > 0.0)) {
+    throw InvalidArgument(fmt::format("mass {} kg is invalid: give a positive number", m));
+  }
+  return MassSpec(Kind::mass, m);
+}
+
+MassProperties MassSpec::apply(const MassProperties& unit, double mass_per_measure_unit) const {
+  if (!(unit.mass > 0.0)) {
+    throw InvalidArgument(fmt::format(
+        "the shape has no extent (measure {}), so it cannot carry mass", unit.mass));
+  }
+  const double factor =
+      kind_ == Kind::density ? value_ * mass_per_measure_unit : value_ / unit.mass;
+  return MassProperties{unit.mass * factor, unit.center_of_mass, unit.inertia * factor, unit.volume};
+}
+
+}  // namespace tumble
