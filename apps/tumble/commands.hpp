@@ -1,0 +1,14 @@
+#pragma once
+// The subcommands of the tumble program. Each registers its options on the CLI11 app and returns the
+// function that runs it after parsing.
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace tumble::cli {
+
+using Runner = std::function<int()>;
+
+/// `tumble inertia`: mass properties of a mesh file or a primitive shape.
+Runner add_inertia_command(CLI::App& app);
+
+}  // namespace tumble::cli
