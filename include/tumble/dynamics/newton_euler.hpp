@@ -1,0 +1,162 @@
+#pragma once
+// The Newton–Euler equations in the three formulations of the tutorial (section VII), each written
+// once, templated on the scalar type so the single-body path, batched paths and tests share the lines.
+//
+//   world:  f = m v̇,                      τ = I ω̇ + ω × (I ω),  I = R Λ Rᵀ,   Ṙ = [ω]× R
+//   mixed:  f = m v̇,                     ^bτ = Λ ^bω̇ + ^bω × (Λ ^bω),         Ṙ = R [^bω]×
+//   body:  ^bf = m(^bv̇ + ^bω × ^bv),     ^bτ = Λ ^bω̇ + ^bω × (Λ ^bω),         Ṙ = R [^bω]×,  ȯ = R ^bv
+//
+// R is kept as a unit quaternion q: Ṙ = [ω]× R  ⇔  q̇ = ½ (0, ω) ⊗ q  ⇔  q̇ = ½ q ⊗ (0, ^bω).
+#include "tumble/dynamics/state.hpp"
+#include "tumble/math/quaternion.hpp"
+
+namespace tumble {
+
+/// Which frame the integrated velocities live in (tutorial, "Simulating Dynamics", "Dynamics in Mixed
+/// Frames", "Dynamics in the Body Frame").
+enum class Formulation {
+  world,  ///< v and ω in {w}
+  mixed,  ///< v in {w}, ω in {b}
+  body,   ///< v and ω in {b}
+};
+
+/// The variables a formulation integrates: centre of mass o (world), orientation q of {b}, and v, ω in
+/// the formulation's frames (see Formulation).
+template <class T>
+struct Coordinates {
+  Vec3T<T> o;
+  QuatT<T> q;
+  Vec3T<T> v;
+  Vec3T<T> omega;
+};
+
+/// Their time derivatives.
+template <class T>
+struct CoordinateRates {
+  Vec3T<T> o_dot;
+  QuatT<T> q_dot;  ///< not a unit quaternion: the derivative of one
+  Vec3T<T> v_dot;
+  Vec3T<T> omega_dot;
+};
+
+/// Ṙ = [ω]× R as a quaternion: q̇ = ½ (0, ω) ⊗ q.
+template <class T>
+QuatT<T> q_dot_world(const QuatT<T>& q, const Vec3T<T>& omega_w) {
+  QuatT<T> q_dot;
+  q_dot.coeffs() = T(0.5) * (pure<T>(omega_w) * q).coeffs();
+  return q_dot;
+}
+
+/// Ṙ = R [^bω]× as a quaternion: q̇ = ½ q ⊗ (0, ^bω).
+template <class T>
+QuatT<T> q_dot_body(const QuatT<T>& q, const Vec3T<T>& omega_b) {
+  QuatT<T> q_dot;
+  q_dot.coeffs() = T(0.5) * (q * pure<T>(omega_b)).coeffs();
+  return q_dot;
+}
+
+/// Euler's equation in the body frame solved for the angular acceleration:
+/// d/dt(^bω) = Λ⁻¹(^bτ − ^bω × (Λ ^bω)).
+template <class T>
+Vec3T<T> euler_body(const Vec3T<T>& Lambda, const Vec3T<T>& omega_b, const Vec3T<T>& tau_b) {
+  return (tau_b - omega_b.cross(Lambda.cwiseProduct(omega_b))).cwiseQuotient(Lambda);
+}
+
+/// World formulation. ω̇ = I⁻¹(τ − ω × Iω) with I = RΛRᵀ, I⁻¹ = RΛ⁻¹Rᵀ.
+template <class T>
+CoordinateRates<T> newton_euler_world(T m, const Vec3T<T>& Lambda, const Coordinates<T>& x,
+                                      const Vec3T<T>& f_w, const Vec3T<T>& tau_w) {
+  const Mat3T<T> R = x.q.toRotationMatrix();
+  const Mat3T<T> I = R * Lambda.asDiagonal() * R.transpose();
+  const Mat3T<T> I_inv = R * Lambda.cwiseInverse().asDiagonal() * R.transpose();
+  CoordinateRates<T> r;
+  r.o_dot = x.v;
+  r.q_dot = q_dot_world<T>(x.q, x.omega);
+  r.v_dot = f_w / m;
+  r.omega_dot = I_inv * (tau_w - x.omega.cross(I * x.omega));
+  return r;
+}
+
+/// Mixed formulation: v in world, ^bω in body.
+template <class T>
+CoordinateRates<T> newton_euler_mixed(T m, const Vec3T<T>& Lambda, const Coordinates<T>& x,
+                                      const Vec3T<T>& f_w, const Vec3T<T>& tau_b) {
+  CoordinateRates<T> r;
+  r.o_dot = x.v;
+  r.q_dot = q_dot_body<T>(x.q, x.omega);
+  r.v_dot = f_w / m;
+  r.omega_dot = euler_body<T>(Lambda, x.omega, tau_b);
+  return r;
+}
+
+/// Body formulation: ^bv and ^bω in body; ^bv̇ = ^bf/m − ^bω × ^bv, ȯ = R ^bv.
+template <class T>
+CoordinateRates<T> newton_euler_body(T m, const Vec3T<T>& Lambda, const Coordinates<T>& x,
+                                     const Vec3T<T>& f_b, const Vec3T<T>& tau_b) {
+  CoordinateRates<T> r;
+  r.o_dot = x.q * x.v;
+  r.q_dot = q_dot_body<T>(x.q, x.omega);
+  r.v_dot = f_b / m - x.omega.cross(x.v);
+  r.omega_dot = euler_body<T>(Lambda, x.omega, tau_b);
+  return r;
+}
+
+/// The kinematic part alone, (ȯ, q̇), of any formulation (used by integrators that update velocities
+/// and positions separately).
+template <class T>
+std::pair<Vec3T<T>, QuatT<T>> kinematics(Formulation formulation, const Coordinates<T>& x) {
+  switch (formulation) {
+    case Formulation::world:
+      return {x.v, q_dot_world<T>(x.q, x.omega)};
+    case Formulation::mixed:
+      return {x.v, q_dot_body<T>(x.q, x.omega)};
+    case Formulation::body:
+      return {x.q * x.v, q_dot_body<T>(x.q, x.omega)};
+  }
+  return {};
+}
+
+/// The rates of any formulation for a wrench given in world axes (force, torque about the centre of
+/// mass): the wrench is rotated into the frames the formulation needs, ^bu = Rᵀ u.
+template <class T>
+CoordinateRates<T> newton_euler(Formulation formulation, T m, const Vec3T<T>& Lambda,
+                                const Coordinates<T>& x, const Vec3T<T>& f_w, const Vec3T<T>& tau_w) {
+  switch (formulation) {
+    case Formulation::world:
+      return newton_euler_world<T>(m, Lambda, x, f_w, tau_w);
+    case Formulation::mixed:
+      return newton_euler_mixed<T>(m, Lambda, x, f_w, x.q.conjugate() * tau_w);
+    case Formulation::body:
+      return newton_euler_body<T>(m, Lambda, x, x.q.conjugate() * f_w, x.q.conjugate() * tau_w);
+  }
+  return {};
+}
+
+/// The formulation's variables for a state.
+inline Coordinates<double> to_coordinates(Formulation formulation, const BodyState& s) {
+  const Quat q_inv = s.q.conjugate();
+  switch (formulation) {
+    case Formulation::world:
+      return {s.o, s.q, s.v, s.omega_w};
+    case Formulation::mixed:
+      return {s.o, s.q, s.v, q_inv * s.omega_w};
+    case Formulation::body:
+      return {s.o, s.q, q_inv * s.v, q_inv * s.omega_w};
+  }
+  return {};
+}
+
+/// The state for a formulation's variables.
+inline BodyState to_state(Formulation formulation, const Coordinates<double>& x) {
+  switch (formulation) {
+    case Formulation::world:
+      return {x.o, x.q, x.v, x.omega};
+    case Formulation::mixed:
+      return {x.o, x.q, x.v, x.q * x.omega};
+    case Formulation::body:
+      return {x.o, x.q, x.q * x.v, x.q * x.omega};
+  }
+  return {};
+}
+
+}  // namespace tumble

@@ -1,0 +1,41 @@
+#pragma once
+// A rigid body as the dynamics sees it: mass m, principal moments Λ, and where its principal frame {b}
+// sits in the user's body reference frame (centre of mass c, principal rotation U: x_ref = c + U x_b).
+#include <string>
+
+#include "tumble/mass/mass_properties.hpp"
+
+namespace tumble {
+
+class RigidBody {
+ public:
+  /// From mass properties in the body reference frame (validated: throws InvalidMassProperties).
+  static RigidBody from_mass_properties(const MassProperties& mp, std::string name = "body");
+  /// From a mass and an inertia tensor about the centre of mass c, in reference-frame axes.
+  static RigidBody from_inertia(double mass, const Mat3& inertia, const Vec3& center_of_mass = Vec3::Zero(),
+                                std::string name = "body");
+  /// From a mass and principal moments along the reference axes x, y, z (centre of mass at the origin).
+  static RigidBody from_principal_moments(double mass, const Vec3& moments, std::string name = "body");
+
+  const std::string& name() const { return name_; }
+  double mass() const { return m_; }
+  /// Principal moments λ₁ ≤ λ₂ ≤ λ₃ (kg·m²): the inertia tensor in {b}.
+  const Vec3& Lambda() const { return Lambda_; }
+  /// Centre of mass in the reference frame.
+  const Vec3& center_of_mass() const { return c_; }
+  /// Principal axes in the reference frame (columns), a proper rotation: x_ref = c + U x_b.
+  const Mat3& U() const { return U_; }
+  /// The mass properties in the reference frame: I = U Λ Uᵀ about c.
+  MassProperties mass_properties() const;
+
+ private:
+  RigidBody(std::string name, double m, const Vec3& Lambda, const Vec3& c, const Mat3& U)
+      : name_(std::move(name)), m_(m), Lambda_(Lambda), c_(c), U_(U) {}
+  std::string name_;
+  double m_;
+  Vec3 Lambda_;
+  Vec3 c_;
+  Mat3 U_;
+};
+
+}  // namespace tumble

@@ -1,0 +1,64 @@
+#pragma once
+// Quaternion helpers. tumble writes quaternions (w, x, y, z) at every boundary; Eigen stores them
+// (x, y, z, w): convert here and nowhere else.
+#include <cmath>
+
+#include "tumble/math/types.hpp"
+
+namespace tumble {
+
+template <class T>
+using Vec3T = Eigen::Matrix<T, 3, 1>;
+template <class T>
+using Mat3T = Eigen::Matrix<T, 3, 3>;
+template <class T>
+using QuatT = Eigen::Quaternion<T>;
+
+/// The quaternion w + xi + yj + zk (as written in files and on the command line).
+inline Quat quat_wxyz(double w, double x, double y, double z) { return Quat(w, x, y, z); }
+/// (w, x, y, z) of q.
+inline Eigen::Vector4d wxyz(const Quat& q) { return {q.w(), q.x(), q.y(), q.z()}; }
+
+/// The pure quaternion (0, v).
+template <class T>
+QuatT<T> pure(const Vec3T<T>& v) {
+  return QuatT<T>(T(0), v.x(), v.y(), v.z());
+}
+
+/// exp of the rotation vector φ: the unit quaternion (cos(|φ|/2), sin(|φ|/2) φ/|φ|), i.e. the rotation
+/// by |φ| about φ. Near zero the Taylor series keeps full accuracy.
+template <class T>
+QuatT<T> quat_exp(const Vec3T<T>& phi) {
+  using std::cos;
+  using std::sin;
+  using std::sqrt;
+  const T theta2 = phi.squaredNorm();
+  T c, s;  // cos(θ/2), sin(θ/2)/θ
+  if (theta2 < T(1e-8)) {
+    c = T(1) - theta2 / T(8) + theta2 * theta2 / T(384);
+    s = T(0.5) - theta2 / T(48) + theta2 * theta2 / T(3840);
+  } else {
+    const T theta = sqrt(theta2);
+    c = cos(theta / T(2));
+    s = sin(theta / T(2)) / theta;
+  }
+  return QuatT<T>(c, s * phi.x(), s * phi.y(), s * phi.z());
+}
+
+/// The rotation vector of a unit quaternion (angle in [0, π]).
+inline Vec3 quat_log(const Quat& q_in) {
+  const Quat q = q_in.w() < 0 ? Quat(-q_in.coeffs()) : q_in;
+  const double s = q.vec().norm();
+  if (s < 1e-12) return 2.0 * q.vec() / q.w();
+  return 2.0 * std::atan2(s, q.w()) / s * q.vec();
+}
+
+/// The angle of the rotation that takes R1 to R2 (the angle of R1ᵀR2), in [0, π]; accurate for small
+/// angles too (uses the skew part, not the trace alone).
+inline double rotation_angle_between(const Mat3& R1, const Mat3& R2) {
+  const Mat3 D = R1.transpose() * R2;
+  const Vec3 axis(D(2, 1) - D(1, 2), D(0, 2) - D(2, 0), D(1, 0) - D(0, 1));
+  return std::atan2(0.5 * axis.norm(), 0.5 * (D.trace() - 1.0));
+}
+
+}  // namespace tumble
