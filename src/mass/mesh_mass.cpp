@@ -1,0 +1,82 @@
+// Mass properties of meshes for users: checks, orientation, scaling to a density or a mass.
+#include "tumble/mass/mesh_mass.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+
+#include "mesh_integrals.hpp"
+#include "tumble/error.hpp"
+#include "tumble/mass/mesh_check.hpp"
+
+namespace tumble {
+
+MeshMassResult solid_mass_properties(const TriangleMesh& mesh, const MassSpec& spec,
+                                     const std::string& name) {
+  if (mesh.triangles.empty()) {
+    throw MeshError(fmt::format("{}: the mesh has no triangles, so it bounds no solid", name));
+  }
+  const MeshReport report = check_mesh(mesh);
+  if (!report.solid()) {
+    throw MeshError(fmt::format("{}: cannot compute solid mass properties: {}", name,
+                                describe_solid_defects(report)));
+  }
+  MeshMassResult result;
+  result.surface_area = report.surface_area;
+  MassProperties unit = integrate_solid_mesh(mesh);
+  // A closed mesh can still enclose nothing (two triangles back to back, a folded sheet). The
+  // rounding of the signed volume is a few ε of Σ|tetrahedra| ≲ area·diagonal/3, far below 1e-12 L³
+  // for any mesh with fewer than ~10⁹ triangles of ordinary proportions.
+  const double L = report.diagonal;
+  if (!(std::abs(unit.mass) > 1e-12 * L * L * L)) {
+    throw MeshError(fmt::format(
+        "{}: the closed mesh encloses zero volume ({:.3g} m^3 for a bounding-box diagonal of {:.6g} "
+        "m): it is flat or folded onto itself; use shell mass properties (--shell) for a sheet",
+        name, unit.mass, L));
+  }
+  if (unit.mass < 0.0) {
+    // Inside-out: every triangle winds clockwise seen from outside. Flipping them all negates each
+    // tetrahedron, so volume and inertia change sign while the centre of mass stays.
+    result.flipped = true;
+    result.warnings.push_back(fmt::format(
+        "{}: the mesh is inside-out (signed volume {:.6g} m^3: its triangles wind clockwise seen "
+        "from outside); it was integrated with the orientation flipped. Flip the normals in a mesh "
+        "editor to silence this warning",
+        name, unit.mass));
+    unit.mass = -unit.mass;
+    unit.inertia = -unit.inertia;
+  }
+  unit.volume = unit.mass;
+  result.properties = spec.apply(unit);
+  return result;
+}
+
+MeshMassResult shell_mass_properties(const TriangleMesh& mesh, double thickness,
+                                     const MassSpec& spec, const std::string& name) {
+  if (!std::isfinite(thickness) || !(thickness > 0.0)) {
+    throw InvalidArgument(fmt::format(
+        "{}: shell thickness {} m is invalid: give a positive, finite wall thickness", name,
+        thickness));
+  }
+  if (mesh.triangles.empty()) {
+    throw MeshError(fmt::format("{}: the mesh has no triangles, so it has no surface", name));
+  }
+  // Open meshes, shared edges and any winding are fine for a shell; only the data must be valid.
+  const MeshReport report = check_mesh_indices(mesh);
+  if (!report.usable()) {
+    throw MeshError(fmt::format("{}: cannot compute shell mass properties: {}", name,
+                                describe_solid_defects(report)));
+  }
+  MeshMassResult result;
+  MassProperties unit = detail::unit_properties(detail::surface_moments(mesh));
+  if (!(unit.mass > 0.0)) {
+    throw MeshError(fmt::format(
+        "{}: the surface has zero area (every triangle is degenerate), so it cannot carry mass",
+        name));
+  }
+  result.surface_area = unit.mass;
+  unit.volume = unit.mass * thickness;  // thin-wall limit: material volume = area · t
+  result.properties = spec.apply(unit, thickness);
+  return result;
+}
+
+}  // namespace tumble
