@@ -154,9 +154,16 @@ void GravityGradient::accumulate(const SystemView& view, Loads& loads) const {
     const Vec3 r = s.o - center_;
     const double r2 = r.squaredNorm();
     const double r1 = std::sqrt(r2);
-    if (!torque_only_) loads.bodies[i].force -= mu_ * view.bodies[i].mass() / (r2 * r1) * r;
+    const Mat3 I = inertia_world(view.bodies[i], s);
+    const Vec3 Ir = I * r;
     // τ = 3μ/|r|⁵ r × (I r)
-    loads.bodies[i].torque += 3.0 * mu_ / (r2 * r2 * r1) * r.cross(inertia_world(view.bodies[i], s) * r);
+    loads.bodies[i].torque += 3.0 * mu_ / (r2 * r2 * r1) * r.cross(Ir);
+    if (torque_only_) continue;
+    // f = −∇V with V = −μm/r + μ/2 (3 rᵀIr/r⁵ − tr I/r³): the point-mass pull plus the small
+    // correction of the same expansion, which makes the model exactly conservative with the torque.
+    const double r5 = r2 * r2 * r1, r7 = r5 * r2;
+    const Vec3 grad_V2 = 0.5 * mu_ * (3.0 * (2.0 * Ir / r5 - 5.0 * r.dot(Ir) * r / r7) + 3.0 * I.trace() * r / r5);
+    loads.bodies[i].force -= mu_ * view.bodies[i].mass() / (r2 * r1) * r + grad_V2;
   }
 }
 std::string GravityGradient::describe() const {

@@ -99,8 +99,10 @@ class Spring final : public ForceModel {
 };
 
 /// Point-mass gravity of a central body (μ = GM, m³/s²) at `center`, with the gravity-gradient torque
-/// τ = 3μ/|r|⁵ r × (I r), r = o − center (spacecraft attitude). The central force −μ m r/|r|³ is
-/// applied too unless `torque_only`. Potential −μm/|r| + μ/(2|r|³)(3 r̂ᵀI r̂ − tr I).
+/// τ = 3μ/|r|⁵ r × (I r), r = o − center (spacecraft attitude). Unless `torque_only`, the force
+/// −∇V is applied too, with the potential of the same second-order expansion,
+/// V = −μm/|r| + μ/(2|r|³)(3 r̂ᵀI r̂ − tr I): the point-mass pull −μ m r/|r|³ plus a correction of
+/// relative size I/(m r²), so that energy is conserved exactly by the model.
 class GravityGradient final : public ForceModel {
  public:
   GravityGradient(double mu, const Vec3& center, bool torque_only = false)
