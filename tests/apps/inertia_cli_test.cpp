@@ -1,0 +1,88 @@
+// `tumble inertia` end to end: the numbers it prints are the library's closed forms, and bad input
+// gets one clear line and a non-zero exit status.
+#include <gtest/gtest.h>
+
+#include <numbers>
+
+#include "../support/run.hpp"
+
+namespace tumble {
+namespace {
+
+using test::json_numbers;
+using test::run_tumble;
+
+TEST(InertiaCli, BoxJsonMatchesClosedForm) {
+  const auto r = run_tumble("inertia --shape box --size 0.1,0.2,0.3 --density 1000 --json");
+  ASSERT_EQ(r.status, 0) << r.output;
+  // m = ρabc = 6 kg; I_xx = m(b² + c²)/12 etc.; printed with round-trip precision, so the only error
+  // is the library's rounding (a few ulps).
+  const double m = 6.0;
+  EXPECT_NEAR(json_numbers(r.output, "mass").at(0), m, 1e-14);
+  EXPECT_NEAR(json_numbers(r.output, "volume").at(0), 0.006, 1e-17);
+  const auto I = json_numbers(r.output, "inertia");
+  ASSERT_EQ(I.size(), 9u);
+  EXPECT_NEAR(I[0], m * (0.04 + 0.09) / 12, 1e-15);
+  EXPECT_NEAR(I[4], m * (0.01 + 0.09) / 12, 1e-15);
+  EXPECT_NEAR(I[8], m * (0.01 + 0.04) / 12, 1e-15);
+  EXPECT_EQ(I[1], 0.0);
+  const auto L = json_numbers(r.output, "principal_moments");
+  ASSERT_EQ(L.size(), 3u);
+  EXPECT_NEAR(L[0], m * 0.05 / 12, 1e-15);  // ascending: the z axis has the smallest moment
+  EXPECT_NEAR(L[2], m * 0.13 / 12, 1e-15);
+  const auto U = json_numbers(r.output, "principal_axes");
+  ASSERT_EQ(U.size(), 9u);
+  // Row-major rows of U. First column (smallest moment) is +z, second +y, third their cross product
+  // z × y = −x (det U = +1): U = [[0, 0, −1], [0, 1, 0], [1, 0, 0]].
+  EXPECT_EQ(U, (std::vector<double>{0, 0, -1, 0, 1, 0, 1, 0, 0}));
+  EXPECT_EQ(json_numbers(r.output, "center_of_mass"), (std::vector<double>{0, 0, 0}));
+}
+
+TEST(InertiaCli, ShellSphereAndHumanOutput) {
+  const auto r = run_tumble("inertia --shape sphere --size 0.5 --shell --mass 3");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("mass              3 kg"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("0.5"), std::string::npos);  // I = 2/3 m r² = 0.5
+  EXPECT_NE(r.output.find("principal moments"), std::string::npos);
+}
+
+TEST(InertiaCli, MeshFileGivesItsMassProperties) {
+  const auto r = run_tumble(std::string("inertia ") + TUMBLE_SOURCE_DIR +
+                            "/examples/meshes/t_handle.stl --density 2700 --json");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto m = json_numbers(r.output, "mass");
+  const auto V = json_numbers(r.output, "volume");
+  ASSERT_EQ(m.size(), 1u);
+  EXPECT_NEAR(m[0], 2700 * V.at(0), 1e-12 * m[0]);
+}
+
+void expect_error(const std::string& args, const std::string& expected) {
+  const auto r = run_tumble(args);
+  EXPECT_NE(r.status, 0) << args;
+  EXPECT_NE(r.output.find(expected), std::string::npos) << args << "\n" << r.output;
+}
+
+TEST(InertiaCli, BadInputGetsOneClearLine) {
+  expect_error("inertia --shape box --size 0.1,0.2 --density 1000", "takes --size with 3 number(s)");
+  expect_error("inertia --shape blob --size 1 --density 1", "unknown shape 'blob'");
+  expect_error("inertia --shape sphere --size -1 --density 1000", "sphere radius is -1 m");
+  expect_error("inertia --shape sphere --size 1", "--density RHO");
+  expect_error("inertia --shape sphere --size 1 --density 1 --mass 2", "excludes");
+  expect_error("inertia --shape sphere --size 1 --density nan", "density nan kg/m^3 is invalid");
+  expect_error("inertia --shape sphere --size 1 --shell --density 1", "--thickness");
+  expect_error("inertia no/such/file.stl --density 1", "no/such/file.stl");
+  expect_error("inertia", "either a mesh FILE or --shape");
+}
+
+TEST(InertiaCli, HelpTeachesWithExamplesAndVersionIsPrinted) {
+  const auto help = run_tumble("inertia --help");
+  EXPECT_EQ(help.status, 0);
+  EXPECT_NE(help.output.find("Examples:"), std::string::npos);
+  EXPECT_NE(help.output.find("--scale"), std::string::npos);
+  const auto version = run_tumble("--version");
+  EXPECT_EQ(version.status, 0);
+  EXPECT_NE(version.output.find("tumble 0."), std::string::npos);
+}
+
+}  // namespace
+}  // namespace tumble
