@@ -28,6 +28,27 @@ void require_readable_file(const std::filesystem::path& path) {
   }
 }
 
+/// Names the bad vertex by the first face that uses it: assimp renumbers vertices (OBJ corners are
+/// split per face), but faces keep the file's order, so "face 12 of mesh 0" is findable in the file.
+[[noreturn]] void throw_non_finite(const std::filesystem::path& path, const aiMesh& part,
+                                   unsigned mesh_index, unsigned vertex, double scale) {
+  const aiVector3D& p = part.mVertices[vertex];
+  std::string where = fmt::format("vertex {} of mesh {}", vertex, mesh_index);
+  for (unsigned f = 0; f < part.mNumFaces; ++f) {
+    const aiFace& face = part.mFaces[f];
+    for (unsigned k = 0; k < face.mNumIndices; ++k) {
+      if (face.mIndices[k] == vertex) {
+        where = fmt::format("corner {} of face {} of mesh {}", k, f, mesh_index);
+        f = part.mNumFaces - 1;  // stop at the first face that uses it
+        break;
+      }
+    }
+  }
+  throw FileError(fmt::format(
+      "{}: {} has non-finite coordinates ({}, {}, {}){}; fix the file", path.string(), where,
+      p.x, p.y, p.z, scale == 1.0 ? "" : fmt::format(" after scaling by {}", scale)));
+}
+
 }  // namespace
 
 TriangleMesh load_mesh(const std::filesystem::path& path, const MeshLoadOptions& options) {
@@ -56,12 +77,7 @@ TriangleMesh load_mesh(const std::filesystem::path& path, const MeshLoadOptions&
       const aiVector3D& p = part->mVertices[i];
       const Vec3 v = options.scale * Vec3(static_cast<double>(p.x), static_cast<double>(p.y),
                                           static_cast<double>(p.z));
-      if (!v.allFinite()) {
-        throw FileError(fmt::format(
-            "{}: vertex {} of mesh {} has non-finite coordinates ({}, {}, {}){}; fix the file",
-            path.string(), i, m, p.x, p.y, p.z,
-            options.scale == 1.0 ? "" : fmt::format(" (times scale {})", options.scale)));
-      }
+      if (!v.allFinite()) throw_non_finite(path, *part, m, i, options.scale);
       mesh.vertices.push_back(v);
     }
     for (unsigned f = 0; f < part->mNumFaces; ++f) {
