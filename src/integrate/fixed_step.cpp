@@ -1,12 +1,5 @@
 // Fixed-step integrators of the dynamics issue: explicit Euler, semi-implicit Euler, classic RK4.
-#include <fmt/format.h>
-
-#include <functional>
-#include <map>
-
-#include "tumble/error.hpp"
-#include "tumble/integrate/integrator.hpp"
-#include "tumble/integrate/system_rates.hpp"
+#include "methods.hpp"
 
 namespace tumble {
 namespace {
@@ -16,6 +9,7 @@ class ExplicitEuler final : public Integrator {
  public:
   std::string name() const override { return "euler"; }
   int order() const override { return 1; }
+  int evaluations_per_step() const override { return 1; }
   void step(const Model& model, Formulation F, SystemCoordinates& x, double h) const override {
     x = advance(x, h, system_rates(model, F, x));
   }
@@ -27,6 +21,7 @@ class SemiImplicitEuler final : public Integrator {
  public:
   std::string name() const override { return "semi_implicit_euler"; }
   int order() const override { return 1; }
+  int evaluations_per_step() const override { return 1; }
   void step(const Model& model, Formulation F, SystemCoordinates& x, double h) const override {
     const SystemRates k = system_rates(model, F, x);
     for (size_t i = 0; i < x.bodies.size(); ++i) {
@@ -51,6 +46,7 @@ class RungeKutta4 final : public Integrator {
  public:
   std::string name() const override { return "rk4"; }
   int order() const override { return 4; }
+  int evaluations_per_step() const override { return 4; }
   void step(const Model& model, Formulation F, SystemCoordinates& x, double h) const override {
     const SystemRates k1 = system_rates(model, F, x);
     const SystemRates k2 = system_rates(model, F, advance(x, h / 2, k1));
@@ -61,51 +57,12 @@ class RungeKutta4 final : public Integrator {
   }
 };
 
-using Factory = std::function<std::unique_ptr<Integrator>()>;
-
-const std::map<std::string, Factory>& registry() {
-  static const std::map<std::string, Factory> r = {
-      {"euler", [] { return std::make_unique<ExplicitEuler>(); }},
-      {"semi_implicit_euler", [] { return std::make_unique<SemiImplicitEuler>(); }},
-      {"rk4", [] { return std::make_unique<RungeKutta4>(); }},
-  };
-  return r;
-}
-
 }  // namespace
 
-std::unique_ptr<Integrator> make_integrator(const std::string& name) {
-  const auto it = registry().find(name);
-  if (it == registry().end()) {
-    throw InvalidArgument(fmt::format("unknown integrator '{}'; choose one of: {}", name,
-                                      fmt::join(integrator_names(), ", ")));
-  }
-  return it->second();
-}
-
-std::vector<std::string> integrator_names() {
-  std::vector<std::string> names;
-  for (const auto& [name, factory] : registry()) names.push_back(name);
-  return names;
-}
-
-Formulation parse_formulation(const std::string& name) {
-  if (name == "world") return Formulation::world;
-  if (name == "mixed") return Formulation::mixed;
-  if (name == "body") return Formulation::body;
-  throw InvalidArgument(fmt::format("unknown formulation '{}'; choose world, mixed or body", name));
-}
-
-std::string formulation_name(Formulation formulation) {
-  switch (formulation) {
-    case Formulation::world:
-      return "world";
-    case Formulation::mixed:
-      return "mixed";
-    case Formulation::body:
-      return "body";
-  }
-  return "?";
-}
+namespace methods {
+std::unique_ptr<Integrator> explicit_euler() { return std::make_unique<ExplicitEuler>(); }
+std::unique_ptr<Integrator> semi_implicit_euler() { return std::make_unique<SemiImplicitEuler>(); }
+std::unique_ptr<Integrator> rk4() { return std::make_unique<RungeKutta4>(); }
+}  // namespace methods
 
 }  // namespace tumble

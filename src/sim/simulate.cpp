@@ -38,11 +38,15 @@ void validate(const RunSettings& s) {
   require(std::isfinite(s.output_interval) && s.output_interval >= 0,
           fmt::format("output interval {} s is invalid: give a time >= 0 (0 = every step)",
                       s.output_interval));
-  make_integrator(s.integrator);  // throws, listing the names, if unknown
+  if (is_adaptive(s.integrator)) {
+    make_adaptive_integrator(s.integrator, s.tolerances);  // validates the tolerances
+  } else {
+    make_integrator(s.integrator);  // throws, listing the names, if unknown
+  }
 }
 
 SystemState simulate(const Model& model, SystemState state, const RunSettings& settings,
-                     const SampleSink& on_sample) {
+                     const SampleSink& on_sample, IntegratorStats* stats) {
   validate(settings);
   if (state.bodies.size() != model.bodies.size() || state.particles.size() != model.particles.size()) {
     throw InvalidArgument(fmt::format("state has {} bodies and {} particles, the model {} and {}",
@@ -53,7 +57,6 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
   if (const std::string bad = non_finite(model, x); !bad.empty()) {
     throw InvalidArgument(fmt::format("initial state of {} is not finite", bad));
   }
-  const auto integrator = make_integrator(settings.integrator);
   const double t0 = state.t;
   const double t_end = t0 + settings.duration;
   const double h = settings.timestep;
@@ -61,7 +64,32 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
   const double dt_out = settings.output_interval > 0 ? settings.output_interval : h;
   long k_out = 1;
   if (on_sample && !on_sample(state)) return state;
+  auto check = [&](const SystemCoordinates& y, long step, double step_h) {
+    if (const std::string bad = non_finite(model, y); !bad.empty()) {
+      throw Error(fmt::format(
+          "the state of {} became non-finite at t = {} s (step {}, h = {} s, integrator {}); reduce "
+          "the timestep (or tolerances) or check the forces for singularities",
+          bad, y.t, step, step_h, settings.integrator));
+    }
+  };
 
+  if (is_adaptive(settings.integrator)) {
+    const auto integrator = make_adaptive_integrator(settings.integrator, settings.tolerances);
+    integrator->start(model, settings.formulation, x, std::min(h, std::max(settings.duration, h)));
+    while (true) {
+      const double t_sample = std::min(t0 + static_cast<double>(k_out) * dt_out, t_end);
+      if (t_sample <= x.t) break;
+      x = integrator->at(t_sample);
+      check(x, integrator->stats().steps, 0.0);
+      ++k_out;
+      state = to_state(settings.formulation, x);
+      if (stats) *stats = integrator->stats();
+      if (on_sample && !on_sample(state)) return state;
+    }
+    return to_state(settings.formulation, x);
+  }
+
+  const auto integrator = make_integrator(settings.integrator);
   long step = 0;
   // A step shorter than this fraction of h is rounding of the sample grid, not a real step.
   const double tiny = 1e-9 * h;
@@ -70,13 +98,9 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
     const double step_h = std::min(h, t_sample - x.t);
     integrator->step(model, settings.formulation, x, step_h);
     ++step;
+    if (stats) *stats = {step, 0, step * integrator->evaluations_per_step()};
     if (x.t >= t_sample - tiny) x.t = t_sample;  // remove the rounding of the accumulated time
-    if (const std::string bad = non_finite(model, x); !bad.empty()) {
-      throw Error(fmt::format(
-          "the state of {} became non-finite at t = {} s (step {}, h = {} s, integrator {}); reduce "
-          "the timestep or check the forces for singularities",
-          bad, x.t, step, step_h, settings.integrator));
-    }
+    check(x, step, step_h);
     if (x.t == t_sample) {
       ++k_out;
       state = to_state(settings.formulation, x);

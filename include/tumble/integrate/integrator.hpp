@@ -1,5 +1,19 @@
 #pragma once
-// Time integrators: advance a Model's state by one step in a chosen formulation.
+// Time integrators, selected by name. Two kinds:
+//  - fixed-step (`Integrator`): advance by a given h; the time loop shortens the last step before a
+//    sample so samples land on the output grid;
+//  - adaptive (`AdaptiveIntegrator`): choose their own steps to meet tolerances and answer at any
+//    requested time by dense output.
+//
+// | name                | kind     | order | keeps                                  |
+// | euler               | fixed    | 1     | nothing (gains energy on a free rotor)  |
+// | semi_implicit_euler | fixed    | 1     | nothing                                 |
+// | rk4                 | fixed    | 4     | |q| = 1 by projection                   |
+// | lie_rk4             | fixed    | 4     | R ∈ SO(3) to rounding, no projection    |
+// | implicit_gyro       | fixed    | 1     | stable at large steps; dissipates E, |L| |
+// | splitting           | fixed    | 2     | L_w, E of the free flow exactly         |
+// | splitting4          | fixed    | 4     | same                                    |
+// | dopri45             | adaptive | 5(4)  | the tolerances                          |
 #include <memory>
 #include <string>
 #include <vector>
@@ -14,6 +28,8 @@ class Integrator {
   virtual std::string name() const = 0;
   /// Order of accuracy of the method (global error ∝ hᵒʳᵈᵉʳ).
   virtual int order() const = 0;
+  /// Right-hand-side (force) evaluations per step, for work–precision comparisons.
+  virtual int evaluations_per_step() const = 0;
   /// Advance the formulation's variables `x` from x.t to x.t + h. Integrators work on the
   /// formulation's own variables from step to step: converting to world quantities and back every step
   /// would rotate ω and v forth and back by a quaternion whose norm is 1 only to rounding, a bias of
@@ -21,11 +37,44 @@ class Integrator {
   virtual void step(const Model& model, Formulation formulation, SystemCoordinates& x, double h) const = 0;
 };
 
-/// The integrator registered under `name` ("euler", "semi_implicit_euler", "rk4"); throws
-/// InvalidArgument listing the names there are.
-std::unique_ptr<Integrator> make_integrator(const std::string& name);
-/// Every registered integrator name.
+/// Error tolerances of adaptive integrators: each component y of the state keeps its local error below
+/// absolute + relative·|y|.
+struct Tolerances {
+  double relative = 1e-9;
+  double absolute = 1e-12;
+};
+
+/// Work done by an integrator in a run.
+struct IntegratorStats {
+  long steps = 0;            ///< accepted steps
+  long rejected = 0;         ///< rejected step attempts (adaptive only)
+  long evaluations = 0;      ///< right-hand-side (force model) evaluations
+};
+
+class AdaptiveIntegrator {
+ public:
+  virtual ~AdaptiveIntegrator() = default;
+  virtual std::string name() const = 0;
+  /// Begin at x0 with a first trial step; `model` must outlive the integrator's use.
+  virtual void start(const Model& model, Formulation formulation, const SystemCoordinates& x0,
+                     double initial_step) = 0;
+  /// The variables at time t (non-decreasing between calls), stepping as far as needed and
+  /// interpolating inside the last step (dense output).
+  virtual SystemCoordinates at(double t) = 0;
+  virtual IntegratorStats stats() const = 0;
+};
+
+/// Every registered integrator name, fixed-step and adaptive.
 std::vector<std::string> integrator_names();
+/// True for the adaptive ones (dopri45).
+bool is_adaptive(const std::string& name);
+/// The fixed-step integrator registered under `name`; throws InvalidArgument listing the names there
+/// are (and saying so for an adaptive name).
+std::unique_ptr<Integrator> make_integrator(const std::string& name);
+/// The adaptive integrator registered under `name`; throws InvalidArgument for other names and for
+/// tolerances that are not positive and finite.
+std::unique_ptr<AdaptiveIntegrator> make_adaptive_integrator(const std::string& name,
+                                                             const Tolerances& tolerances);
 
 /// "world", "mixed" or "body" ↔ Formulation; throws InvalidArgument for anything else.
 Formulation parse_formulation(const std::string& name);
