@@ -39,10 +39,13 @@ DensityResult integrate_density(const TriangleMesh& mesh, const DensityField& rh
         const Eigen::Vector4d& l = rule.barycentric[k];
         sum.add(apex + l(1) * a + l(2) * b + l(3) * c, volume * rule.weights[k]);
       }
+      sum.end_block();
     }
     return sum.finish();
   };
-  return detail::integrate_with_estimate(d, integrate);
+  DensityResult result = detail::integrate_with_estimate(d, integrate);
+  result.warnings = checked.warnings;
+  return result;
 }
 
 }  // namespace tumble

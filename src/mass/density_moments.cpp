@@ -22,19 +22,27 @@ void MomentAccumulator::bad_density(const Vec3& x, double rho) const {
       where_, rho, x.x(), x.y(), x.z(), element));
 }
 
-MassProperties MomentAccumulator::finish() const {
-  if (!(m0_ > 0.0)) {
+MassProperties MomentAccumulator::finish() {
+  end_block();
+  const Terms t = sum_.total();
+  const double volume = t[0], m0 = t[1];
+  if (!(m0 > 0.0)) {
     throw InvalidArgument(fmt::format(
         "{}: the density integrates to a total mass of {} kg, which is not positive; the density "
         "must be non-negative and positive somewhere in the body",
-        where_, m0_));
+        where_, m0));
   }
+  const Vec3 m1(t[2], t[3], t[4]);
+  Mat3 m2;
+  m2 << t[5], t[8], t[9],  //
+      t[8], t[6], t[10],   //
+      t[9], t[10], t[7];
   // S = ∫ρ (x − c)(x − c)ᵀ = M₂ − M₁M₁ᵀ/M₀ (the parallel-axis shift of the second moment), then
   // I = ∫ρ((r·r)I₃ − r rᵀ) = tr(S) I₃ − S.
-  const Vec3 shift = m1_ / m0_;
-  const Mat3 S = m2_ - m0_ * shift * shift.transpose();
+  const Vec3 shift = m1 / m0;
+  const Mat3 S = m2 - m0 * shift * shift.transpose();
   const Mat3 I = S.trace() * Mat3::Identity() - S;
-  return MassProperties{m0_, origin_ + shift, 0.5 * (I + I.transpose()), volume_};
+  return MassProperties{m0, origin_ + shift, 0.5 * (I + I.transpose()), volume};
 }
 
 int density_rule_degree(int degree, const DensityField& rho, const std::string& where) {
@@ -66,7 +74,7 @@ double relative_difference(const MassProperties& other, const MassProperties& re
 DensityResult integrate_with_estimate(int d, const std::function<MassProperties(int)>& integrate) {
   const MassProperties low = integrate(d);
   const MassProperties high = integrate(d + 2);
-  return DensityResult{high, relative_difference(low, high), d + 2};
+  return DensityResult{high, relative_difference(low, high), d + 2, {}};
 }
 
 }  // namespace tumble::detail

@@ -6,6 +6,7 @@
 #include <functional>
 #include <string>
 
+#include "pairwise_sum.hpp"
 #include "tumble/mass/density.hpp"
 
 namespace tumble::detail {
@@ -13,6 +14,9 @@ namespace tumble::detail {
 /// Sums, over quadrature points x with geometric weights w (volume element × rule weight),
 ///   V = Σ w,  M₀ = Σ w ρ(x),  M₁ = Σ w ρ(x) r,  M₂ = Σ w ρ(x) r rᵀ,   r = x − origin.
 /// The origin should be near the centre of mass: M₂ − M₁M₁ᵀ/M₀ then loses little to cancellation.
+/// Points are summed one after the other into a block; end_block() (once per tetrahedron or outer
+/// quadrature node) hands the block to a pairwise sum, so rounding grows like log(blocks), not like the
+/// number of points (10⁷ for a large mesh at high degree).
 class MomentAccumulator {
  public:
   /// `where` names the body in messages ("mesh 'part.stl'", "sphere").
@@ -30,15 +34,29 @@ class MomentAccumulator {
     if (!std::isfinite(rho)) bad_density(x, rho);
     const Vec3 r = x - origin_;
     const double wr = weight * rho;
-    volume_ += weight;
-    m0_ += wr;
-    m1_ += wr * r;
-    m2_.noalias() += (wr * r) * r.transpose();
+    const Vec3 wrr = wr * r;
+    block_[0] += weight;
+    block_[1] += wr;
+    block_[2] += wrr.x();
+    block_[3] += wrr.y();
+    block_[4] += wrr.z();
+    block_[5] += wrr.x() * r.x();
+    block_[6] += wrr.y() * r.y();
+    block_[7] += wrr.z() * r.z();
+    block_[8] += wrr.x() * r.y();
+    block_[9] += wrr.x() * r.z();
+    block_[10] += wrr.y() * r.z();
+  }
+
+  /// Ends the current block of points (see the class comment).
+  void end_block() {
+    sum_.add(block_);
+    block_ = {};
   }
 
   /// m = M₀, c = origin + M₁/m, I = tr(S)I₃ − S with S = M₂ − M₁M₁ᵀ/m (the second moment about c).
-  /// Throws InvalidArgument if m ≤ 0.
-  MassProperties finish() const;
+  /// Ends the last block. Throws InvalidArgument if m ≤ 0.
+  MassProperties finish();
 
  private:
   [[noreturn]] void bad_density(const Vec3& x, double rho) const;
@@ -48,10 +66,10 @@ class MomentAccumulator {
   std::string where_;
   const char* element_kind_ = nullptr;
   std::size_t element_ = 0;
-  double volume_ = 0.0;
-  double m0_ = 0.0;
-  Vec3 m1_ = Vec3::Zero();
-  Mat3 m2_ = Mat3::Zero();
+  // V, M₀, M₁ (x, y, z), M₂ (xx, yy, zz, xy, xz, yz).
+  using Terms = PairwiseSum<11>::Terms;
+  Terms block_{};
+  PairwiseSum<11> sum_;
 };
 
 /// Checks the requested degree and the density field; returns the odd rule degree d ≥ degree.

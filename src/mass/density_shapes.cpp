@@ -49,6 +49,7 @@ void box(MomentAccumulator& sum, const Box& s, int d) {
         sum.add(Vec3(gx.nodes[i], gy.nodes[j], gz.nodes[k]),
                 gx.weights[i] * gy.weights[j] * gz.weights[k]);
       }
+      sum.end_block();
     }
   }
 }
@@ -74,6 +75,7 @@ void ball(MomentAccumulator& sum, const Vec3& semi, const Vec3& centre, double u
         const Vec3 unit(rho_xy * phi.cos[k], rho_xy * phi.sin[k], r * u);
         sum.add(centre + semi.cwiseProduct(unit), w * phi.weight[k]);
       }
+      sum.end_block();
     }
   }
 }
@@ -91,6 +93,7 @@ void cylinder(MomentAccumulator& sum, double R, double z0, double z1, int d) {
       for (std::size_t k = 0; k < phi.cos.size(); ++k) {
         sum.add(Vec3(s * phi.cos[k], s * phi.sin[k], gz.nodes[j]), w * phi.weight[k]);
       }
+      sum.end_block();
     }
   }
 }
@@ -111,6 +114,7 @@ void cone(MomentAccumulator& sum, const Cone& c, int d) {
       for (std::size_t k = 0; k < phi.cos.size(); ++k) {
         sum.add(Vec3(radius * s * phi.cos[k], radius * s * phi.sin[k], h * t), w * phi.weight[k]);
       }
+      sum.end_block();
     }
   }
 }
@@ -131,6 +135,7 @@ void torus(MomentAccumulator& sum, const Torus& tor, int d) {
       for (std::size_t k = 0; k < phi.cos.size(); ++k) {
         sum.add(Vec3(arm * phi.cos[k], arm * phi.sin[k], s * theta.sin[j]), w * phi.weight[k]);
       }
+      sum.end_block();
     }
   }
 }
@@ -139,6 +144,8 @@ template <class... Ts>
 struct Overloaded : Ts... {
   using Ts::operator()...;
 };
+template <class... Ts>
+Overloaded(Ts...) -> Overloaded<Ts...>;  // clang 14 does not deduce aggregates (P1816) yet
 
 }  // namespace
 

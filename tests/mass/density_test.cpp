@@ -36,6 +36,7 @@ constexpr double eps = std::numeric_limits<double>::epsilon();
 
 using LVec = Eigen::Matrix<long double, 3, 1>;
 using LMat = Eigen::Matrix<long double, 3, 3>;
+long double wide(double x) { return static_cast<long double>(x); }
 
 /// Raw moments ∫ρ, ∫ρx, ∫ρxxᵀ about the origin, in long double so that the reference's own rounding
 /// (1e-19) is far below the 1e-13 the library is held to.
@@ -121,12 +122,12 @@ RawMoments polynomial_on_box(const Polynomial& poly, const Vec3& lo, const Vec3&
       }
     }
     RawMoments part = separable(F, 0);
-    part.m *= t.coef;
-    part.first *= t.coef;
-    part.second *= t.coef;
+    part.m *= wide(t.coef);
+    part.first *= wide(t.coef);
+    part.second *= wide(t.coef);
     total += part;
   }
-  total.volume = (hi - lo).prod();
+  total.volume = wide((hi - lo).prod());
   return total;
 }
 
@@ -135,19 +136,19 @@ RawMoments polynomial_on_box(const Polynomial& poly, const Vec3& lo, const Vec3&
 RawMoments exponential_on_box(double rho0, const Vec3& kappa, const Vec3& lo, const Vec3& hi) {
   std::array<std::array<long double, 3>, 3> F;
   for (int i = 0; i < 3; ++i) {
-    const long double k = kappa(i);
+    const long double k = wide(kappa(i));
     auto anti = [&](long double x) {
       const long double e = std::exp(k * x);
       return std::array<long double, 3>{e / k, e * (x / k - 1 / (k * k)),
                                         e * (x * x / k - 2 * x / (k * k) + 2 / (k * k * k))};
     };
-    const auto a = anti(lo(i)), b = anti(hi(i));
+    const auto a = anti(wide(lo(i))), b = anti(wide(hi(i)));
     for (int n = 0; n < 3; ++n) F[i][n] = b[n] - a[n];
   }
-  RawMoments r = separable(F, (hi - lo).prod());
-  r.m *= rho0;
-  r.first *= rho0;
-  r.second *= rho0;
+  RawMoments r = separable(F, wide((hi - lo).prod()));
+  r.m *= wide(rho0);
+  r.first *= wide(rho0);
+  r.second *= wide(rho0);
   return r;
 }
 
@@ -181,14 +182,15 @@ MassProperties by_slicing(const Slices& s, double rho0, double alpha, double bet
   };
   auto g = [&](double z) { return 1 + beta * z + gamma * z * z; };
   RawMoments r;
-  r.m = part([&](double z, const Vec3& q) { return g(z) * q(0); });
-  r.first(0) = part([&](double, const Vec3& q) { return alpha * q(1); });
-  r.first(2) = part([&](double z, const Vec3& q) { return z * g(z) * q(0); });
-  r.second(0, 0) = part([&](double z, const Vec3& q) { return g(z) * q(1); });
-  r.second(1, 1) = part([&](double z, const Vec3& q) { return g(z) * q(2); });
-  r.second(2, 2) = part([&](double z, const Vec3& q) { return z * z * g(z) * q(0); });
-  r.second(0, 2) = r.second(2, 0) = part([&](double z, const Vec3& q) { return z * alpha * q(1); });
-  r.volume = part([](double, const Vec3& q) { return q(0); }) / rho0;
+  r.m = wide(part([&](double z, const Vec3& q) { return g(z) * q(0); }));
+  r.first(0) = wide(part([&](double, const Vec3& q) { return alpha * q(1); }));
+  r.first(2) = wide(part([&](double z, const Vec3& q) { return z * g(z) * q(0); }));
+  r.second(0, 0) = wide(part([&](double z, const Vec3& q) { return g(z) * q(1); }));
+  r.second(1, 1) = wide(part([&](double z, const Vec3& q) { return g(z) * q(2); }));
+  r.second(2, 2) = wide(part([&](double z, const Vec3& q) { return z * z * g(z) * q(0); }));
+  r.second(0, 2) = r.second(2, 0) =
+      wide(part([&](double z, const Vec3& q) { return z * alpha * q(1); }));
+  r.volume = wide(part([](double, const Vec3& q) { return q(0); }) / rho0);
   return r.properties();
 }
 
@@ -453,6 +455,9 @@ TEST(Density, InsideOutMeshIsFlippedAndGivesTheSameBody) {
   const DensityResult flipped = integrate_density(inside_out(mesh), rho, 4);
   expect_close(flipped.properties, outward.properties, kRounding, "inside-out cube");
   EXPECT_GT(flipped.properties.mass, 0);
+  EXPECT_TRUE(outward.warnings.empty());
+  ASSERT_EQ(flipped.warnings.size(), 1u);
+  EXPECT_NE(flipped.warnings[0].find("inside-out"), std::string::npos) << flipped.warnings[0];
 }
 
 TEST(Density, UniformDensityEqualsTheClosedFormOfEveryPrimitive) {
@@ -573,11 +578,11 @@ TEST(Density, ExponentialDensityConvergesAndTheEstimateBoundsTheError) {
       return rho0 * integrate([&](double z) { return std::exp(k * z) * f(z, ball.section(z)); }, -R, R);
     };
     RawMoments raw;
-    raw.m = part([](double, const Vec3& q) { return q(0); });
-    raw.first(2) = part([](double z, const Vec3& q) { return z * q(0); });
-    raw.second(0, 0) = raw.second(1, 1) = part([](double, const Vec3& q) { return q(1); });
-    raw.second(2, 2) = part([](double z, const Vec3& q) { return z * z * q(0); });
-    raw.volume = 4 * pi / 3 * R * R * R;
+    raw.m = wide(part([](double, const Vec3& q) { return q(0); }));
+    raw.first(2) = wide(part([](double z, const Vec3& q) { return z * q(0); }));
+    raw.second(0, 0) = raw.second(1, 1) = wide(part([](double, const Vec3& q) { return q(1); }));
+    raw.second(2, 2) = wide(part([](double z, const Vec3& q) { return z * z * q(0); }));
+    raw.volume = wide(4 * pi / 3 * R * R * R);
     expect_converges([&](int d) { return integrate_density(Sphere{R}, rho_z, d); }, raw.properties(),
                      floor, "sphere");
   }

@@ -11,9 +11,11 @@
 // Rules (src/mass/tet_quadrature.cpp, src/mass/line_quadrature.cpp):
 //  - Tetrahedra: Grundmann–Möller simplex rules (Grundmann & Möller, SIAM J. Numer. Anal. 15, 1978),
 //    odd degree 2s+1 in closed form, C(s+4, 4) points. Some weights are negative: fine for smooth ρ,
-//    and the rounding they amplify (Σ|w| = 2.6, 5.6, 12, 25, 54, 116, 251, 545 times the volume for
-//    degrees 3, 5, ..., 17) stays below 1e-13 relative over the supported range. No Debian library
-//    provides simplex rules (Boost.Math has only 1-D rules), so tumble writes this one.
+//    but they amplify rounding by Σ|w| = 2.6, 5.6, 12, 25, 54, 116, 251, 545 (in units of the volume)
+//    for degrees 3, 5, ..., 17 — the cap on the degree keeps it near 1e-13 relative (tests measure
+//    ≤ 6e-14 at the top degree). Positive-weight alternatives (conical products of Gauss–Jacobi rules)
+//    need ~2–4× the points for the same degree. No Debian library provides simplex rules (Boost.Math
+//    has only 1-D rules, Eigen none), so tumble writes this one.
 //  - Primitives: tensor products of 1-D Gauss–Legendre rules (nodes from Boost.Math
 //    legendre_p_zeros) and, in periodic angles, the trapezoid rule.
 //
@@ -28,6 +30,7 @@
 // polynomial ρ of degree ≤ d − 2 (both rules are then exact and the estimate is rounding).
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "tumble/mass/mass_properties.hpp"
 #include "tumble/mass/shapes.hpp"
@@ -53,6 +56,9 @@ struct DensityResult {
   double estimated_error = 0.0;
   /// Polynomial degree the returned rule integrates exactly: the requested degree raised to odd, + 2.
   int degree = 0;
+  /// From the mesh checks, one line each (e.g. an inside-out mesh was integrated flipped); empty for
+  /// primitives.
+  std::vector<std::string> warnings;
 };
 
 /// Solid bounded by a closed mesh with density ρ(x).
