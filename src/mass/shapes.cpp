@@ -23,6 +23,8 @@ template <class... Ts>
 struct Overloaded : Ts... {
   using Ts::operator()...;
 };
+template <class... Ts>
+Overloaded(Ts...) -> Overloaded<Ts...>;  // Clang 14 does not deduce aggregate bases without it
 
 /// Unit-density body with principal moments `k` (per unit mass) about its centre, placed at c.
 MassProperties unit_body(double measure, const Vec3& k, const Vec3& c = Vec3::Zero(),
