@@ -247,8 +247,9 @@ TEST(MeshIntegrals, BlockedSummationStaysAccurateForMillionsOfTriangles) {
   const Vec3 ref(0, 0, 0);  // the torus' bounding box is centred on the origin: the same reference
   for (const auto& f : mesh.triangles) {
     const Vec3 &a = mesh.vertices[f[0]], &b = mesh.vertices[f[1]], &c = mesh.vertices[f[2]];
-    const long double ax = a.x(), ay = a.y(), az = a.z(), bx = b.x(), by = b.y(), bz = b.z(),
-                      cx = c.x(), cy = c.y(), cz = c.z();
+    auto ld = [](double x) { return static_cast<long double>(x); };
+    const long double ax = ld(a.x()), ay = ld(a.y()), az = ld(a.z()), bx = ld(b.x()), by = ld(b.y()),
+                      bz = ld(b.z()), cx = ld(c.x()), cy = ld(c.y()), cz = ld(c.z());
     V += (ax * (by * cz - bz * cy) + ay * (bz * cx - bx * cz) + az * (bx * cy - by * cx)) / 6;
   }
   const double got = integrate_solid_mesh(mesh).mass;
