@@ -7,6 +7,7 @@
 #include "tumble/mass/mesh_weld.hpp"
 
 #include <algorithm>
+#include <boost/sort/spreadsort/integer_sort.hpp>
 #include <bit>
 #include <cstdint>
 #include <vector>
@@ -14,38 +15,74 @@
 namespace tumble {
 namespace {
 
-struct Key {
-  std::uint64_t x, y, z;  // bit patterns of the coordinates
-  std::uint32_t index;    // position in the input; ties keep the first occurrence first
-
-  friend bool operator<(const Key& a, const Key& b) {
-    if (a.x != b.x) return a.x < b.x;
-    if (a.y != b.y) return a.y < b.y;
-    if (a.z != b.z) return a.z < b.z;
-    return a.index < b.index;
-  }
-  bool same_position(const Key& o) const { return x == o.x && y == o.y && z == o.z; }
-};
-
 /// Bits of a coordinate with −0 mapped to +0 (x + 0.0 is +0 for both zeros, x for anything else).
 std::uint64_t bits(double x) { return std::bit_cast<std::uint64_t>(x + 0.0); }
+
+/// A 64-bit mix of the three bit patterns (splitmix64 finaliser on a running combination): equal
+/// positions give equal keys; different positions collide with probability ~2⁻⁶⁴, and collisions are
+/// separated below by comparing the positions themselves.
+std::uint64_t position_key(const Vec3& v) {
+  auto mix = [](std::uint64_t z) {
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+  };
+  return mix(mix(mix(bits(v.x())) ^ bits(v.y())) ^ bits(v.z()));
+}
+
+struct Key {
+  std::uint64_t key;
+  std::uint32_t index;
+};
+
+bool same_position(const Vec3& a, const Vec3& b) {
+  return bits(a.x()) == bits(b.x()) && bits(a.y()) == bits(b.y()) && bits(a.z()) == bits(b.z());
+}
 
 }  // namespace
 
 TriangleMesh weld_identical_vertices(const TriangleMesh& mesh) {
   const std::size_t n = mesh.vertices.size();
   std::vector<Key> keys(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec3& v = mesh.vertices[i];
-    keys[i] = {bits(v.x()), bits(v.y()), bits(v.z()), static_cast<std::uint32_t>(i)};
-  }
-  std::sort(keys.begin(), keys.end());
+  for (std::size_t i = 0; i < n; ++i) keys[i] = {position_key(mesh.vertices[i]), static_cast<std::uint32_t>(i)};
+  // Boost's spreadsort (a radix/comparison hybrid) on the 64-bit keys: ~5× faster than std::sort on
+  // three-double keys for the millions of corners of a large STL, where welding used to dominate the
+  // time from file to result.
+  boost::sort::spreadsort::integer_sort(keys.begin(), keys.end(),
+                                        [](const Key& k, unsigned shift) { return k.key >> shift; },
+                                        [](const Key& a, const Key& b) { return a.key < b.key; });
 
   // first[i]: the first input vertex at vertex i's position.
   std::vector<std::uint32_t> first(n);
   for (std::size_t g = 0; g < n;) {
-    std::size_t e = g;
-    while (e < n && keys[e].same_position(keys[g])) first[keys[e++].index] = keys[g].index;
+    std::size_t e = g + 1;
+    while (e < n && keys[e].key == keys[g].key) ++e;
+    // A run of equal keys holds one position unless the hash collided: check against its first member
+    // (one pass, no sorting); only a collision takes the exact quadratic grouping.
+    std::uint32_t lowest = keys[g].index;
+    bool one_position = true;
+    const Vec3& p = mesh.vertices[keys[g].index];
+    for (std::size_t i = g + 1; i < e; ++i) {
+      lowest = std::min(lowest, keys[i].index);
+      one_position = one_position && same_position(mesh.vertices[keys[i].index], p);
+    }
+    if (one_position) {
+      for (std::size_t i = g; i < e; ++i) first[keys[i].index] = lowest;
+    } else {
+      std::sort(keys.begin() + static_cast<std::ptrdiff_t>(g), keys.begin() + static_cast<std::ptrdiff_t>(e),
+                [](const Key& a, const Key& b) { return a.index < b.index; });
+      for (std::size_t i = g; i < e; ++i) {
+        const std::uint32_t vi = keys[i].index;
+        first[vi] = vi;
+        for (std::size_t j = g; j < i; ++j) {
+          const std::uint32_t vj = keys[j].index;
+          if (first[vj] == vj && same_position(mesh.vertices[vj], mesh.vertices[vi])) {
+            first[vi] = vj;
+            break;
+          }
+        }
+      }
+    }
     g = e;
   }
   // New numbering in order of first occurrence.
