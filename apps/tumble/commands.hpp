@@ -10,5 +10,9 @@ using Runner = std::function<int()>;
 
 /// `tumble inertia`: mass properties of a mesh file or a primitive shape.
 Runner add_inertia_command(CLI::App& app);
+/// `tumble run`: simulate a scene file, write the trajectory and diagnostics (run_command.cpp).
+Runner add_run_command(CLI::App& app);
+/// `tumble check`: validate a scene file and summarise it (check_command.cpp).
+Runner add_check_command(CLI::App& app);
 
 }  // namespace tumble::cli

@@ -15,6 +15,8 @@ int main(int argc, char** argv) {
       "tumble"};
   app.set_version_flag("--version", std::string("tumble ") + TUMBLE_VERSION);
   app.require_subcommand(1);
+  const tumble::cli::Runner run = tumble::cli::add_run_command(app);
+  const tumble::cli::Runner check = tumble::cli::add_check_command(app);
   const tumble::cli::Runner inertia = tumble::cli::add_inertia_command(app);
 
   try {
@@ -23,6 +25,8 @@ int main(int argc, char** argv) {
     return app.exit(e);
   }
   try {
+    if (app.got_subcommand("run")) return run();
+    if (app.got_subcommand("check")) return check();
     if (app.got_subcommand("inertia")) return inertia();
   } catch (const tumble::Error& e) {
     fmt::print(stderr, "tumble: error: {}\n", e.what());

@@ -1,0 +1,27 @@
+// `tumble check`: read and validate a scene, print what it contains, simulate nothing.
+#include <fmt/format.h>
+
+#include "commands.hpp"
+#include "scene_summary.hpp"
+#include "tumble/io/scene.hpp"
+
+namespace tumble::cli {
+
+Runner add_check_command(CLI::App& app) {
+  auto file = std::make_shared<std::string>();
+  CLI::App* cmd = app.add_subcommand(
+      "check",
+      "Validate a scene file without simulating: report the first problem as file:line:column, or "
+      "print a summary (each body's mass, centre of mass and principal moments; the forces; the "
+      "initial energy and momenta; which of them the forces conserve).\n\nExample:\n"
+      "  tumble check examples/t_handle.toml");
+  cmd->add_option("scene", *file, "scene file (TOML; see docs/scene-format.md)")->required();
+  return [file] {
+    const Scene scene = load_scene(*file);
+    print_scene_warnings(scene);
+    print_scene_summary(stdout, scene);
+    return 0;
+  };
+}
+
+}  // namespace tumble::cli

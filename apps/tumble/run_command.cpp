@@ -1,0 +1,179 @@
+// `tumble run`: simulate a scene file and write its trajectory (CSV or HDF5) and diagnostics.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "commands.hpp"
+#include "interrupt.hpp"
+#include "progress.hpp"
+#include "scene_summary.hpp"
+#include "tumble/integrate/integrator.hpp"
+#include "tumble/io/scene.hpp"
+#include "tumble/io/trajectory_writer.hpp"
+
+namespace tumble::cli {
+namespace {
+
+struct RunOptions {
+  std::string scene;
+  std::string output;
+  std::string format;
+  std::string diagnostics;
+  std::optional<std::string> integrator;
+  std::optional<std::string> formulation;
+  std::optional<double> timestep;
+  std::optional<double> duration;
+  std::optional<double> output_interval;
+  std::optional<double> rtol;
+  std::optional<double> atol;
+  std::optional<double> drift_threshold;
+  bool quiet = false;
+  bool progress = false;
+};
+
+bool is_hdf5_name(const std::filesystem::path& p) {
+  const std::string ext = p.extension().string();
+  return ext == ".h5" || ext == ".hdf5" || ext == ".hdf";
+}
+
+/// The file's settings with the command line's on top.
+RunSettings settings_for(const Scene& scene, const RunOptions& o) {
+  RunSettings s = scene.settings;
+  if (o.integrator) s.integrator = *o.integrator;
+  if (o.formulation) s.formulation = parse_formulation(*o.formulation);
+  if (o.timestep) s.timestep = *o.timestep;
+  if (o.duration) s.duration = *o.duration;
+  if (o.output_interval) s.output_interval = *o.output_interval;
+  if (o.rtol) s.tolerances.relative = *o.rtol;
+  if (o.atol) s.tolerances.absolute = *o.atol;
+  validate(s);  // names the bad value and how to fix it
+  return s;
+}
+
+/// Largest |drift| seen per quantity, for the closing line.
+struct DriftExtremes {
+  std::optional<double> energy, angular_momentum;
+  void add(const DriftSample& d) {
+    auto keep = [](std::optional<double>& m, const std::optional<double>& x) {
+      if (x) m = std::max(m.value_or(0.0), std::abs(*x));
+    };
+    keep(energy, d.energy_drift);
+    keep(angular_momentum, d.angular_momentum_drift);
+  }
+};
+
+int run(const RunOptions& o) {
+  Scene scene = load_scene(o.scene);
+  const RunSettings settings = settings_for(scene, o);
+  const double threshold = o.drift_threshold.value_or(scene.drift_threshold);
+  if (!(std::isfinite(threshold) && threshold >= 0)) {
+    throw InvalidArgument(fmt::format("--drift-threshold {} is invalid: give a number >= 0 (0 turns the "
+                                      "warning off)",
+                                      threshold));
+  }
+  print_scene_warnings(scene);
+
+  const bool hdf5 = o.format.empty() ? is_hdf5_name(o.output) : o.format == "hdf5";
+  std::filesystem::path out = o.output;
+  if (out.empty()) {
+    out = std::filesystem::path(o.scene).stem();
+    out += hdf5 ? ".h5" : ".csv";
+  }
+  if (hdf5 && !o.diagnostics.empty()) {
+    throw InvalidArgument("--diagnostics names a CSV file; HDF5 output keeps the diagnostics in its "
+                          "'diagnostics' group: drop --diagnostics or use --format csv");
+  }
+  const TrajectoryInfo info{scene.text, o.scene, TUMBLE_VERSION, settings};
+  const std::unique_ptr<TrajectoryWriter> writer =
+      hdf5 ? make_hdf5_writer(out, scene.model, info)
+           : make_csv_writer(out, o.diagnostics.empty() ? diagnostics_path(out) : std::filesystem::path(o.diagnostics),
+                             scene.model, info);
+
+  DriftMonitor monitor(scene.model, scene.initial, scene.conserved, threshold, settings);
+  DriftExtremes extremes;
+  Progress progress(o.quiet ? ProgressMode::never : o.progress ? ProgressMode::always : ProgressMode::automatic,
+                    scene.initial.t, scene.initial.t + settings.duration);
+  const InterruptGuard interrupt;
+  bool interrupted = false;
+  double t_reached = scene.initial.t;
+  simulate(scene.model, scene.initial, settings, [&](const SystemState& state) {
+    const DriftSample d = monitor.observe(state);
+    writer->write(scene.model, state, d);
+    extremes.add(d);
+    t_reached = state.t;
+    if (auto warning = monitor.take_warning()) progress.message("tumble: warning: " + *warning);
+    progress.update(state.t);
+    interrupted = interrupt.requested();
+    return !interrupted;  // stop at this sample: everything written so far stays valid
+  });
+  progress.finish();
+  writer->commit(!interrupted);
+
+  const auto files = writer->outputs();
+  if (interrupted) {
+    fmt::print(stderr, "tumble: interrupted at t = {:g} s of {:g} s; {} holds the {} samples up to then\n",
+               t_reached, scene.initial.t + settings.duration, files.front().string(), writer->samples());
+    return 130;  // 128 + SIGINT, as shells report an interrupted command
+  }
+  if (!o.quiet) {
+    const size_t n = scene.model.bodies.size() + scene.model.particles.size();
+    fmt::print("ran {} for {:g} s ({}, {} formulation): {} samples of {} bodies/particles\n", o.scene,
+               settings.duration, settings.integrator, formulation_name(settings.formulation), writer->samples(), n);
+    std::vector<std::string> drift;
+    if (scene.conserved.energy && extremes.energy) drift.push_back(fmt::format("energy {:.2g}", *extremes.energy));
+    if (scene.conserved.angular_momentum && extremes.angular_momentum) {
+      drift.push_back(fmt::format("angular momentum {:.2g}", *extremes.angular_momentum));
+    }
+    if (!drift.empty()) fmt::print("largest relative drift of conserved quantities: {}\n", fmt::join(drift, ", "));
+    if (hdf5) {
+      fmt::print("trajectory and diagnostics: {}\n", files.front().string());
+    } else {
+      fmt::print("trajectory:  {}\ndiagnostics: {}\n", files[0].string(), files[1].string());
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+
+Runner add_run_command(CLI::App& app) {
+  auto o = std::make_shared<RunOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "run",
+      "Simulate a scene file and write the trajectory: one row per body per output sample with the pose "
+      "of its reference frame (position, quaternion w,x,y,z), the velocity of its origin and the angular "
+      "velocity, all in world axes; plus the energy, momenta and their drift from t = 0. Options given "
+      "here override the scene's [simulation] values. Ctrl-C stops at the next sample and keeps what "
+      "was written.\n\nExamples:\n"
+      "  tumble run examples/t_handle.toml -o out/t_handle.csv\n"
+      "  tumble run examples/satellite.toml -o out/satellite.h5 --integrator dopri45 --rtol 1e-10\n"
+      "  tumble run examples/t_handle.toml --timestep 1e-4 --duration 5 --quiet");
+  cmd->add_option("scene", o->scene, "scene file (TOML; see docs/scene-format.md)")->required();
+  cmd->add_option("-o,--output", o->output,
+                  "trajectory file; .h5/.hdf5 means HDF5 unless --format says otherwise (default: the "
+                  "scene's name with .csv or .h5, in the current directory); directories are created");
+  cmd->add_option("--format", o->format, "csv (two files: trajectory and diagnostics) or hdf5 (one file)")
+      ->check(CLI::IsMember({"csv", "hdf5"}));
+  cmd->add_option("--diagnostics", o->diagnostics,
+                  "CSV file for energy, momenta and drifts (default: OUTPUT with .diagnostics.csv)");
+  cmd->add_option("--integrator", o->integrator,
+                  fmt::format("time integrator, one of: {}", fmt::join(integrator_names(), ", ")));
+  cmd->add_option("--formulation", o->formulation, "frame of the integrated velocities: world, mixed or body");
+  cmd->add_option("--timestep", o->timestep, "step h (s); for adaptive integrators the first trial step");
+  cmd->add_option("--duration", o->duration, "simulated time (s)");
+  cmd->add_option("--output-interval", o->output_interval, "time between samples (s); 0 = every step");
+  cmd->add_option("--rtol", o->rtol, "relative tolerance of adaptive integrators");
+  cmd->add_option("--atol", o->atol, "absolute tolerance of adaptive integrators");
+  cmd->add_option("--drift-threshold", o->drift_threshold,
+                  "warn when a conserved energy or angular momentum drifts by more than this, relative "
+                  "to t = 0 (0 = never)");
+  auto* quiet = cmd->add_flag("--quiet,-q", o->quiet, "no progress bar and no summary; errors and warnings only");
+  cmd->add_flag("--progress", o->progress,
+                "show the progress bar even when stderr is not a terminal or the run is short")
+      ->excludes(quiet);
+  return [o] { return run(*o); };
+}
+
+}  // namespace tumble::cli

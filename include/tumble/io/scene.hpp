@@ -1,0 +1,51 @@
+#pragma once
+// Scene files: what to simulate, written in TOML (docs/scene-format.md lists every key, its unit,
+// frame and default). load_scene() turns a file into a Model, its initial state and the run settings;
+// anything wrong in the file is a SceneError whose message begins with file:line:column and says
+// what was expected, what was found and how to fix it.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "tumble/error.hpp"
+#include "tumble/forces/model.hpp"
+#include "tumble/sim/drift_monitor.hpp"
+#include "tumble/sim/simulate.hpp"
+
+namespace tumble {
+
+/// A scene file that cannot be used. The message is one line: "file:line:column: what; how to fix".
+class SceneError : public Error {
+ public:
+  using Error::Error;
+};
+
+/// What a scene says about one body besides its dynamics (for `tumble check` and summaries).
+struct SceneBodyInfo {
+  std::string source;              ///< where the mass came from, e.g. "mesh t_handle.stl, 2700 kg/m^3"
+  MassProperties mass_properties;  ///< in the body's reference frame
+};
+
+struct Scene {
+  std::filesystem::path path;  ///< the scene file (as given)
+  std::string text;            ///< its contents, stored with the outputs
+  RunSettings settings;        ///< [simulation]
+  Model model;                 ///< bodies, particles and force models, in file order
+  SystemState initial;         ///< the state at t = 0
+  std::vector<SceneBodyInfo> body_info;  ///< parallel to model.bodies
+  /// Which invariants the scene's forces conserve (decided from the force models present).
+  Conservation conserved;
+  /// Relative drift of a conserved quantity beyond which a run warns ([simulation] drift_threshold).
+  double drift_threshold = 1e-6;
+  /// Things the user should know that are not errors (e.g. a mesh was inside-out and was flipped).
+  std::vector<std::string> warnings;
+};
+
+/// Reads and validates a scene file. Mesh paths in it are relative to the file's directory.
+/// Throws SceneError (file:line:column) for anything wrong in the file, FileError if it cannot be read.
+Scene load_scene(const std::filesystem::path& path);
+
+/// The same for scene text already in memory; `path` names it in messages and anchors mesh paths.
+Scene parse_scene(const std::string& text, const std::filesystem::path& path);
+
+}  // namespace tumble

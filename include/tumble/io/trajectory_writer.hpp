@@ -1,0 +1,58 @@
+#pragma once
+// Trajectory outputs. A writer receives every output sample of a run — the pose and velocity of each
+// body's reference frame (world) and the sample's invariants and drifts — and writes them to files.
+//
+// Files are written under a temporary name next to the final one (NAME.tmp-PID) and renamed only by
+// commit(), so a final name never holds a half-written file:
+//  - commit() after a complete run, or after the user interrupted it (Ctrl-C): the samples written
+//    so far form a valid file (HDF5: attribute complete = 0 and the time reached);
+//  - destroyed without commit() (an error, e.g. the state became non-finite): the temporary files are
+//    deleted and nothing appears under the final names.
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tumble/forces/model.hpp"
+#include "tumble/sim/drift_monitor.hpp"
+
+namespace tumble {
+
+/// What is stored with a trajectory besides the samples.
+struct TrajectoryInfo {
+  std::string scene_text;      ///< the scene file's contents
+  std::string scene_path;      ///< as given on the command line
+  std::string tumble_version;  ///< e.g. "0.1.0"
+  RunSettings settings;        ///< as run (after command-line overrides)
+};
+
+class TrajectoryWriter {
+ public:
+  virtual ~TrajectoryWriter() = default;
+  /// One output sample (bodies first, then particles, in model order).
+  virtual void write(const Model& model, const SystemState& state, const DriftSample& drift) = 0;
+  /// Finishes the files and moves them to their final names. `complete` is false when the run was
+  /// interrupted before its end. Throws FileError if writing failed (the temporaries are removed).
+  virtual void commit(bool complete) = 0;
+  /// The final paths of the files this writer produces.
+  virtual std::vector<std::filesystem::path> outputs() const = 0;
+  /// Samples written so far.
+  virtual long samples() const = 0;
+};
+
+/// CSV: `trajectory` has the header t,body,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz and one row per body
+/// (and per particle, with q = (1, 0, 0, 0) and w = 0) per sample, 17 significant digits;
+/// `diagnostics` has one row per sample: energies, momenta and their drifts (see csv_writer.cpp).
+std::unique_ptr<TrajectoryWriter> make_csv_writer(const std::filesystem::path& trajectory,
+                                                  const std::filesystem::path& diagnostics,
+                                                  const Model& model, const TrajectoryInfo& info);
+
+/// HDF5 (one file): datasets t, position, orientation, velocity, angular_velocity, names, and the
+/// group diagnostics; the scene text, tumble version and run settings as attributes (hdf5_writer.cpp).
+std::unique_ptr<TrajectoryWriter> make_hdf5_writer(const std::filesystem::path& path, const Model& model,
+                                                   const TrajectoryInfo& info);
+
+/// The default diagnostics path for a CSV trajectory: out/x.csv → out/x.diagnostics.csv.
+std::filesystem::path diagnostics_path(const std::filesystem::path& trajectory);
+
+}  // namespace tumble

@@ -1,0 +1,54 @@
+#pragma once
+// Watching conserved quantities during a run. Each output sample gets its invariants and their
+// relative drift from t = 0; the first time a quantity that the forces conserve drifts past the
+// threshold, the monitor produces one warning saying which quantity, when, and what to change.
+#include <optional>
+#include <string>
+
+#include "tumble/sim/diagnostics.hpp"
+#include "tumble/sim/simulate.hpp"
+
+namespace tumble {
+
+/// Which invariants a model's forces conserve exactly (so that any drift is integration error).
+struct Conservation {
+  bool energy = true;            ///< kinetic + potential
+  bool linear_momentum = true;   ///< Σ m v
+  bool angular_momentum = true;  ///< about the world origin
+};
+
+/// The invariants at one sample and their drift relative to t = 0. A drift is nullopt where it is
+/// undefined: energy without a potential for every force, or a quantity whose scale at t = 0 is zero.
+struct DriftSample {
+  Invariants invariants;
+  std::optional<double> energy_drift;            ///< (E − E₀) / max(|E₀|, T₀), signed
+  std::optional<double> linear_momentum_drift;   ///< |p − p₀| / |p₀|
+  std::optional<double> angular_momentum_drift;  ///< |L − L₀| / |L₀|
+};
+
+class DriftMonitor {
+ public:
+  /// `threshold` ≤ 0 disables the warning (the drifts are still computed). `settings` is quoted in
+  /// the warning's advice (timestep, integrator).
+  DriftMonitor(const Model& model, const SystemState& initial, Conservation conserved, double threshold,
+               const RunSettings& settings);
+
+  /// The invariants of `state` and their drifts.
+  DriftSample observe(const SystemState& state);
+
+  /// The warning, once: set by the first observe() at which a conserved energy or angular momentum
+  /// drifts by more than the threshold, and returned by the first call after that; nullopt otherwise.
+  std::optional<std::string> take_warning();
+
+ private:
+  const Model& model_;
+  Invariants initial_;
+  double energy_scale_ = 0.0;
+  Conservation conserved_;
+  double threshold_;
+  RunSettings settings_;
+  bool warned_ = false;
+  std::optional<std::string> pending_;
+};
+
+}  // namespace tumble

@@ -1,0 +1,305 @@
+// HDF5 trajectories (HDF5 C API), one file, readable by h5py:
+//
+//   /t                 (n,)          s
+//   /names             (N,)          body names, then particle names (UTF-8 strings)
+//   /position          (n, N, 3)     origin of each body's reference frame, world (m)
+//   /orientation       (n, N, 4)     unit quaternion (w, x, y, z): reference frame -> world
+//   /velocity          (n, N, 3)     velocity of that origin, world (m/s)
+//   /angular_velocity  (n, N, 3)     world (rad/s); particles: identity orientation, zero ω
+//   /diagnostics/kinetic_energy (n,), potential_energy and total_energy (n,) when every force has a
+//     potential, linear_momentum (n, 3), angular_momentum (n, 3) (world, about the origin), and
+//     energy_drift, linear_momentum_drift, angular_momentum_drift (n,) where defined (drift_monitor.hpp)
+//   attributes of /: tumble_version, scene (the scene file's text), scene_file, integrator,
+//     formulation, timestep, duration, output_interval, complete (1, or 0 if interrupted), t_end
+//
+// Datasets are chunked and extendible along the sample axis, appended in blocks as the run goes.
+#include <hdf5.h>
+
+#include <fmt/format.h>
+
+#include <array>
+
+#include "sample_rows.hpp"
+#include "staged_file.hpp"
+#include "tumble/error.hpp"
+#include "tumble/integrate/integrator.hpp"
+#include "tumble/io/trajectory_writer.hpp"
+
+namespace tumble {
+namespace {
+
+/// An HDF5 identifier closed by the function it was opened with.
+class Handle {
+ public:
+  Handle() = default;
+  Handle(hid_t id, herr_t (*close)(hid_t)) : id_(id), close_(close) {}
+  Handle(Handle&& o) noexcept : id_(o.id_), close_(o.close_) { o.id_ = H5I_INVALID_HID; }
+  Handle& operator=(Handle&& o) noexcept {
+    reset();
+    id_ = o.id_;
+    close_ = o.close_;
+    o.id_ = H5I_INVALID_HID;
+    return *this;
+  }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  ~Handle() { reset(); }
+  hid_t get() const { return id_; }
+  /// Closes now; false if HDF5 reported an error (e.g. flushing the file failed).
+  bool reset() {
+    bool ok = true;
+    if (id_ >= 0 && close_) ok = close_(id_) >= 0;
+    id_ = H5I_INVALID_HID;
+    return ok;
+  }
+
+ private:
+  hid_t id_ = H5I_INVALID_HID;
+  herr_t (*close_)(hid_t) = nullptr;
+};
+
+/// Throws FileError for a negative HDF5 result.
+struct Checker {
+  std::string path;
+  hid_t operator()(hid_t id, const char* what) const {
+    if (id < 0) throw FileError(fmt::format("HDF5 could not {} in {}", what, path));
+    return id;
+  }
+};
+
+Handle string_type() {
+  Handle t(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_size(t.get(), H5T_VARIABLE);
+  H5Tset_cset(t.get(), H5T_CSET_UTF8);  // h5py reads UTF-8 variable-length strings as str
+  return t;
+}
+
+void string_attribute(hid_t loc, const char* name, const std::string& value, const Checker& check) {
+  const Handle type = string_type();
+  const Handle space(check(H5Screate(H5S_SCALAR), "create a dataspace"), H5Sclose);
+  const Handle attr(check(H5Acreate2(loc, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT), name),
+                    H5Aclose);
+  const char* p = value.c_str();
+  check(H5Awrite(attr.get(), type.get(), &p), name);
+}
+
+template <class T>
+void number_attribute(hid_t loc, const char* name, T value, hid_t type, const Checker& check) {
+  const Handle space(check(H5Screate(H5S_SCALAR), "create a dataspace"), H5Sclose);
+  const Handle attr(check(H5Acreate2(loc, name, type, space.get(), H5P_DEFAULT, H5P_DEFAULT), name), H5Aclose);
+  check(H5Awrite(attr.get(), type, &value), name);
+}
+
+/// A dataset of shape (n, row...) growing along n, with rows buffered and appended in blocks.
+class Series {
+ public:
+  Series(hid_t loc, const char* name, std::vector<hsize_t> row_shape, const Checker& check)
+      : name_(name), row_shape_(std::move(row_shape)), check_(check) {
+    row_size_ = 1;
+    for (hsize_t d : row_shape_) row_size_ *= d;
+    // Chunks of ~64 Ki values (512 KiB): large enough to write fast, small enough for the chunk cache.
+    block_ = std::max<hsize_t>(1, 65536 / row_size_);
+    std::vector<hsize_t> dims{0}, max{H5S_UNLIMITED}, chunk{block_};
+    for (hsize_t d : row_shape_) {
+      dims.push_back(d);
+      max.push_back(d);
+      chunk.push_back(d);
+    }
+    const Handle space(check(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), max.data()), name),
+                       H5Sclose);
+    const Handle props(check(H5Pcreate(H5P_DATASET_CREATE), name), H5Pclose);
+    check(H5Pset_chunk(props.get(), static_cast<int>(chunk.size()), chunk.data()), name);
+    dataset_ = Handle(check(H5Dcreate2(loc, name, H5T_NATIVE_DOUBLE, space.get(), H5P_DEFAULT, props.get(),
+                                       H5P_DEFAULT),
+                            name),
+                      H5Dclose);
+  }
+
+  /// Appends one row of row_size values.
+  void append(const double* row) {
+    pending_.insert(pending_.end(), row, row + row_size_);
+    if (pending_.size() >= block_ * row_size_) flush();
+  }
+  void append(double x) { append(&x); }
+
+  void flush() {
+    if (pending_.empty()) return;
+    const hsize_t rows = pending_.size() / row_size_;
+    std::vector<hsize_t> new_dims{written_ + rows}, start{written_}, count{rows};
+    for (hsize_t d : row_shape_) {
+      new_dims.push_back(d);
+      start.push_back(0);
+      count.push_back(d);
+    }
+    check_(H5Dset_extent(dataset_.get(), new_dims.data()), name_.c_str());
+    const Handle file_space(check_(H5Dget_space(dataset_.get()), name_.c_str()), H5Sclose);
+    check_(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr),
+           name_.c_str());
+    const Handle memory_space(check_(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr),
+                                     name_.c_str()),
+                              H5Sclose);
+    check_(H5Dwrite(dataset_.get(), H5T_NATIVE_DOUBLE, memory_space.get(), file_space.get(), H5P_DEFAULT,
+                    pending_.data()),
+           name_.c_str());
+    written_ += rows;
+    pending_.clear();
+  }
+
+  bool close() { return dataset_.reset(); }
+
+ private:
+  std::string name_;
+  std::vector<hsize_t> row_shape_;
+  Checker check_;
+  hsize_t row_size_ = 1;
+  hsize_t block_ = 1;
+  hsize_t written_ = 0;
+  std::vector<double> pending_;
+  Handle dataset_;
+};
+
+class Hdf5Writer final : public TrajectoryWriter {
+ public:
+  Hdf5Writer(const std::filesystem::path& path, const Model& model, const TrajectoryInfo& info)
+      : staged_(path), check_{path.string()}, names_(io::row_names(model)) {
+    // Errors are reported by return codes, turned into one FileError line; HDF5's own stack print
+    // to stderr would only add noise.
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+    file_ = Handle(check_(H5Fcreate(staged_.temporary().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
+                          "create the file"),
+                   H5Fclose);
+    const hid_t root = file_.get();
+    string_attribute(root, "tumble_version", info.tumble_version, check_);
+    string_attribute(root, "scene", info.scene_text, check_);
+    string_attribute(root, "scene_file", info.scene_path, check_);
+    string_attribute(root, "integrator", info.settings.integrator, check_);
+    string_attribute(root, "formulation", formulation_name(info.settings.formulation), check_);
+    string_attribute(root, "conventions",
+                     "SI units; position, orientation (w, x, y, z), velocity: the body's reference frame in "
+                     "world; angular_velocity in world; diagnostics: momenta in world, angular momentum "
+                     "about the world origin, drifts relative to t = 0",
+                     check_);
+    number_attribute(root, "timestep", info.settings.timestep, H5T_NATIVE_DOUBLE, check_);
+    number_attribute(root, "duration", info.settings.duration, H5T_NATIVE_DOUBLE, check_);
+    number_attribute(root, "output_interval", info.settings.output_interval, H5T_NATIVE_DOUBLE, check_);
+    write_names();
+    const hsize_t N = names_.size();
+    t_.emplace(root, "t", std::vector<hsize_t>{}, check_);
+    position_.emplace(root, "position", std::vector<hsize_t>{N, 3}, check_);
+    orientation_.emplace(root, "orientation", std::vector<hsize_t>{N, 4}, check_);
+    velocity_.emplace(root, "velocity", std::vector<hsize_t>{N, 3}, check_);
+    angular_velocity_.emplace(root, "angular_velocity", std::vector<hsize_t>{N, 3}, check_);
+    diagnostics_ = Handle(check_(H5Gcreate2(root, "diagnostics", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                                 "create group diagnostics"),
+                          H5Gclose);
+  }
+
+  void write(const Model& model, const SystemState& state, const DriftSample& d) override {
+    if (samples_ == 0) create_diagnostics(d);
+    io::sample_rows(model, state, rows_);
+    t_->append(state.t);
+    std::vector<double> p, q, v, w;
+    for (const ReferenceFrameState& r : rows_) {
+      p.insert(p.end(), r.position.data(), r.position.data() + 3);
+      const std::array<double, 4> wxyz{r.orientation.w(), r.orientation.x(), r.orientation.y(), r.orientation.z()};
+      q.insert(q.end(), wxyz.begin(), wxyz.end());
+      v.insert(v.end(), r.velocity.data(), r.velocity.data() + 3);
+      w.insert(w.end(), r.omega_w.data(), r.omega_w.data() + 3);
+    }
+    position_->append(p.data());
+    orientation_->append(q.data());
+    velocity_->append(v.data());
+    angular_velocity_->append(w.data());
+    const Invariants& inv = d.invariants;
+    kinetic_->append(inv.kinetic_energy);
+    if (potential_) potential_->append(inv.potential_energy.value_or(0.0));
+    if (total_) total_->append(inv.total_energy().value_or(0.0));
+    linear_->append(inv.linear_momentum.data());
+    angular_->append(inv.angular_momentum.data());
+    if (energy_drift_) energy_drift_->append(d.energy_drift.value_or(0.0));
+    if (linear_drift_) linear_drift_->append(d.linear_momentum_drift.value_or(0.0));
+    if (angular_drift_) angular_drift_->append(d.angular_momentum_drift.value_or(0.0));
+    t_end_ = state.t;
+    ++samples_;
+  }
+
+  void commit(bool complete) override {
+    bool ok = true;
+    for (Series* s : all_series()) {
+      s->flush();
+      ok = s->close() && ok;
+    }
+    number_attribute(file_.get(), "complete", complete ? 1 : 0, H5T_NATIVE_INT, check_);
+    number_attribute(file_.get(), "t_end", t_end_, H5T_NATIVE_DOUBLE, check_);
+    ok = diagnostics_.reset() && ok;
+    ok = file_.reset() && ok;
+    if (!ok) {
+      staged_.abandon();
+      throw FileError(fmt::format("writing {} failed (disk full?): nothing was kept under that name",
+                                  staged_.final_path().string()));
+    }
+    staged_.commit();
+  }
+
+  std::vector<std::filesystem::path> outputs() const override { return {staged_.final_path()}; }
+  long samples() const override { return samples_; }
+
+ private:
+  void write_names() {
+    const Handle type = string_type();
+    const hsize_t n = names_.size();
+    const Handle space(check_(H5Screate_simple(1, &n, nullptr), "create a dataspace"), H5Sclose);
+    const Handle set(check_(H5Dcreate2(file_.get(), "names", type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT,
+                                       H5P_DEFAULT),
+                            "create dataset names"),
+                     H5Dclose);
+    std::vector<const char*> p;
+    for (const auto& s : names_) p.push_back(s.c_str());
+    check_(H5Dwrite(set.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, p.data()), "write names");
+  }
+
+  /// Which diagnostics exist is fixed by the model and the state at t = 0: create those datasets.
+  void create_diagnostics(const DriftSample& d) {
+    const hid_t g = diagnostics_.get();
+    const std::vector<hsize_t> scalar, vector{3};
+    kinetic_.emplace(g, "kinetic_energy", scalar, check_);
+    if (d.invariants.potential_energy) {
+      potential_.emplace(g, "potential_energy", scalar, check_);
+      total_.emplace(g, "total_energy", scalar, check_);
+    }
+    linear_.emplace(g, "linear_momentum", vector, check_);
+    angular_.emplace(g, "angular_momentum", vector, check_);
+    if (d.energy_drift) energy_drift_.emplace(g, "energy_drift", scalar, check_);
+    if (d.linear_momentum_drift) linear_drift_.emplace(g, "linear_momentum_drift", scalar, check_);
+    if (d.angular_momentum_drift) angular_drift_.emplace(g, "angular_momentum_drift", scalar, check_);
+  }
+
+  std::vector<Series*> all_series() {
+    std::vector<Series*> out;
+    for (auto* s : {&t_, &position_, &orientation_, &velocity_, &angular_velocity_, &kinetic_, &potential_, &total_,
+                    &linear_, &angular_, &energy_drift_, &linear_drift_, &angular_drift_}) {
+      if (*s) out.push_back(&**s);
+    }
+    return out;
+  }
+
+  io::StagedFile staged_;
+  Checker check_;
+  std::vector<std::string> names_;
+  Handle file_;
+  Handle diagnostics_;
+  std::optional<Series> t_, position_, orientation_, velocity_, angular_velocity_;
+  std::optional<Series> kinetic_, potential_, total_, linear_, angular_, energy_drift_, linear_drift_, angular_drift_;
+  std::vector<ReferenceFrameState> rows_;
+  double t_end_ = 0.0;
+  long samples_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<TrajectoryWriter> make_hdf5_writer(const std::filesystem::path& path, const Model& model,
+                                                   const TrajectoryInfo& info) {
+  return std::make_unique<Hdf5Writer>(path, model, info);
+}
+
+}  // namespace tumble

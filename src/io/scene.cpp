@@ -1,0 +1,87 @@
+// Scene files: parsing (toml++), [simulation], and the order in which the sections are read.
+#include "tumble/io/scene.hpp"
+
+#include <fmt/format.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "scene_sections.hpp"
+#include "tumble/integrate/integrator.hpp"
+
+namespace tumble {
+namespace {
+
+using scene::Domain;
+using scene::TableReader;
+
+void read_simulation(const TableReader& root, Scene& scene) {
+  const auto sim = root.table("simulation", "[simulation]",
+                              {"duration", "timestep", "integrator", "formulation", "output_interval", "rtol",
+                               "atol", "drift_threshold"});
+  if (!sim) root.fail_here("missing [simulation]: give at least duration = T (s)");
+  RunSettings& s = scene.settings;
+  s.duration = sim->required_number("duration", "s", Domain::non_negative);
+  s.timestep = sim->number("timestep", 1e-3, "s", Domain::positive);
+  s.output_interval = sim->number("output_interval", 0.01, "s", Domain::non_negative);
+  s.tolerances.relative = sim->number("rtol", s.tolerances.relative, "", Domain::positive);
+  s.tolerances.absolute = sim->number("atol", s.tolerances.absolute, "", Domain::positive);
+  scene.drift_threshold = sim->number("drift_threshold", scene.drift_threshold, "", Domain::non_negative);
+  if (const auto name = sim->string("integrator")) {
+    const auto names = integrator_names();
+    if (std::find(names.begin(), names.end(), *name) == names.end()) {
+      const auto close = scene::closest(*name, names);
+      sim->fail_at("integrator", fmt::format("unknown integrator \"{}\"; {}choose one of: {}", *name,
+                                             close ? fmt::format("did you mean \"{}\"? ", *close) : "",
+                                             fmt::join(names, ", ")));
+    }
+    s.integrator = *name;
+  }
+  if (const auto f = sim->string("formulation")) {
+    try {
+      s.formulation = parse_formulation(*f);
+    } catch (const InvalidArgument&) {
+      sim->fail_at("formulation",
+                   fmt::format("formulation must be \"world\", \"mixed\" or \"body\", found \"{}\"", *f));
+    }
+  }
+}
+
+}  // namespace
+
+Scene parse_scene(const std::string& text, const std::filesystem::path& path) {
+  Scene scene;
+  scene.path = path;
+  scene.text = text;
+  const std::string file = path.string();
+  toml::table root;
+  try {
+    root = toml::parse(text, file);
+  } catch (const toml::parse_error& e) {
+    scene::fail(file, e.source(), fmt::format("TOML syntax error: {}", e.description()));
+  }
+  const TableReader r(root, "scene", file, {"simulation", "world", "bodies", "particles", "forces"});
+  read_simulation(r, scene);
+  scene::NameTable names;
+  scene::read_bodies(r, path.parent_path(), names, scene);
+  scene::read_particles(r, names, scene);
+  if (scene.model.bodies.empty() && scene.model.particles.empty()) {
+    r.fail_here("the scene has nothing to simulate: add [[bodies]] or [[particles]]");
+  }
+  scene::read_forces(r, scene);
+  return scene;
+}
+
+Scene load_scene(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    throw FileError(fmt::format("cannot read scene file {}: {}", path.string(),
+                                std::filesystem::exists(path) ? "permission denied or not a file"
+                                                              : "no such file"));
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_scene(text.str(), path);
+}
+
+}  // namespace tumble

@@ -1,0 +1,153 @@
+// [world] gravity and [[forces]]: the force models of forces.hpp, and which invariants they conserve.
+#include <fmt/format.h>
+
+#include "scene_sections.hpp"
+#include "tumble/forces/forces.hpp"
+
+namespace tumble::scene {
+namespace {
+
+/// The index of the body named by `key` in t.
+size_t body_index(const TableReader& t, const std::string& key, const Scene& scene) {
+  const std::string name = *t.string(key);
+  std::vector<std::string> names;
+  for (size_t i = 0; i < scene.model.bodies.size(); ++i) {
+    if (scene.model.bodies[i].name() == name) return i;
+    names.push_back(scene.model.bodies[i].name());
+  }
+  for (const Particle& p : scene.model.particles) {
+    if (p.name == name) {
+      t.fail_at(key, fmt::format("\"{}\" is a particle; this force acts on rigid bodies only", name));
+    }
+  }
+  const auto s = closest(name, names);
+  t.fail_at(key, fmt::format("no body named \"{}\"; {}", name,
+                             s ? fmt::format("did you mean \"{}\"?", *s)
+                               : names.empty() ? std::string("the scene has no [[bodies]]")
+                                               : fmt::format("the bodies are: {}", fmt::join(names, ", "))));
+}
+
+size_t required_body(const TableReader& t, const Scene& scene) {
+  if (!t.has("body")) t.fail_here("missing 'body': name the body this force acts on");
+  return body_index(t, "body", scene);
+}
+
+Vec3 required_vec3(const TableReader& t, const std::string& key, const char* unit) {
+  const auto v = t.vec3(key, unit);
+  if (!v) t.fail_here(fmt::format("missing '{}': give [x, y, z] ({})", key, unit));
+  return *v;
+}
+
+Spring::End spring_end(const TableReader& spring, const std::string& key, const Scene& scene, bool& anchored) {
+  const auto end = spring.table(key, spring.context() + " end " + key, {"body", "point", "anchor"});
+  if (!end) {
+    spring.fail_here(fmt::format("missing '{}': give {} = {{ body = \"NAME\", point = [x, y, z] }} or "
+                                 "{} = {{ anchor = [x, y, z] }}",
+                                 key, key, key));
+  }
+  end->at_most_one_of({"body", "anchor"});
+  if (end->has("anchor")) {
+    if (end->has("point")) end->fail_at("point", "point goes with body; an anchor is a world point by itself");
+    anchored = true;
+    return Spring::End{all_bodies, *end->vec3("anchor", "m")};
+  }
+  if (!end->has("body")) end->fail_here("give body = \"NAME\" (with point) or anchor = [x, y, z] (world, m)");
+  const size_t i = body_index(*end, "body", scene);
+  // Default: the body's centre of mass (in its reference frame), where a spring exerts no torque.
+  return Spring::End{i, end->vec3("point", scene.model.bodies[i].center_of_mass(), "m")};
+}
+
+}  // namespace
+
+void read_forces(const TableReader& root, Scene& scene) {
+  Conservation& c = scene.conserved;
+  c = Conservation{};
+  auto external = [&c] {  // a force from outside the system: momenta change
+    c.linear_momentum = false;
+    c.angular_momentum = false;
+  };
+  if (const auto world = root.table("world", "[world]", {"gravity"})) {
+    const Vec3 g = world->vec3("gravity", Vec3::Zero(), "m/s^2");
+    if (g != Vec3::Zero()) {
+      scene.model.add_force<UniformGravity>(g);
+      external();  // conservative: the energy includes −m g·x
+    }
+  }
+
+  const std::vector<std::string> types = {"force", "torque", "damping", "drag", "spring", "gravity_gradient"};
+  const auto forces = root.tables("forces");
+  for (size_t i = 0; i < forces.size(); ++i) {
+    const TableReader any(*forces[i], fmt::format("[[forces]] #{}", i + 1), root.file(),
+                          {"type", "body", "force", "frame", "point", "point_frame", "torque", "linear",
+                           "angular", "a", "b", "stiffness", "rest_length", "damping", "mu", "center",
+                           "torque_only"});
+    const std::string type = any.required_string("type", fmt::format("the kind: type = \"{}\"",
+                                                                      fmt::join(types, "\" | \"")).c_str());
+    auto reader = [&](std::vector<std::string> keys) {
+      keys.push_back("type");
+      return TableReader(*forces[i], fmt::format("[[forces]] #{} ({})", i + 1, type), root.file(), keys);
+    };
+    if (type == "force") {
+      const auto t = reader({"body", "force", "frame", "point", "point_frame"});
+      const size_t b = required_body(t, scene);
+      const Vec3 f = required_vec3(t, "force", "N");
+      const Frame frame = t.frame("frame", Frame::world);
+      const Frame point_frame = t.frame("point_frame", Frame::body);
+      if (point_frame == Frame::world && !t.has("point")) {
+        t.fail_here("point_frame = \"world\" needs point = [x, y, z] (world, m)");
+      }
+      const Vec3 point = t.vec3("point", scene.model.bodies[b].center_of_mass(), "m");
+      scene.model.add_force<PointForce>(b, f, frame, point, point_frame);
+      c = Conservation{false, false, false};
+    } else if (type == "torque") {
+      const auto t = reader({"body", "torque", "frame"});
+      const size_t b = required_body(t, scene);
+      scene.model.add_force<PureTorque>(b, required_vec3(t, "torque", "N*m"), t.frame("frame", Frame::world));
+      c = Conservation{false, false, false};
+    } else if (type == "damping" || type == "drag") {
+      const auto t = reader({"body", "linear", "angular"});
+      const size_t b = t.has("body") ? body_index(t, "body", scene) : all_bodies;
+      const bool damping = type == "damping";
+      const double linear = t.number("linear", 0.0, damping ? "N*s/m" : "kg/m", Domain::non_negative);
+      const double angular = t.number("angular", 0.0, damping ? "N*m*s" : "kg*m^2", Domain::non_negative);
+      if (linear == 0 && angular == 0) t.fail_here("give linear and/or angular coefficients (> 0)");
+      if (damping) {
+        scene.model.add_force<ViscousDamping>(b, linear, angular);
+      } else {
+        scene.model.add_force<QuadraticDrag>(b, linear, angular);
+      }
+      c = Conservation{false, false, false};
+    } else if (type == "spring") {
+      const auto t = reader({"a", "b", "stiffness", "rest_length", "damping"});
+      bool anchored = false;
+      const Spring::End a = spring_end(t, "a", scene, anchored);
+      const Spring::End b = spring_end(t, "b", scene, anchored);
+      if (a.body == all_bodies && b.body == all_bodies) t.fail_here("both ends are anchors: attach one to a body");
+      const double k = t.required_number("stiffness", "N/m", Domain::positive);
+      const double rest = t.number("rest_length", 0.0, "m", Domain::non_negative);
+      const double damping = t.number("damping", 0.0, "N*s/m", Domain::non_negative);
+      scene.model.add_force<Spring>(a, b, k, rest, damping);
+      if (damping > 0) c.energy = false;
+      if (anchored) external();  // between two bodies the pair of forces is internal and central
+    } else if (type == "gravity_gradient") {
+      const auto t = reader({"mu", "center", "torque_only"});
+      const double mu = t.required_number("mu", "m^3/s^2", Domain::positive);
+      const Vec3 center = t.vec3("center", Vec3::Zero(), "m");
+      const bool torque_only = t.boolean("torque_only").value_or(false);
+      scene.model.add_force<GravityGradient>(mu, center, torque_only);
+      c.linear_momentum = false;
+      // The potential is invariant under rotations about `center`, so angular momentum about it is
+      // conserved; the monitor measures about the world origin.
+      if (center != Vec3::Zero()) c.angular_momentum = false;
+      // The torque without its force is not the gradient of the potential: nothing is conserved.
+      if (torque_only) c = Conservation{false, false, false};
+    } else {
+      const auto s = closest(type, types);
+      any.fail_at("type", fmt::format("unknown force type \"{}\"; {}", type,
+                                      s ? fmt::format("did you mean \"{}\"?", *s)
+                                        : fmt::format("choose \"{}\"", fmt::join(types, "\", \""))));
+    }
+  }
+}
+
+}  // namespace tumble::scene

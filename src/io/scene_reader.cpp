@@ -1,0 +1,280 @@
+#include "scene_reader.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace tumble::scene {
+
+std::string location(const std::string& file, const toml::source_region& where) {
+  return fmt::format("{}:{}:{}", file, where.begin.line, where.begin.column);
+}
+
+void fail(const std::string& file, const toml::source_region& where, const std::string& message) {
+  throw SceneError(fmt::format("{}: {}", location(file, where), message));
+}
+
+std::string type_name(const toml::node& node) {
+  switch (node.type()) {
+    case toml::node_type::string:
+      return fmt::format("the string \"{}\"", node.as_string()->get());
+    case toml::node_type::integer:
+      return fmt::format("the integer {}", node.as_integer()->get());
+    case toml::node_type::floating_point:
+      return fmt::format("the number {}", node.as_floating_point()->get());
+    case toml::node_type::boolean:
+      return fmt::format("the boolean {}", node.as_boolean()->get());
+    case toml::node_type::array:
+      return fmt::format("an array of {}", node.as_array()->size());
+    case toml::node_type::table:
+      return "a table";
+    default:
+      return "a date or time";
+  }
+}
+
+namespace {
+
+size_t edit_distance(const std::string& a, const std::string& b) {
+  // Levenshtein distance, one row at a time.
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diagonal = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+const char* domain_text(Domain d) {
+  switch (d) {
+    case Domain::positive:
+      return "positive";
+    case Domain::non_negative:
+      return "zero or positive";
+    case Domain::finite:
+      break;
+  }
+  return "finite";
+}
+
+bool in_domain(double x, Domain d) {
+  switch (d) {
+    case Domain::positive:
+      return x > 0;
+    case Domain::non_negative:
+      return x >= 0;
+    case Domain::finite:
+      break;
+  }
+  return true;
+}
+
+std::string with_unit(const char* unit) { return unit && *unit ? fmt::format(" ({})", unit) : ""; }
+
+}  // namespace
+
+std::optional<std::string> closest(const std::string& word, const std::vector<std::string>& candidates) {
+  std::optional<std::string> best;
+  size_t best_d = 0;
+  for (const auto& c : candidates) {
+    const size_t d = edit_distance(word, c);
+    if (!best || d < best_d) {
+      best = c;
+      best_d = d;
+    }
+  }
+  // A typo changes a character or two, or a third of a long word; beyond that it is another word.
+  if (best && (best_d <= 2 || best_d * 3 <= word.size())) return best;
+  return std::nullopt;
+}
+
+double number_value(const TableReader& reader, const std::string& key, const toml::node& node,
+                    const std::string& what, const char* unit, Domain domain) {
+  if (!node.is_number()) {
+    fail(reader.file(), node.source(),
+         fmt::format("{}: {} must be a number{}, found {}", reader.context(), what, with_unit(unit),
+                     type_name(node)));
+  }
+  const double x = node.value<double>().value_or(0.0);
+  if (!std::isfinite(x)) {
+    fail(reader.file(), node.source(),
+         fmt::format("{}: {} is {}: give a finite number{}", reader.context(), what, x, with_unit(unit)));
+  }
+  if (!in_domain(x, domain)) {
+    fail(reader.file(), node.source(),
+         fmt::format("{}: {} is {}{}: it must be {}", reader.context(), what, x,
+                     unit && *unit ? std::string(" ") + unit : "", domain_text(domain)));
+  }
+  (void)key;
+  return x;
+}
+
+TableReader::TableReader(const toml::table& table, std::string context, std::string file,
+                         std::vector<std::string> allowed)
+    : table_(&table), context_(std::move(context)), file_(std::move(file)) {
+  for (auto&& [k, v] : table) {
+    const std::string key(k.str());
+    if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
+    const auto suggestion = closest(key, allowed);
+    fail(file_, k.source(),
+         fmt::format("{}: unknown key '{}'; {}", context_, key,
+                     suggestion ? fmt::format("did you mean '{}'?", *suggestion)
+                                : fmt::format("the keys here are: {}", fmt::join(allowed, ", "))));
+  }
+}
+
+const toml::source_region& TableReader::where(const std::string& key) const {
+  const toml::node* n = node(key);
+  return n ? n->source() : table_->source();
+}
+
+void TableReader::fail_at(const std::string& key, const std::string& message) const {
+  fail(file_, where(key), fmt::format("{}: {}", context_, message));
+}
+
+void TableReader::fail_here(const std::string& message) const {
+  fail(file_, table_->source(), fmt::format("{}: {}", context_, message));
+}
+
+void TableReader::require_one_of(const std::vector<std::string>& keys) const {
+  at_most_one_of(keys);
+  for (const auto& k : keys) {
+    if (has(k)) return;
+  }
+  fail_here(fmt::format("missing {}: give one of them", fmt::join(keys, " or ")));
+}
+
+void TableReader::at_most_one_of(const std::vector<std::string>& keys) const {
+  const std::string* first = nullptr;
+  for (const auto& k : keys) {
+    if (!has(k)) continue;
+    if (first) {
+      fail_at(k, fmt::format("'{}' and '{}' exclude each other: keep one", *first, k));
+    }
+    first = &k;
+  }
+}
+
+std::optional<double> TableReader::number(const std::string& key, const char* unit, Domain domain) const {
+  const toml::node* n = node(key);
+  if (!n) return std::nullopt;
+  return number_value(*this, key, *n, key, unit, domain);
+}
+
+double TableReader::number(const std::string& key, double fallback, const char* unit, Domain domain) const {
+  return number(key, unit, domain).value_or(fallback);
+}
+
+double TableReader::required_number(const std::string& key, const char* unit, Domain domain) const {
+  const auto x = number(key, unit, domain);
+  if (!x) fail_here(fmt::format("missing '{}': give a {} number{}", key, domain_text(domain), with_unit(unit)));
+  return *x;
+}
+
+std::optional<std::string> TableReader::string(const std::string& key) const {
+  const toml::node* n = node(key);
+  if (!n) return std::nullopt;
+  if (!n->is_string()) fail_at(key, fmt::format("{} must be a string, found {}", key, type_name(*n)));
+  return n->as_string()->get();
+}
+
+std::string TableReader::required_string(const std::string& key, const char* what) const {
+  const auto s = string(key);
+  if (!s) fail_here(fmt::format("missing '{}': give {}", key, what));
+  return *s;
+}
+
+std::optional<bool> TableReader::boolean(const std::string& key) const {
+  const toml::node* n = node(key);
+  if (!n) return std::nullopt;
+  if (!n->is_boolean()) {
+    fail_at(key, fmt::format("{} must be true or false, found {}", key, type_name(*n)));
+  }
+  return n->as_boolean()->get();
+}
+
+std::optional<Vec3> TableReader::vec3(const std::string& key, const char* unit, Domain domain) const {
+  const toml::node* n = node(key);
+  if (!n) return std::nullopt;
+  const toml::array* a = n->as_array();
+  if (!a || a->size() != 3) {
+    fail_at(key, fmt::format("{} must be an array of 3 numbers{}, found {}", key, with_unit(unit), type_name(*n)));
+  }
+  Vec3 v;
+  for (size_t i = 0; i < 3; ++i) {
+    v(static_cast<Eigen::Index>(i)) =
+        number_value(*this, key, *a->get(i), fmt::format("{}[{}]", key, i), unit, domain);
+  }
+  return v;
+}
+
+Vec3 TableReader::vec3(const std::string& key, const Vec3& fallback, const char* unit) const {
+  return vec3(key, unit, Domain::finite).value_or(fallback);
+}
+
+std::optional<Quat> TableReader::quaternion(const std::string& key) const {
+  const toml::node* n = node(key);
+  if (!n) return std::nullopt;
+  const toml::array* a = n->as_array();
+  if (!a || a->size() != 4) {
+    fail_at(key, fmt::format("{} must be a unit quaternion [w, x, y, z], found {}", key, type_name(*n)));
+  }
+  Eigen::Vector4d wxyz;
+  for (size_t i = 0; i < 4; ++i) {
+    wxyz(static_cast<Eigen::Index>(i)) =
+        number_value(*this, key, *a->get(i), fmt::format("{}[{}]", key, i), "", Domain::finite);
+  }
+  const double norm = wxyz.norm();
+  if (!(std::abs(norm - 1.0) <= kQuaternionNormSlack)) {
+    const std::string hint =
+        norm > 0 ? fmt::format("; normalised it would be [{:.6g}, {:.6g}, {:.6g}, {:.6g}]", wxyz(0) / norm,
+                               wxyz(1) / norm, wxyz(2) / norm, wxyz(3) / norm)
+                 : "";
+    fail_at(key, fmt::format("{} has norm {:.6g}, more than {:g} from 1: give a unit quaternion "
+                             "[w, x, y, z] (w first){}",
+                             key, norm, kQuaternionNormSlack, hint));
+  }
+  wxyz /= norm;
+  return Quat(wxyz(0), wxyz(1), wxyz(2), wxyz(3));
+}
+
+Frame TableReader::frame(const std::string& key, Frame fallback) const {
+  const auto s = string(key);
+  if (!s) return fallback;
+  if (*s == "world") return Frame::world;
+  if (*s == "body") return Frame::body;
+  fail_at(key, fmt::format("{} must be \"world\" or \"body\", found \"{}\"", key, *s));
+}
+
+std::optional<TableReader> TableReader::table(const std::string& key, const std::string& context,
+                                              std::vector<std::string> allowed) const {
+  const toml::node* n = node(key);
+  if (!n) return std::nullopt;
+  if (!n->is_table()) fail_at(key, fmt::format("{} must be a table {{ ... }}, found {}", key, type_name(*n)));
+  return TableReader(*n->as_table(), context, file_, std::move(allowed));
+}
+
+std::vector<const toml::table*> TableReader::tables(const std::string& key) const {
+  std::vector<const toml::table*> out;
+  const toml::node* n = node(key);
+  if (!n) return out;
+  const toml::array* a = n->as_array();
+  if (!a) fail_at(key, fmt::format("{} must be an array of tables ([[{}]]), found {}", key, key, type_name(*n)));
+  for (const toml::node& element : *a) {
+    if (!element.is_table()) {
+      fail(file_, element.source(),
+           fmt::format("{}: each entry of {} must be a table, found {}", context_, key, type_name(element)));
+    }
+    out.push_back(element.as_table());
+  }
+  return out;
+}
+
+}  // namespace tumble::scene

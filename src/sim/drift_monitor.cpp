@@ -1,0 +1,74 @@
+#include "tumble/sim/drift_monitor.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "tumble/integrate/integrator.hpp"
+
+namespace tumble {
+namespace {
+
+/// E when every force has a potential, else nullopt.
+std::optional<double> energy(const Invariants& inv) { return inv.total_energy(); }
+
+}  // namespace
+
+DriftMonitor::DriftMonitor(const Model& model, const SystemState& initial, Conservation conserved,
+                           double threshold, const RunSettings& settings)
+    : model_(model),
+      initial_(invariants(model, initial)),
+      conserved_(conserved),
+      threshold_(threshold),
+      settings_(settings) {
+  // The energy is relative to max(|E₀|, T₀): |E₀| alone can be ~0 by the choice of the potential's
+  // zero (a thrown body, a bound orbit near escape), which would make any drift look infinite.
+  if (const auto E0 = energy(initial_)) energy_scale_ = std::max(std::abs(*E0), initial_.kinetic_energy);
+}
+
+DriftSample DriftMonitor::observe(const SystemState& state) {
+  DriftSample d;
+  d.invariants = invariants(model_, state);
+  const auto E0 = energy(initial_);
+  const auto E = energy(d.invariants);
+  if (E0 && E && energy_scale_ > 0) d.energy_drift = (*E - *E0) / energy_scale_;
+  if (const double p0 = initial_.linear_momentum.norm(); p0 > 0) {
+    d.linear_momentum_drift = (d.invariants.linear_momentum - initial_.linear_momentum).norm() / p0;
+  }
+  if (const double L0 = initial_.angular_momentum.norm(); L0 > 0) {
+    d.angular_momentum_drift = (d.invariants.angular_momentum - initial_.angular_momentum).norm() / L0;
+  }
+
+  if (warned_ || !(threshold_ > 0)) return d;
+  auto passes = [&](const std::optional<double>& drift) {
+    return drift && !(std::abs(*drift) <= threshold_);  // NaN counts as past the threshold
+  };
+  const char* quantity = nullptr;
+  double value = 0.0;
+  if (conserved_.energy && passes(d.energy_drift)) {
+    quantity = "energy";
+    value = *d.energy_drift;
+  } else if (conserved_.angular_momentum && passes(d.angular_momentum_drift)) {
+    quantity = "angular momentum";
+    value = *d.angular_momentum_drift;
+  }
+  if (quantity != nullptr) {
+    warned_ = true;
+    pending_ = fmt::format(
+        "{} drifted by {:.3g} (relative to t = 0) at t = {} s, past the drift threshold {:g}; the "
+        "forces conserve it, so this is integration error: reduce the timestep (now {:g} s) or use a "
+        "higher-order integrator than '{}' (there are: {}), or raise drift_threshold in "
+        "[simulation] (--drift-threshold)",
+        quantity, value, state.t, threshold_, settings_.timestep, settings_.integrator,
+        fmt::join(integrator_names(), ", "));
+  }
+  return d;
+}
+
+std::optional<std::string> DriftMonitor::take_warning() {
+  std::optional<std::string> w;
+  w.swap(pending_);
+  return w;
+}
+
+}  // namespace tumble
