@@ -1,0 +1,184 @@
+// The torque-free triaxial body I₁ < I₂ < I₃ in closed form (shared/research/numerics.md §1;
+// Landau & Lifshitz §37). Everything is written in the sorted frame {s} (ω_s = P ω_b).
+//
+// Invariant differences, formed from the components so that nothing large cancels:
+//   d₁ = L² − 2EI₁ = I₂(I₂−I₁)ω₂² + I₃(I₃−I₁)ω₃² ≥ 0,   d₃ = 2EI₃ − L² = I₁(I₃−I₁)ω₁² + I₂(I₃−I₂)ω₂² ≥ 0,
+//   d₂ = 2EI₂ − L² = I₁(I₂−I₁)ω₁² − I₃(I₃−I₂)ω₃²   (> 0: D = L²/2E < I₂, < 0: D > I₂).
+//
+// With u = λt + u₀ and signs σ₁, σ₃ of the components that keep their sign:
+//   pole p = 3 (D > I₂): ω = (σ₁A₁ cn, σ₁σ₃A₂ sn, σ₃A₃ dn),  A₁² = d₃/(I₁(I₃−I₁)), A₂² = d₃/(I₂(I₃−I₂)),
+//        A₃² = d₁/(I₃(I₃−I₁)),  λ² = (I₃−I₂)d₁/(I₁I₂I₃),  m = (I₂−I₁)d₃/((I₃−I₂)d₁),
+//        k′² = (I₃−I₁)(−d₂)/((I₃−I₂)d₁);  σ₁ = +1 off the separatrix (cn changes sign).
+//   pole p = 1 (D < I₂): ω = (σ₁A₁ dn, σ₁σ₃A₂ sn, σ₃A₃ cn),  A₁² = d₃/(I₁(I₃−I₁)), A₂² = d₁/(I₂(I₂−I₁)),
+//        A₃² = d₁/(I₃(I₃−I₁)),  λ² = (I₂−I₁)d₃/(I₁I₂I₃),  m = (I₃−I₂)d₁/((I₂−I₁)d₃),
+//        k′² = (I₃−I₁)d₂/((I₂−I₁)d₃);  σ₃ = +1 off the separatrix.
+//   separatrix d₂ = 0 (m = 1): the same with sn = tanh, cn = dn = sech; both σ₁ and σ₃ are free.
+//
+// Orientation: R = G Rz(φ) Rx(θ)Rz(ψ) C P. C is a proper signed permutation taking the pole axis to +e₃
+// with the unit body momentum μ = C Λ_s ω_s / |L| = (T₁, T₂, c dn) (third component > 0 always), so
+// cos θ = c dn, (sin ψ, cos ψ) ∝ (T₁, T₂). For z-x-z angles φ̇ sin²θ = ω·μ − ω₃μ₃ (in the C frame)
+// gives φ̇ = |L|/I_p + (2EI_p − L²)/(|L| I_p (1 − c² dn²u)), and with 1 − c²dn² = (1−c²)(1 + N sn²):
+//   φ(t) = |L|t/I_p + κ [Π(−N; am u | m) − Π(−N; am u₀ | m)],
+//   p = 3: N = I₃(I₂−I₁)/(I₁(I₃−I₂)),  κ = +(I₃−I₁)|L|/(I₁I₃λ),
+//   p = 1: N = I₁(I₃−I₂)/(I₃(I₂−I₁)),  κ = −(I₃−I₁)|L|/(I₁I₃λ)
+// (the small factors 2EI_p − L² and 1 − c² cancel exactly, which is what makes spin about the pole
+// itself regular). G is fixed by R(0) = R₀ (φ(0) = 0).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include "euler_poinsot_flows.hpp"
+#include "tumble/integrate/jacobi_elliptic.hpp"
+
+namespace tumble::detail {
+namespace {
+
+using Regime = EulerPoinsot::Regime;
+
+double sign_of(double x) { return std::signbit(x) ? -1.0 : 1.0; }
+
+class TriaxialRotation final : public FreeRotation {
+ public:
+  TriaxialRotation(const SortedBody& b, const Quat& q0, Regime& regime);
+  Vec3 omega_b(double t) const override { return P_.transpose() * omega_s(jacobi_(lambda_ * t + u0_)); }
+  Quat q(double t) const override;
+  double period_omega() const override { return 4.0 * jacobi_.K() / lambda_; }
+  double flip_interval() const override { return 2.0 * jacobi_.K() / lambda_; }
+
+ private:
+  // ω_s from sn, cn, dn (pole 3: ω₁ ∝ cn, ω₃ ∝ dn; pole 1: ω₁ ∝ dn, ω₃ ∝ cn).
+  Vec3 omega_s(const JacobiValues& v) const {
+    return pole_ == 3 ? Vec3(A_(0) * v.cn, A_(1) * v.sn, A_(2) * v.dn)
+                      : Vec3(A_(0) * v.dn, A_(1) * v.sn, A_(2) * v.cn);
+  }
+  /// Π(−N; am u | m), continued beyond |am u| ≤ π/2 by Π(n; φ + jπ) = Π(n; φ) + 2jΠ(n).
+  double Pi(double u, const JacobiValues& v) const {
+    if (separatrix_) {
+      // m = 1: Π(−N; am u | 1) = ∫₀ᵘ du′/(1 + N tanh²u′) = (u + √N atan(√N tanh u))/(1 + N).
+      const double rN = std::sqrt(N_);
+      return (u + rN * std::atan(rN * v.sn)) / (1.0 + N_);
+    }
+    return (*Pi_)(v);
+  }
+  /// The unit quaternion of Rx(θ) Rz(ψ) Rz(φ)… for given φ: the z-x-z angles of μ.
+  Quat body_part(double phi, const JacobiValues& v) const {
+    // Transverse part of μ up to the factor ρ (it is ρ·(h₁ cn, h₂ sn) for pole 3, ρ·(h₁ sn, h₂ cn) for
+    // pole 1), so ψ stays defined when ρ = 0 (spin exactly about the pole).
+    const double T1 = pole_ == 3 ? h_(0) * v.cn : h_(0) * v.sn;
+    const double T2 = pole_ == 3 ? h_(1) * v.sn : h_(1) * v.cn;
+    const double psi = std::atan2(T1, T2);
+    const double theta = std::atan2(rho_ * std::hypot(T1, T2), c_ * v.dn);
+    return quat_zxz(phi, theta, psi);
+  }
+
+  int pole_ = 3;
+  bool separatrix_ = false;
+  JacobiElliptic jacobi_{0.0, 1.0};
+  double lambda_ = 0.0, u0_ = 0.0;  // u = λt + u₀ (λ in rad/s)
+  Vec3 A_;                          // signed amplitudes σ·A (rad/s)
+  Vec3 h_;                          // shape of the transverse momentum (first two entries used)
+  double rho_ = 0.0, c_ = 0.0;      // |μ_transverse| = ρ |T|, μ₃ = c dn
+  double N_ = 0.0, kappa_ = 0.0, rate_ = 0.0, Pi0_ = 0.0;
+  std::optional<EllipticPi> Pi_;    // Π(−N; am u | m) off the separatrix
+  Mat3 P_;
+  Quat G_, CP_;
+};
+
+TriaxialRotation::TriaxialRotation(const SortedBody& b, const Quat& q0, Regime& regime) : P_(b.P) {
+  const double I1 = b.I(0), I2 = b.I(1), I3 = b.I(2);
+  const double w1 = b.w(0), w2 = b.w(1), w3 = b.w(2);
+  const double d1 = I2 * (I2 - I1) * w2 * w2 + I3 * (I3 - I1) * w3 * w3;
+  const double d3 = I1 * (I3 - I1) * w1 * w1 + I2 * (I3 - I2) * w2 * w2;
+  const double t1 = I1 * (I2 - I1) * w1 * w1, t3 = I3 * (I3 - I2) * w3 * w3;
+  const double d2 = t1 - t3;
+  separatrix_ = std::abs(d2) <= EulerPoinsot::kSeparatrixTolerance * (t1 + t3);
+  pole_ = d2 >= 0.0 ? 1 : 3;
+  regime = separatrix_ ? Regime::separatrix : pole_ == 1 ? Regime::about_minor_axis : Regime::about_major_axis;
+
+  const Vec3 L_s = b.I.cwiseProduct(b.w);
+  const double L = L_s.norm();  // |L| in scaled units
+  double lambda, m, m1, s1, s3;
+  Vec3 A;
+  double x, y;  // ∝ (cn u₀, sn u₀) (sech, tanh on the separatrix)
+  if (pole_ == 3) {
+    lambda = std::sqrt((I3 - I2) * d1 / (I1 * I2 * I3));
+    m = (I2 - I1) * d3 / ((I3 - I2) * d1);
+    m1 = (I3 - I1) * (-d2) / ((I3 - I2) * d1);
+    A = Vec3(std::sqrt(d3 / (I1 * (I3 - I1))), std::sqrt(d3 / (I2 * (I3 - I2))), std::sqrt(d1 / (I3 * (I3 - I1))));
+    s1 = separatrix_ ? sign_of(w1) : 1.0;
+    s3 = sign_of(w3);
+    N_ = I3 * (I2 - I1) / (I1 * (I3 - I2));
+    kappa_ = (I3 - I1) * L / (I1 * I3 * lambda);
+    c_ = std::sqrt(I3 * d1 / (I3 - I1)) / L;
+    rho_ = std::sqrt(d3) / L;
+    h_ = Vec3(std::sqrt(I1 / (I3 - I1)), std::sqrt(I2 / (I3 - I2)), 0.0);
+    x = s1 * w1 * std::sqrt(I1 * (I3 - I1));
+    y = s1 * s3 * w2 * std::sqrt(I2 * (I3 - I2));
+  } else {
+    lambda = std::sqrt((I2 - I1) * d3 / (I1 * I2 * I3));
+    m = (I3 - I2) * d1 / ((I2 - I1) * d3);
+    m1 = (I3 - I1) * d2 / ((I2 - I1) * d3);
+    A = Vec3(std::sqrt(d3 / (I1 * (I3 - I1))), std::sqrt(d1 / (I2 * (I2 - I1))), std::sqrt(d1 / (I3 * (I3 - I1))));
+    s1 = sign_of(w1);
+    s3 = separatrix_ ? sign_of(w3) : 1.0;
+    N_ = I1 * (I3 - I2) / (I3 * (I2 - I1));
+    kappa_ = -(I3 - I1) * L / (I1 * I3 * lambda);
+    c_ = std::sqrt(I1 * d3 / (I3 - I1)) / L;
+    rho_ = std::sqrt(d1) / L;
+    h_ = Vec3(std::sqrt(I2 / (I2 - I1)), std::sqrt(I3 / (I3 - I1)), 0.0);
+    x = s3 * w3 * std::sqrt(I3 * (I3 - I1));
+    y = s1 * s3 * w2 * std::sqrt(I2 * (I2 - I1));
+  }
+  A_ = b.omega_scale * Vec3(s1 * A(0), s1 * s3 * A(1), s3 * A(2));
+  lambda_ = b.omega_scale * lambda;
+  rate_ = b.omega_scale * L / (pole_ == 3 ? I3 : I1);  // |L|/I_p (rad/s)
+
+  // Initial phase u₀ from (cn u₀, sn u₀) ∝ (x, y).
+  const double norm = std::hypot(x, y);
+  if (separatrix_) {
+    jacobi_ = JacobiElliptic(1.0, 0.0);
+    // sinh u₀ = tanh u₀ / sech u₀; x > 0 unless ω₁ and ω₃ underflowed.
+    u0_ = std::asinh(y / std::max(x, std::numeric_limits<double>::min()));
+  } else {
+    // m and k′² come from separate formulas; each is in [0, 1] in exact arithmetic.
+    jacobi_ = JacobiElliptic(std::clamp(m, 0.0, 1.0), std::clamp(m1, 0.0, 1.0));
+    const double cn0 = norm > 0.0 ? x / norm : 1.0, sn0 = norm > 0.0 ? y / norm : 0.0;
+    const double dn0 = std::sqrt(cn0 * cn0 + m1 * sn0 * sn0);
+    // u₀ = F(φ₀ | m) = sn R_F(cn², dn², 1) for |φ₀| ≤ π/2; F(±π − φ) = ±2K − F(φ) beyond.
+    const double F = elliptic_Pi_incomplete(0.0, sn0, cn0, dn0);
+    u0_ = cn0 >= 0.0 ? F : std::copysign(2.0 * jacobi_.K(), sn0) - F;
+    Pi_.emplace(-N_, jacobi_);
+  }
+  const JacobiValues v0 = jacobi_(u0_);
+  Pi0_ = Pi(u0_, v0);
+
+  // C P: C takes the pole axis to +e₃ with μ = (T₁, T₂, c dn); det C = +1.
+  Mat3 C;
+  if (pole_ == 3) {
+    C = Vec3(s1, s1 * s3, s3).asDiagonal();
+  } else {
+    Mat3 cyclic;  // (v₁, v₂, v₃) ↦ (v₂, v₃, v₁)
+    cyclic << 0, 1, 0, 0, 0, 1, 1, 0, 0;
+    C = Vec3(s1 * s3, s3, s1).asDiagonal() * cyclic;
+  }
+  CP_ = Quat(Mat3(C * P_));
+  // R(0) = G B(0) C P = R₀  ⇒  G = R₀ (CP)ᵀ B(0)ᵀ.
+  G_ = q0 * CP_.conjugate() * body_part(0.0, v0).conjugate();
+}
+
+Quat TriaxialRotation::q(double t) const {
+  const double u = lambda_ * t + u0_;
+  const JacobiValues v = jacobi_(u);
+  const double phi = rate_ * t + kappa_ * (Pi(u, v) - Pi0_);
+  return (G_ * body_part(phi, v) * CP_).normalized();
+}
+
+}  // namespace
+
+std::shared_ptr<const FreeRotation> make_triaxial_rotation(const SortedBody& body, const Quat& q0,
+                                                           EulerPoinsot::Regime& regime) {
+  return std::make_shared<TriaxialRotation>(body, q0, regime);
+}
+
+}  // namespace tumble::detail
