@@ -5,7 +5,7 @@ packages=(
   build-essential cmake ninja-build pkg-config g++ clang-14 libclang-rt-14-dev
   libeigen3-dev libboost-dev libfmt-dev libcli11-dev libassimp-dev libtomlplusplus-dev libhdf5-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  python3 python3-numpy
+  python3 python3-numpy python3-h5py
 )
 missing=()
 for p in "${packages[@]}"; do

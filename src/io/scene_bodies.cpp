@@ -8,6 +8,16 @@
 
 namespace tumble::scene {
 
+namespace {
+
+std::vector<std::string> keys_of(const toml::table& table) {
+  std::vector<std::string> keys;
+  for (auto&& [k, v] : table) keys.emplace_back(k.str());
+  return keys;
+}
+
+}  // namespace
+
 void register_name(const TableReader& table, const std::string& name, NameTable& names) {
   // Names become CSV fields and HDF5 strings; keeping them to these characters means no quoting or
   // escaping anywhere a trajectory is read.
@@ -36,7 +46,8 @@ void read_bodies(const TableReader& root, const std::filesystem::path& directory
     const std::vector<std::string> keys = {"name", "shape", "mesh", "scale", "parts", "inertia",
                                            "center_of_mass", "density", "mass", "position", "orientation",
                                            "velocity", "angular_velocity", "angular_velocity_frame"};
-    const TableReader untitled(*bodies[i], fmt::format("[[bodies]] #{}", i + 1), root.file(), keys);
+    // The name first (any keys allowed), so that every other message can name the body.
+    const TableReader untitled(*bodies[i], fmt::format("[[bodies]] #{}", i + 1), root.file(), keys_of(*bodies[i]));
     const std::string name = untitled.required_string("name", "the body a name, e.g. name = \"handle\"");
     register_name(untitled, name, names);
     const TableReader named(*bodies[i], fmt::format("body '{}'", name), root.file(), keys);  // messages name it
@@ -63,7 +74,8 @@ void read_particles(const TableReader& root, NameTable& names, Scene& scene) {
   const auto particles = root.tables("particles");
   for (size_t i = 0; i < particles.size(); ++i) {
     const std::vector<std::string> keys = {"name", "mass", "position", "velocity"};
-    const TableReader untitled(*particles[i], fmt::format("[[particles]] #{}", i + 1), root.file(), keys);
+    const TableReader untitled(*particles[i], fmt::format("[[particles]] #{}", i + 1), root.file(),
+                               keys_of(*particles[i]));
     const std::string name = untitled.required_string("name", "the particle a name, e.g. name = \"p1\"");
     register_name(untitled, name, names);
     const TableReader p(*particles[i], fmt::format("particle '{}'", name), root.file(), keys);

@@ -1,0 +1,279 @@
+// Scene files that are right: what they describe becomes the closed-form mass properties, the
+// initial state in the frames the format documents, the run settings, and the conservation flags.
+#include <gtest/gtest.h>
+
+#include <numbers>
+
+#include "../support/scene_files.hpp"
+#include "tumble/forces/forces.hpp"
+#include "tumble/io/scene.hpp"
+
+namespace tumble {
+namespace {
+
+using std::numbers::pi;
+
+const std::string kSim = "[simulation]\nduration = 1.0\n";
+
+Scene parse(const std::string& body) { return parse_scene(kSim + body, "test.toml"); }
+
+TEST(SceneFile, BoxHasClosedFormMassPropertiesAndDefaults) {
+  const Scene s = parse(R"(
+[[bodies]]
+name = "box"
+shape = { type = "box", size = [0.1, 0.2, 0.3] }
+density = 1000
+)");
+  ASSERT_EQ(s.model.bodies.size(), 1u);
+  const RigidBody& b = s.model.bodies[0];
+  // m = ρabc = 6 kg; I = m(b² + c²)/12 ...; closed forms evaluated in double: a few ulps.
+  EXPECT_NEAR(b.mass(), 6.0, 1e-14);
+  EXPECT_NEAR(b.Lambda()(0), 6.0 * (0.01 + 0.04) / 12, 1e-15);
+  EXPECT_NEAR(b.Lambda()(1), 6.0 * (0.01 + 0.09) / 12, 1e-15);
+  EXPECT_NEAR(b.Lambda()(2), 6.0 * (0.04 + 0.09) / 12, 1e-15);
+  // Defaults documented in docs/scene-format.md.
+  EXPECT_EQ(s.settings.duration, 1.0);
+  EXPECT_EQ(s.settings.timestep, 1e-3);
+  EXPECT_EQ(s.settings.output_interval, 0.01);
+  EXPECT_EQ(s.settings.integrator, "rk4");
+  EXPECT_EQ(s.settings.formulation, Formulation::mixed);
+  EXPECT_EQ(s.drift_threshold, 1e-6);
+  EXPECT_TRUE(s.model.forces.empty());  // no [world]: no gravity
+  EXPECT_EQ(s.initial.bodies[0].o, Vec3::Zero());
+  EXPECT_EQ(s.initial.bodies[0].v, Vec3::Zero());
+  EXPECT_TRUE(s.conserved.energy && s.conserved.linear_momentum && s.conserved.angular_momentum);
+  EXPECT_EQ(s.text, kSim + R"(
+[[bodies]]
+name = "box"
+shape = { type = "box", size = [0.1, 0.2, 0.3] }
+density = 1000
+)");
+}
+
+TEST(SceneFile, TubeFromPartsWithAHoleIsTheClosedForm) {
+  // A cylinder minus a coaxial cylinder: m = ρπ(R² − r²)L, I_zz = m(R² + r²)/2,
+  // I_xx = m(3(R² + r²) + L²)/12; placed at z = 0.2, so the centre of mass is there.
+  const Scene s = parse(R"(
+[[bodies]]
+name = "tube"
+density = 2000.0
+  [[bodies.parts]]
+  shape = { type = "cylinder", radius = 0.05, length = 0.4 }
+  position = [0.0, 0.0, 0.2]
+  [[bodies.parts]]
+  shape = { type = "cylinder", radius = 0.04, length = 0.4 }
+  position = [0.0, 0.0, 0.2]
+  hole = true
+)");
+  const double R2 = 0.05 * 0.05, r2 = 0.04 * 0.04, L = 0.4;
+  const double m = 2000.0 * pi * (R2 - r2) * L;
+  const MassProperties& mp = s.body_info[0].mass_properties;
+  // The difference of two masses 2.8 times larger than the result: rounding is amplified ~3x.
+  EXPECT_NEAR(mp.mass, m, 1e-14 * m);
+  EXPECT_NEAR(mp.center_of_mass.z(), 0.2, 1e-15);
+  EXPECT_NEAR(mp.inertia(2, 2), m * (R2 + r2) / 2, 1e-13 * m * R2);
+  EXPECT_NEAR(mp.inertia(0, 0), m * (3 * (R2 + r2) + L * L) / 12, 1e-13 * m * L * L);
+  EXPECT_NE(s.body_info[0].source.find("2 parts (1 holes)"), std::string::npos) << s.body_info[0].source;
+}
+
+TEST(SceneFile, RotatedPartsAndTotalMass) {
+  // Two spheres at x = ±d with total mass M: I_yy = I_zz = 2(2/5 (M/2) r² + (M/2) d²), I_xx = 2/5 M r².
+  // The second sphere is rotated; a sphere does not care, which checks that orientations are read.
+  const Scene s = parse(R"(
+[[bodies]]
+name = "dumbbell"
+mass = 3.0
+  [[bodies.parts]]
+  shape = { type = "sphere", radius = 0.1 }
+  position = [0.5, 0.0, 0.0]
+  [[bodies.parts]]
+  shape = { type = "sphere", radius = 0.1 }
+  position = [-0.5, 0.0, 0.0]
+  orientation = [0.0, 0.0, 1.0, 0.0]
+)");
+  const RigidBody& b = s.model.bodies[0];
+  const double M = 3.0, r2 = 0.01, d2 = 0.25;
+  EXPECT_NEAR(b.mass(), M, 1e-15);
+  EXPECT_NEAR(b.Lambda()(0), 0.4 * M * r2, 1e-15);
+  EXPECT_NEAR(b.Lambda()(1), 0.4 * M * r2 + M * d2, 1e-14);
+  EXPECT_NEAR(b.Lambda()(2), 0.4 * M * r2 + M * d2, 1e-14);
+}
+
+TEST(SceneFile, PolynomialDensityIsIntegratedExactly) {
+  // Cube of side a with ρ = ρ₀ + k z: m = ρ₀a³ (the odd term integrates to 0) and
+  // c_z = (1/m) ∫ k z² dV = k a²/(12 ρ₀). Degree-1 density: the rules are exact, only rounding remains.
+  const Scene s = parse(R"(
+[[bodies]]
+name = "graded"
+shape = { type = "box", size = [0.2, 0.2, 0.2] }
+density = { polynomial = [[1000.0, 0, 0, 0], [2000.0, 0, 0, 1]] }
+)");
+  const MassProperties& mp = s.body_info[0].mass_properties;
+  EXPECT_NEAR(mp.mass, 1000.0 * 0.008, 1e-13);
+  EXPECT_NEAR(mp.center_of_mass.z(), 2000.0 * 0.04 / (12 * 1000.0), 1e-15);
+  EXPECT_NEAR(mp.center_of_mass.x(), 0.0, 1e-16);
+}
+
+TEST(SceneFile, ExplicitInertiaAsDiagonalOrFullTensor) {
+  const Scene s = parse(R"(
+[[bodies]]
+name = "diag"
+mass = 2.0
+inertia = [0.1, 0.2, 0.25]
+center_of_mass = [0.0, 0.0, 0.1]
+
+[[bodies]]
+name = "full"
+mass = 2.0
+inertia = [[0.2, -0.05, 0.0], [-0.05, 0.2, 0.0], [0.0, 0.0, 0.3]]
+)");
+  EXPECT_EQ(s.model.bodies[0].Lambda(), Vec3(0.1, 0.2, 0.25));
+  EXPECT_EQ(s.model.bodies[0].center_of_mass(), Vec3(0, 0, 0.1));
+  // Eigenvalues of [[0.2, −0.05], [−0.05, 0.2]] are 0.2 ∓ 0.05; the solver is accurate to rounding.
+  const Vec3& L = s.model.bodies[1].Lambda();
+  EXPECT_NEAR(L(0), 0.15, 1e-15);
+  EXPECT_NEAR(L(1), 0.25, 1e-15);
+  EXPECT_NEAR(L(2), 0.3, 1e-15);
+}
+
+TEST(SceneFile, InitialStateInTheDocumentedFrames) {
+  // Reference frame turned 90° about z; ω given in body axes along x is world y. The centre of mass
+  // (0, 0, 0.1) in the reference frame is unmoved by the turn; the velocity given is of the origin,
+  // so the centre moves at v + ω × (o − p) = (0, 0, 0) + (0, 2, 0) × (0, 0, 0.1) = (0.2, 0, 0).
+  const Scene s = parse(R"(
+[[bodies]]
+name = "b"
+mass = 1.0
+inertia = [0.1, 0.2, 0.25]
+center_of_mass = [0.0, 0.0, 0.1]
+position = [1.0, 2.0, 3.0]
+orientation = [0.7071067811865476, 0.0, 0.0, 0.7071067811865476]
+angular_velocity = [2.0, 0.0, 0.0]
+angular_velocity_frame = "body"
+)");
+  const BodyState& b = s.initial.bodies[0];
+  EXPECT_LT((b.omega_w - Vec3(0, 2, 0)).norm(), 1e-15);
+  EXPECT_LT((b.o - Vec3(1, 2, 3.1)).norm(), 1e-15);
+  EXPECT_LT((b.v - Vec3(0.2, 0, 0)).norm(), 1e-15);
+}
+
+TEST(SceneFile, NearlyUnitQuaternionsAreNormalised) {
+  // 0.7071 has four digits: |q| − 1 ≈ −1.4e-5, inside the slack; the rotation is q/|q|.
+  const Scene s = parse(R"(
+[[bodies]]
+name = "b"
+mass = 1.0
+inertia = [1.0, 1.0, 1.0]
+orientation = [0.7071, 0.7071, 0.0, 0.0]
+)");
+  const Quat q = s.initial.bodies[0].q;
+  EXPECT_NEAR(q.norm(), 1.0, 1e-15);
+  EXPECT_NEAR(q.w(), std::sqrt(0.5), 1e-15);
+  EXPECT_NEAR(q.x(), std::sqrt(0.5), 1e-15);
+}
+
+TEST(SceneFile, MeshPathIsRelativeToTheSceneFile) {
+  test::TempDir dir("scene_mesh");
+  std::filesystem::create_directories(dir / "scenes/meshes");
+  std::filesystem::copy_file(std::filesystem::path(TUMBLE_SOURCE_DIR) / "examples/meshes/t_handle.stl",
+                             dir / "scenes/meshes/t_handle.stl");
+  const auto file = dir.write("scenes/handle.toml", kSim + R"(
+[[bodies]]
+name = "handle"
+mesh = "meshes/t_handle.stl"
+scale = 2.0
+density = 2700.0
+)");
+  const Scene s = load_scene(file);
+  // T volume 0.1·0.02·0.02 + 0.06·0.02·0.02 = 6.4e-5 m³, ×8 for scale 2. The STL stores float32
+  // coordinates (relative rounding up to 6e-8 each), so the volume is exact to ~2e-7 relative.
+  EXPECT_NEAR(s.model.bodies[0].mass(), 2700.0 * 6.4e-5 * 8, 2e-7 * 1.3824);
+  EXPECT_NE(s.body_info[0].source.find("scale 2"), std::string::npos);
+}
+
+TEST(SceneFile, ForcesByNameAndWhatTheyConserve) {
+  const std::string two_bodies = R"(
+[[bodies]]
+name = "a"
+mass = 1.0
+inertia = [1.0, 1.0, 1.0]
+[[bodies]]
+name = "b"
+mass = 1.0
+inertia = [1.0, 1.0, 1.0]
+position = [1.0, 0.0, 0.0]
+)";
+  auto conserved = [&](const std::string& forces) {
+    const Conservation c = parse(two_bodies + forces).conserved;
+    return std::array<bool, 3>{c.energy, c.linear_momentum, c.angular_momentum};
+  };
+  using A = std::array<bool, 3>;
+  // A spring between two bodies is internal and central: everything is conserved.
+  EXPECT_EQ(conserved("[[forces]]\ntype = \"spring\"\na = { body = \"a\" }\nb = { body = \"b\" }\nstiffness = 10.0\n"),
+            (A{true, true, true}));
+  // Tied to the world: energy only.
+  EXPECT_EQ(conserved("[[forces]]\ntype = \"spring\"\na = { body = \"a\" }\nb = { anchor = [0, 0, 1] }\nstiffness = 10.0\n"),
+            (A{true, false, false}));
+  // Damped: the energy is lost, but the pair of forces is still internal and central.
+  EXPECT_EQ(conserved("[[forces]]\ntype = \"spring\"\na = { body = \"a\" }\nb = { body = \"b\" }\nstiffness = 10.0\n"
+                      "damping = 0.1\n"),
+            (A{false, true, true}));
+  EXPECT_EQ(conserved("[world]\ngravity = [0, 0, -9.81]\n"), (A{true, false, false}));
+  EXPECT_EQ(conserved("[[forces]]\ntype = \"gravity_gradient\"\nmu = 1.0\n"), (A{true, false, true}));
+  EXPECT_EQ(conserved("[[forces]]\ntype = \"gravity_gradient\"\nmu = 1.0\ncenter = [0, 0, 1]\n"),
+            (A{true, false, false}));
+  EXPECT_EQ(conserved("[[forces]]\ntype = \"drag\"\nlinear = 0.1\n"), (A{false, false, false}));
+  EXPECT_EQ(conserved("[[forces]]\ntype = \"torque\"\nbody = \"b\"\ntorque = [0, 0, 1]\nframe = \"body\"\n"),
+            (A{false, false, false}));
+
+  const Scene s = parse(two_bodies + R"(
+[[forces]]
+type = "force"
+body = "b"
+force = [0.0, 0.0, 2.0]
+frame = "body"
+point = [0.0, 0.5, 0.0]
+)");
+  ASSERT_EQ(s.model.forces.size(), 1u);
+  // The force acts on body #1 ("b"), at a body point: f = (0, 0, 2) N, τ = r × f = (1, 0, 0) N·m.
+  const Loads loads = evaluate_loads(s.model, s.initial);
+  EXPECT_EQ(loads.bodies[0].force, Vec3::Zero());
+  EXPECT_LT((loads.bodies[1].force - Vec3(0, 0, 2)).norm(), 1e-15);
+  EXPECT_LT((loads.bodies[1].torque - Vec3(1, 0, 0)).norm(), 1e-15);
+}
+
+TEST(SceneFile, SimulationSettingsAndParticles) {
+  const Scene s = parse_scene(R"(
+[simulation]
+duration = 2.5
+timestep = 0.01
+integrator = "dopri45"
+formulation = "body"
+output_interval = 0
+rtol = 1e-8
+atol = 1e-11
+drift_threshold = 0
+
+[[particles]]
+name = "p"
+mass = 0.5
+position = [1, 2, 3]
+velocity = [0, 0, 1]
+)",
+                              "p.toml");
+  EXPECT_EQ(s.settings.duration, 2.5);
+  EXPECT_EQ(s.settings.timestep, 0.01);
+  EXPECT_EQ(s.settings.integrator, "dopri45");
+  EXPECT_EQ(s.settings.formulation, Formulation::body);
+  EXPECT_EQ(s.settings.output_interval, 0.0);
+  EXPECT_EQ(s.settings.tolerances.relative, 1e-8);
+  EXPECT_EQ(s.settings.tolerances.absolute, 1e-11);
+  EXPECT_EQ(s.drift_threshold, 0.0);
+  ASSERT_EQ(s.model.particles.size(), 1u);
+  EXPECT_EQ(s.model.particles[0].mass, 0.5);
+  EXPECT_EQ(s.initial.particles[0].x, Vec3(1, 2, 3));
+  EXPECT_EQ(s.initial.particles[0].v, Vec3(0, 0, 1));
+}
+
+}  // namespace
+}  // namespace tumble
