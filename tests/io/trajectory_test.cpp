@@ -1,0 +1,230 @@
+// The trajectory writers on their own: what is written reads back bit for bit (CSV from its text,
+// HDF5 through the C API), the files appear under their final names only when committed, and an
+// abandoned run leaves nothing behind.
+#include <gtest/gtest.h>
+#include <hdf5.h>
+
+#include <cstdlib>
+
+#include "../support/scene_files.hpp"
+#include "tumble/dynamics/quantities.hpp"
+#include "tumble/error.hpp"
+#include "tumble/io/trajectory_writer.hpp"
+
+namespace tumble {
+namespace {
+
+/// A body whose reference frame is not its principal frame (offset centre, products of inertia), and
+/// a particle; states at a few times with arbitrary values.
+struct Fixture {
+  Model model;
+  std::vector<SystemState> states;
+  Fixture() {
+    Mat3 I;
+    I << 0.3, -0.02, 0.01, -0.02, 0.4, 0.0, 0.01, 0.0, 0.5;
+    model.add_body(RigidBody::from_inertia(2.0, I, Vec3(0.1, -0.2, 0.05), "wheel"));
+    model.add_particle(Particle{"pebble", 0.1});
+    for (int k = 0; k < 5; ++k) {
+      const double t = 0.1 * k;
+      BodyState b;
+      b.o = Vec3(1.0 + t, 2.0 / 3.0, -t * t);
+      b.q = Quat(Eigen::AngleAxisd(0.3 + t, Vec3(1, 2, 3).normalized()));
+      b.v = Vec3(1.0 / 7.0, 0.0, -2 * t);
+      b.omega_w = Vec3(0.5, -1.0 / 3.0, 10.0 + t);
+      states.push_back(SystemState{t, {b}, {ParticleState{Vec3(t, 0.0, 1e-20), Vec3(-1.0, 0.0, 3.0)}}});
+    }
+  }
+  DriftSample drift(const SystemState& s) const {
+    DriftSample d;
+    d.invariants = invariants(model, s);
+    d.energy_drift = 1.0 / 3.0 * s.t;
+    d.angular_momentum_drift = 0.0;  // defined; linear momentum drift left undefined
+    return d;
+  }
+};
+
+std::vector<std::string> split(const std::string& line, char sep) {
+  std::vector<std::string> out(1);
+  for (char c : line) {
+    if (c == sep) {
+      out.emplace_back();
+    } else {
+      out.back() += c;
+    }
+  }
+  return out;
+}
+
+std::vector<std::string> lines(const std::string& text) {
+  auto out = split(text, '\n');
+  if (!out.empty() && out.back().empty()) out.pop_back();  // the last line ends with a newline
+  return out;
+}
+
+bool has_temporaries(const std::filesystem::path& dir) {
+  for (const auto& e : std::filesystem::directory_iterator(dir)) {
+    if (e.path().string().find(".tmp-") != std::string::npos) return true;
+  }
+  return false;
+}
+
+TEST(CsvTrajectory, RowsReadBackBitForBit) {
+  const Fixture f;
+  test::TempDir dir("csv_writer");
+  const auto path = dir / "sub/run.csv";  // the directory is created
+  auto writer = make_csv_writer(path, diagnostics_path(path), f.model, {});
+  for (const auto& s : f.states) writer->write(f.model, s, f.drift(s));
+  EXPECT_FALSE(std::filesystem::exists(path)) << "only the temporary exists before commit";
+  writer->commit(true);
+  EXPECT_EQ(writer->outputs(), (std::vector<std::filesystem::path>{path, dir / "sub/run.diagnostics.csv"}));
+  EXPECT_FALSE(has_temporaries(dir / "sub"));
+
+  const auto rows = lines(test::read_text(path));
+  ASSERT_EQ(rows.size(), 1 + 2 * f.states.size());
+  EXPECT_EQ(rows[0], "t,body,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz");
+  for (size_t k = 0; k < f.states.size(); ++k) {
+    const auto body = split(rows[1 + 2 * k], ',');
+    const auto particle = split(rows[2 + 2 * k], ',');
+    ASSERT_EQ(body.size(), 15u);
+    EXPECT_EQ(body[1], "wheel");
+    EXPECT_EQ(particle[1], "pebble");
+    auto num = [](const std::string& s) { return std::strtod(s.c_str(), nullptr); };
+    // The reference frame's pose, not the principal frame's: compare with reference_state exactly
+    // (17 significant digits round-trip every double).
+    const ReferenceFrameState r = reference_state(f.model.bodies[0], f.states[k].bodies[0]);
+    EXPECT_EQ(num(body[0]), f.states[k].t);
+    EXPECT_EQ(Vec3(num(body[2]), num(body[3]), num(body[4])), r.position);
+    EXPECT_EQ(Eigen::Vector4d(num(body[5]), num(body[6]), num(body[7]), num(body[8])),
+              Eigen::Vector4d(r.orientation.w(), r.orientation.x(), r.orientation.y(), r.orientation.z()));
+    EXPECT_EQ(Vec3(num(body[9]), num(body[10]), num(body[11])), r.velocity);
+    EXPECT_EQ(Vec3(num(body[12]), num(body[13]), num(body[14])), r.omega_w);
+    EXPECT_EQ(Vec3(num(particle[2]), num(particle[3]), num(particle[4])), f.states[k].particles[0].x);
+    EXPECT_EQ(particle[5] + particle[6] + particle[7] + particle[8], "1000");  // identity orientation
+  }
+
+  const auto diag = lines(test::read_text(dir / "sub/run.diagnostics.csv"));
+  ASSERT_EQ(diag.size(), 1 + f.states.size());
+  EXPECT_EQ(diag[0],
+            "t,kinetic_energy,potential_energy,total_energy,px,py,pz,Lx,Ly,Lz,energy_drift,"
+            "linear_momentum_drift,angular_momentum_drift");
+  const auto last = split(diag.back(), ',');
+  ASSERT_EQ(last.size(), 13u);
+  const DriftSample d = f.drift(f.states.back());
+  EXPECT_EQ(std::strtod(last[1].c_str(), nullptr), d.invariants.kinetic_energy);
+  EXPECT_EQ(last[2], "0");  // no force models: potential 0, total = kinetic
+  EXPECT_EQ(std::strtod(last[10].c_str(), nullptr), *d.energy_drift);
+  EXPECT_EQ(last[11], "") << "an undefined drift is an empty field, never nan";
+  EXPECT_EQ(last[12], "0");
+}
+
+TEST(CsvTrajectory, AbandonedRunLeavesNothing) {
+  const Fixture f;
+  test::TempDir dir("csv_abandon");
+  {
+    auto writer = make_csv_writer(dir / "run.csv", dir / "run.diagnostics.csv", f.model, {});
+    writer->write(f.model, f.states[0], f.drift(f.states[0]));
+  }  // destroyed without commit: an error happened
+  EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
+  EXPECT_THROW(make_csv_writer(dir / "same.csv", dir / "same.csv", f.model, {}), InvalidArgument);
+}
+
+/// Reads a whole double dataset and its dimensions.
+std::vector<double> read_doubles(hid_t file, const char* name, std::vector<hsize_t>& dims) {
+  const hid_t set = H5Dopen2(file, name, H5P_DEFAULT);
+  EXPECT_GE(set, 0) << name;
+  const hid_t space = H5Dget_space(set);
+  dims.resize(static_cast<size_t>(H5Sget_simple_extent_ndims(space)));
+  H5Sget_simple_extent_dims(space, dims.data(), nullptr);
+  hsize_t n = 1;
+  for (hsize_t d : dims) n *= d;
+  std::vector<double> out(n);
+  H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data());
+  H5Sclose(space);
+  H5Dclose(set);
+  return out;
+}
+
+std::string read_string_attribute(hid_t file, const char* name) {
+  const hid_t attr = H5Aopen(file, name, H5P_DEFAULT);
+  const hid_t type = H5Aget_type(attr);
+  char* value = nullptr;
+  H5Aread(attr, type, &value);
+  std::string s = value ? value : "";
+  H5free_memory(value);
+  H5Tclose(type);
+  H5Aclose(attr);
+  return s;
+}
+
+TEST(Hdf5Trajectory, ArraysAndAttributesReadBack) {
+  const Fixture f;
+  test::TempDir dir("hdf5_writer");
+  TrajectoryInfo info{"[simulation]\nduration = 0.4\n# ünïcode\n", "scene.toml", "9.8.7", RunSettings{}};
+  info.settings.integrator = "rk4";
+  auto writer = make_hdf5_writer(dir / "run.h5", f.model, info);
+  for (const auto& s : f.states) writer->write(f.model, s, f.drift(s));
+  writer->commit(false);  // as after Ctrl-C
+  EXPECT_FALSE(has_temporaries(dir.path()));
+
+  const hid_t file = H5Fopen((dir / "run.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  std::vector<hsize_t> dims;
+  const auto t = read_doubles(file, "t", dims);
+  EXPECT_EQ(dims, (std::vector<hsize_t>{5}));
+  EXPECT_EQ(t.back(), 0.4);
+  const auto q = read_doubles(file, "orientation", dims);
+  EXPECT_EQ(dims, (std::vector<hsize_t>{5, 2, 4}));
+  const auto w = read_doubles(file, "angular_velocity", dims);
+  EXPECT_EQ(dims, (std::vector<hsize_t>{5, 2, 3}));
+  for (size_t k = 0; k < f.states.size(); ++k) {
+    const ReferenceFrameState r = reference_state(f.model.bodies[0], f.states[k].bodies[0]);
+    EXPECT_EQ(q[k * 8 + 0], r.orientation.w());
+    EXPECT_EQ(q[k * 8 + 3], r.orientation.z());
+    EXPECT_EQ(q[k * 8 + 4], 1.0);  // the particle
+    EXPECT_EQ(Vec3(w[k * 6], w[k * 6 + 1], w[k * 6 + 2]), r.omega_w);
+  }
+  const auto E = read_doubles(file, "diagnostics/energy_drift", dims);
+  EXPECT_EQ(E[4], *f.drift(f.states[4]).energy_drift);
+  EXPECT_LT(H5Lexists(file, "diagnostics/linear_momentum_drift", H5P_DEFAULT), 1) << "undefined: not written";
+  EXPECT_EQ(read_string_attribute(file, "scene"), info.scene_text);
+  EXPECT_EQ(read_string_attribute(file, "tumble_version"), "9.8.7");
+  int complete = -1;
+  const hid_t attr = H5Aopen(file, "complete", H5P_DEFAULT);
+  H5Aread(attr, H5T_NATIVE_INT, &complete);
+  H5Aclose(attr);
+  EXPECT_EQ(complete, 0);
+  H5Fclose(file);
+}
+
+TEST(Hdf5Trajectory, ManySamplesAcrossBlocksAndAbandon) {
+  // More samples than one block of the extendible datasets (65536 values / 3 per row for the
+  // vectors, so 21845 rows): the appends must line up across block boundaries.
+  Model model;
+  model.add_particle(Particle{"p", 1.0});
+  test::TempDir dir("hdf5_blocks");
+  auto writer = make_hdf5_writer(dir / "long.h5", model, {});
+  const int n = 50000;
+  for (int k = 0; k < n; ++k) {
+    const SystemState s{k * 1e-3, {}, {ParticleState{Vec3(k, -k, 0.5 * k), Vec3::Zero()}}};
+    DriftSample d;
+    d.invariants = invariants(model, s);
+    writer->write(model, s, d);
+  }
+  writer->commit(true);
+  const hid_t file = H5Fopen((dir / "long.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  std::vector<hsize_t> dims;
+  const auto p = read_doubles(file, "position", dims);
+  H5Fclose(file);
+  ASSERT_EQ(dims, (std::vector<hsize_t>{static_cast<hsize_t>(n), 1, 3}));
+  for (int k = 0; k < n; k += 997) EXPECT_EQ(p[static_cast<size_t>(3 * k + 1)], -k);
+  EXPECT_EQ(p.back(), 0.5 * (n - 1));
+
+  {
+    auto abandoned = make_hdf5_writer(dir / "abandoned.h5", model, {});
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "abandoned.h5"));
+  EXPECT_FALSE(has_temporaries(dir.path()));
+}
+
+}  // namespace
+}  // namespace tumble
