@@ -1,0 +1,245 @@
+// `tumble run` and `tumble check` end to end: outputs where the user asked, command-line overrides,
+// the drift warning, one-line errors, nothing half-written after an error, and Ctrl-C.
+#include <gtest/gtest.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <thread>
+
+#include "../support/run.hpp"
+#include "../support/scene_files.hpp"
+
+extern char** environ;
+
+namespace tumble {
+namespace {
+
+using test::run_tumble;
+
+std::string example(const std::string& name) { return std::string(TUMBLE_SOURCE_DIR) + "/examples/" + name; }
+
+size_t count(const std::string& text, const std::string& what) {
+  size_t n = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+std::vector<std::string> file_lines(const std::filesystem::path& p) {
+  std::vector<std::string> out(1);
+  for (char c : test::read_text(p)) {
+    if (c == '\n') {
+      out.emplace_back();
+    } else {
+      out.back() += c;
+    }
+  }
+  out.pop_back();
+  return out;
+}
+
+bool has_temporaries(const std::filesystem::path& dir) {
+  for (const auto& e : std::filesystem::recursive_directory_iterator(dir)) {
+    if (e.path().string().find(".tmp-") != std::string::npos) return true;
+  }
+  return false;
+}
+
+TEST(RunCli, WritesTrajectoryAndDiagnosticsAndSaysWhere) {
+  test::TempDir dir("run_cli");
+  const auto out = dir / "out/box.csv";
+  const auto r = run_tumble("run " + example("thrown_box.toml") + " -o " + out.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("trajectory:  " + out.string()), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("diagnostics: " + (dir / "out/box.diagnostics.csv").string()), std::string::npos);
+  // 1.2 s every 0.01 s: 121 samples of one body, plus the header.
+  const auto rows = file_lines(out);
+  ASSERT_EQ(rows.size(), 122u);
+  EXPECT_EQ(rows[0], "t,body,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz");
+  EXPECT_EQ(rows.back().substr(0, 8), "1.2,box,");
+  EXPECT_EQ(file_lines(dir / "out/box.diagnostics.csv").size(), 122u);
+  EXPECT_FALSE(has_temporaries(dir.path()));
+}
+
+TEST(RunCli, CommandLineOverridesTheFile) {
+  test::TempDir dir("run_overrides");
+  // Every [simulation] value overridden; .dat with --format hdf5 is HDF5 whatever its name.
+  const auto h5 = dir / "top.dat";
+  const auto r = run_tumble("run " + example("symmetric_top.toml") + " -o " + h5.string() +
+                            " --format hdf5 --duration 0.5 --timestep 1e-2 --output-interval 0.1"
+                            " --integrator euler --formulation world --drift-threshold 0 --quiet");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(r.output, "") << "--quiet prints nothing on success";
+  EXPECT_EQ(test::read_text(h5).substr(0, 8), "\x89HDF\r\n\x1a\n");
+
+  const auto csv = dir / "top.csv";
+  const auto r2 = run_tumble("run " + example("symmetric_top.toml") + " -o " + csv.string() +
+                             " --duration 0.5 --timestep 1e-2 --output-interval 0.1 --integrator euler"
+                             " --drift-threshold 0");
+  ASSERT_EQ(r2.status, 0) << r2.output;
+  EXPECT_NE(r2.output.find("for 0.5 s (euler, mixed formulation): 6 samples"), std::string::npos) << r2.output;
+  const auto diag = file_lines(dir / "top.diagnostics.csv");
+  ASSERT_EQ(diag.size(), 7u);  // t = 0, 0.1, ..., 0.5
+  EXPECT_EQ(diag.back().substr(0, 4), "0.5,");
+  // Explicit Euler on Euler's equations gains energy on a free rotor: ω̇ is Λ-orthogonal to ω, so
+  // E(n+1) = E(n) + ½h² ω̇ᵀΛω̇ > E(n). A positive drift in the last sample (0.13 here; rk4 at the
+  // file's settings drifts 1e-10) is the signature of the overridden integrator and step.
+  const std::string last = diag.back();
+  const auto fields = [&] {
+    std::vector<std::string> f(1);
+    for (char c : last) {
+      if (c == ',') {
+        f.emplace_back();
+      } else {
+        f.back() += c;
+      }
+    }
+    return f;
+  }();
+  ASSERT_EQ(fields.size(), 13u);
+  EXPECT_GT(std::stod(fields[10]), 1e-4) << last;
+}
+
+TEST(RunCli, DriftWarningOnceWithAdvice) {
+  test::TempDir dir("run_drift");
+  const auto r = run_tumble("run " + example("t_handle.toml") + " -o " + (dir / "t.csv").string() +
+                            " --integrator euler --duration 2 --drift-threshold 1e-6");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(count(r.output, "tumble: warning:"), 1u) << r.output;
+  // Angular momentum passes 1e-6 first (t = 0.03 s); the energy warning is not repeated after it.
+  EXPECT_NE(r.output.find("tumble: warning: angular momentum drifted by"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("reduce the timestep (now 0.001 s) or use a higher-order integrator than 'euler'"),
+            std::string::npos)
+      << r.output;
+  // rk4 at the scene's own settings stays below the default threshold: no warning.
+  const auto quiet = run_tumble("run " + example("t_handle.toml") + " -o " + (dir / "t2.csv").string());
+  EXPECT_EQ(count(quiet.output, "warning"), 0u) << quiet.output;
+}
+
+TEST(RunCli, BadInputGetsOneReadableLine) {
+  test::TempDir dir("run_bad");
+  auto expect_error = [&](const std::string& args, const std::string& expected) {
+    const auto r = run_tumble(args);
+    EXPECT_EQ(r.status, 1) << args << "\n" << r.output;
+    EXPECT_EQ(count(r.output, "\n"), 1u) << r.output;
+    EXPECT_NE(r.output.find(expected), std::string::npos) << args << "\n" << r.output;
+  };
+  const std::string scene = example("t_handle.toml") + " -o " + (dir / "x.csv").string();
+  expect_error("run " + scene + " --timestep -1", "tumble: error: timestep -1 s is invalid: give a positive step");
+  expect_error("run " + scene + " --integrator rk5", "tumble: error: unknown integrator 'rk5'; choose one of: ");
+  expect_error("run " + scene + " --formulation sideways", "unknown formulation 'sideways'; choose world, mixed or body");
+  expect_error("run " + scene + " --drift-threshold -1", "--drift-threshold -1 is invalid");
+  expect_error("run no/such/scene.toml", "tumble: error: cannot read scene file no/such/scene.toml: no such file");
+  const auto bad = dir.write("bad.toml", "[simulation]\nduration = 1\n[[bodies]]\nname = \"a\"\nmass = -1\ninertia = [1, 1, 1]\n");
+  expect_error("run " + bad.string(), "tumble: error: " + bad.string() + ":5:8: body 'a': mass is -1 kg: it must be positive");
+  expect_error("check " + bad.string(), bad.string() + ":5:8:");
+  EXPECT_TRUE(std::filesystem::is_empty(dir.path()) ||
+              (std::filesystem::exists(dir / "bad.toml") && !std::filesystem::exists(dir / "x.csv")));
+}
+
+TEST(RunCli, BlowUpLeavesNoOutputUnderItsName) {
+  test::TempDir dir("run_blowup");
+  // Explicit Euler on a stiff spring (ω = 1e6 rad/s, h = 1e-3: ω h = 1000) grows ×1000 a step and
+  // overflows within ~100 steps; simulate() stops with the body, time and step.
+  const auto scene = dir.write("stiff.toml", R"([simulation]
+duration = 10.0
+timestep = 1e-3
+integrator = "euler"
+[[bodies]]
+name = "b"
+mass = 1.0
+inertia = [1.0, 1.0, 1.0]
+position = [1.0, 0.0, 0.0]
+[[forces]]
+type = "spring"
+a = { body = "b" }
+b = { anchor = [0.0, 0.0, 0.0] }
+stiffness = 1e12
+)");
+  const auto r = run_tumble("run " + scene.string() + " -o " + (dir / "out/stiff.csv").string());
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("tumble: error: the state of body 'b' became non-finite at t = "), std::string::npos)
+      << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out/stiff.csv"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "out/stiff.diagnostics.csv"));
+  EXPECT_FALSE(has_temporaries(dir.path()));
+}
+
+TEST(RunCli, CtrlCStopsCleanlyAndKeepsAValidFile) {
+  test::TempDir dir("run_interrupt");
+  const std::string out = (dir / "long.csv").string();
+  const std::string scene = example("t_handle.toml");
+  // A run far longer than the test: 1e6 s of simulated time.
+  std::vector<std::string> args = {TUMBLE_CLI, "run", scene, "-o", out, "--duration", "1e6", "--quiet"};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 2, (dir / "stderr.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, TUMBLE_CLI, &actions, nullptr, argv.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&actions);
+  // Wait until it has written samples (the temporary grows), then interrupt it.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (std::chrono::steady_clock::now() < deadline && !has_temporaries(dir.path())) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  ASSERT_EQ(kill(pid, SIGINT), 0);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status)) << "it stopped by itself, not killed by the signal";
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+  const std::string err = test::read_text(dir / "stderr.txt");
+  EXPECT_NE(err.find("tumble: interrupted at t = "), std::string::npos) << err;
+  EXPECT_NE(err.find(out + " holds the "), std::string::npos) << err;
+  // Valid: the header, then complete rows of 15 fields in time order, as many as the diagnostics.
+  const auto rows = file_lines(out);
+  ASSERT_GT(rows.size(), 2u);
+  EXPECT_EQ(rows[0], "t,body,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz");
+  for (size_t i = 1; i < rows.size(); ++i) EXPECT_EQ(count(rows[i], ","), 14u) << "row " << i;
+  EXPECT_EQ(file_lines(dir / "long.diagnostics.csv").size(), rows.size());
+  EXPECT_FALSE(has_temporaries(dir.path()));
+}
+
+TEST(RunCli, ProgressBarWhenAsked) {
+  test::TempDir dir("run_progress");
+  const auto r = run_tumble("run " + example("thrown_box.toml") + " -o " + (dir / "b.csv").string() + " --progress");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("100%  t = 1.2 / 1.2 s  elapsed "), std::string::npos) << r.output;
+  // Not a terminal and not asked: no bar.
+  const auto quiet = run_tumble("run " + example("thrown_box.toml") + " -o " + (dir / "c.csv").string());
+  EXPECT_EQ(quiet.output.find("elapsed"), std::string::npos) << quiet.output;
+}
+
+TEST(CheckCli, SummarisesWithoutSimulating) {
+  const auto r = run_tumble("check " + example("t_handle.toml"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  // The T-handle's closed form: volume 6.4e-5 m³ × 2700 kg/m³ = 0.1728 kg (float32 STL: 4e-8 off).
+  EXPECT_NE(r.output.find("mass               0.17279999"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("principal moments  9.35999"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("initial      kinetic energy "), std::string::npos);
+  EXPECT_NE(r.output.find("angular momentum ("), std::string::npos);
+  EXPECT_NE(r.output.find("conserved    energy, linear momentum, angular momentum"), std::string::npos);
+}
+
+TEST(RunCli, HelpExplainsWithExamples) {
+  for (const std::string cmd : {"run", "check"}) {
+    const auto r = run_tumble(cmd + " --help");
+    EXPECT_EQ(r.status, 0);
+    EXPECT_NE(r.output.find("Example"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("tumble " + cmd + " examples/"), std::string::npos) << r.output;
+  }
+  const auto r = run_tumble("run --help");
+  for (const char* option : {"--output", "--format", "--integrator", "--formulation", "--timestep", "--duration",
+                             "--quiet", "--progress", "--drift-threshold"}) {
+    EXPECT_NE(r.output.find(option), std::string::npos) << option;
+  }
+}
+
+}  // namespace
+}  // namespace tumble
