@@ -11,6 +11,8 @@ std::unique_ptr<Integrator> semi_implicit_euler();
 std::unique_ptr<Integrator> rk4();
 std::unique_ptr<Integrator> lie_rk4();
 std::unique_ptr<Integrator> implicit_gyro();
+std::unique_ptr<Integrator> splitting();
+std::unique_ptr<Integrator> splitting4();
 std::unique_ptr<AdaptiveIntegrator> dopri45(const Tolerances& tolerances);
 
 }  // namespace tumble::methods

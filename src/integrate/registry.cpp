@@ -18,6 +18,8 @@ const std::map<std::string, std::function<std::unique_ptr<Integrator>()>>& fixed
       {"rk4", methods::rk4},
       {"lie_rk4", methods::lie_rk4},
       {"implicit_gyro", methods::implicit_gyro},
+      {"splitting", methods::splitting},
+      {"splitting4", methods::splitting4},
   };
   return r;
 }
