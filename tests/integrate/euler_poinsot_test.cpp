@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -153,8 +154,8 @@ TEST(EulerPoinsot, AgreesWithALongDoubleTaylorIntegrationOver100sAndHundredsOfFl
   // of convergence); the two runs agree to rounding of long double accumulated over 2e4 steps.
   const test::FreeBodyTaylor taylor(I);
   const int n = 20000;
-  const auto ref = taylor.run(test::to_ld(q0, w0), T / n, n);
-  const auto half = taylor.run(test::to_ld(q0, w0), T / (2 * n), 2 * n);
+  const auto ref = taylor.run(test::to_ld(q0, w0), static_cast<long double>(T) / n, n);
+  const auto half = taylor.run(test::to_ld(q0, w0), static_cast<long double>(T) / (2 * n), 2 * n);
   double ref_err = 0, err_w = 0, err_R = 0;
   for (int i = 0; i <= n; i += 50) {
     ref_err = std::max(ref_err, (test::omega_of(ref[i]) - test::omega_of(half[2 * i])).norm());
@@ -392,7 +393,7 @@ TEST(EulerPoinsot, RejectsInvalidInput) {
   EXPECT_THROW(EulerPoinsot(Vec3(1, -1, 2), Quat::Identity(), Vec3(1, 1, 1)), InvalidArgument);
   EXPECT_THROW(EulerPoinsot(Vec3(1, 2, 3), Quat(0, 0, 0, 0), Vec3(1, 1, 1)), InvalidArgument);
   EXPECT_THROW(EulerPoinsot(Vec3(1, 2, 3), Quat::Identity(), Vec3(1, std::nan(""), 1)), InvalidArgument);
-  EXPECT_THROW(EulerPoinsot(Vec3(1, 2, INFINITY), Quat::Identity(), Vec3(1, 1, 1)), InvalidArgument);
+  EXPECT_THROW(EulerPoinsot(Vec3(1, 2, std::numeric_limits<double>::infinity()), Quat::Identity(), Vec3(1, 1, 1)), InvalidArgument);
 }
 
 }  // namespace

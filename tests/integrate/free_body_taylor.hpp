@@ -26,7 +26,8 @@ class FreeBodyTaylor {
   static constexpr int kMaxOrder = 40;
 
   FreeBodyTaylor(const Vec3& I, int order = 30) : order_(std::min(order, kMaxOrder)) {
-    const long double I1 = I(0), I2 = I(1), I3 = I(2);
+    using LD = long double;
+    const LD I1 = LD(I(0)), I2 = LD(I(1)), I3 = LD(I(2));
     a_ = {(I2 - I3) / I1, (I3 - I1) / I2, (I1 - I2) / I3};
   }
 
@@ -77,7 +78,8 @@ class FreeBodyTaylor {
 };
 
 inline FreeBodyStateLd to_ld(const Quat& q, const Vec3& w) {
-  return {{w(0), w(1), w(2)}, {q.w(), q.x(), q.y(), q.z()}};
+  using LD = long double;
+  return {{LD(w(0)), LD(w(1)), LD(w(2))}, {LD(q.w()), LD(q.x()), LD(q.y()), LD(q.z())}};
 }
 inline Vec3 omega_of(const FreeBodyStateLd& s) {
   return Vec3(static_cast<double>(s.w[0]), static_cast<double>(s.w[1]), static_cast<double>(s.w[2]));
