@@ -81,6 +81,10 @@ int run(const RunOptions& o) {
     out = std::filesystem::path(o.scene).stem();
     out += hdf5 ? ".h5" : ".csv";
   }
+  if (std::filesystem::is_directory(out)) {
+    throw InvalidArgument(fmt::format("-o {} is a directory: give a file name, e.g. {}", out.string(),
+                                      (out / std::filesystem::path(o.scene).stem()).string() + (hdf5 ? ".h5" : ".csv")));
+  }
   if (hdf5 && !o.diagnostics.empty()) {
     throw InvalidArgument("--diagnostics names a CSV file; HDF5 output keeps the diagnostics in its "
                           "'diagnostics' group: drop --diagnostics or use --format csv");

@@ -132,6 +132,7 @@ TEST(RunCli, BadInputGetsOneReadableLine) {
   expect_error("run " + scene + " --integrator rk5", "tumble: error: unknown integrator 'rk5'; choose one of: ");
   expect_error("run " + scene + " --formulation sideways", "unknown formulation 'sideways'; choose world, mixed or body");
   expect_error("run " + scene + " --drift-threshold -1", "--drift-threshold -1 is invalid");
+  expect_error("run " + example("t_handle.toml") + " -o " + dir.path().string(), "is a directory: give a file name, e.g. ");
   expect_error("run no/such/scene.toml", "tumble: error: cannot read scene file no/such/scene.toml: no such file");
   const auto bad = dir.write("bad.toml", "[simulation]\nduration = 1\n[[bodies]]\nname = \"a\"\nmass = -1\ninertia = [1, 1, 1]\n");
   expect_error("run " + bad.string(), "tumble: error: " + bad.string() + ":5:8: body 'a': mass is -1 kg: it must be positive");
