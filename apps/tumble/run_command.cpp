@@ -122,9 +122,11 @@ int run(const RunOptions& o) {
     return 130;  // 128 + SIGINT, as shells report an interrupted command
   }
   if (!o.quiet) {
-    const size_t n = scene.model.bodies.size() + scene.model.particles.size();
-    fmt::print("ran {} for {:g} s ({}, {} formulation): {} samples of {} bodies/particles\n", o.scene,
-               settings.duration, settings.integrator, formulation_name(settings.formulation), writer->samples(), n);
+    auto count = [](size_t n, const char* one, const char* many) { return fmt::format("{} {}", n, n == 1 ? one : many); };
+    std::string what = count(scene.model.bodies.size(), "body", "bodies");
+    if (!scene.model.particles.empty()) what += " and " + count(scene.model.particles.size(), "particle", "particles");
+    fmt::print("ran {} for {:g} s ({}, {} formulation): {} samples of {}\n", o.scene, settings.duration,
+               settings.integrator, formulation_name(settings.formulation), writer->samples(), what);
     std::vector<std::string> drift;
     if (scene.conserved.energy && extremes.energy) drift.push_back(fmt::format("energy {:.2g}", *extremes.energy));
     if (scene.conserved.angular_momentum && extremes.angular_momentum) {
