@@ -5,6 +5,7 @@
 #include <cmath>
 #include <optional>
 
+#include "plural.hpp"
 #include "commands.hpp"
 #include "interrupt.hpp"
 #include "progress.hpp"
@@ -122,7 +123,6 @@ int run(const RunOptions& o) {
     return 130;  // 128 + SIGINT, as shells report an interrupted command
   }
   if (!o.quiet) {
-    auto count = [](size_t n, const char* one, const char* many) { return fmt::format("{} {}", n, n == 1 ? one : many); };
     std::string what = count(scene.model.bodies.size(), "body", "bodies");
     if (!scene.model.particles.empty()) what += " and " + count(scene.model.particles.size(), "particle", "particles");
     fmt::print("ran {} for {:g} s ({}, {} formulation): {} samples of {}\n", o.scene, settings.duration,

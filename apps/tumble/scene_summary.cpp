@@ -1,3 +1,4 @@
+#include "plural.hpp"
 #include "scene_summary.hpp"
 
 #include <fmt/format.h>
@@ -31,8 +32,8 @@ void print_scene_summary(std::FILE* out, const Scene& scene) {
                  ? fmt::format("rtol {:g}, atol {:g}", s.tolerances.relative, s.tolerances.absolute)
                  : fmt::format("timestep {:g} s", s.timestep),
              s.output_interval > 0 ? fmt::format("{:g} s", s.output_interval) : std::string("step"));
-  fmt::print(out, "  contents     {} bodies, {} particles, {} force models\n", m.bodies.size(), m.particles.size(),
-             m.forces.size());
+  fmt::print(out, "  contents     {}, {}, {}\n", count(m.bodies.size(), "body", "bodies"),
+             count(m.particles.size(), "particle", "particles"), count(m.forces.size(), "force model", "force models"));
   for (size_t i = 0; i < m.bodies.size(); ++i) {
     const RigidBody& b = m.bodies[i];
     fmt::print(out, "  body '{}': {}\n", b.name(), scene.body_info[i].source);
