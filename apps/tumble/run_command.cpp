@@ -112,7 +112,7 @@ int run(const RunOptions& o) {
     progress.update(state.t);
     interrupted = interrupt.requested();
     return !interrupted;  // stop at this sample: everything written so far stays valid
-  });
+  }, nullptr, [&] { return interrupt.requested(); });  // asked every step: Ctrl-C needs no wait for a sample
   progress.finish();
   writer->commit(!interrupted);
 
@@ -151,8 +151,8 @@ Runner add_run_command(CLI::App& app) {
       "Simulate a scene file and write the trajectory: one row per body per output sample with the pose "
       "of its reference frame (position, quaternion w,x,y,z), the velocity of its origin and the angular "
       "velocity, all in world axes; plus the energy, momenta and their drift from t = 0. Options given "
-      "here override the scene's [simulation] values. Ctrl-C stops at the next sample and keeps what "
-      "was written.\n\nExamples:\n"
+      "here override the scene's [simulation] values. Ctrl-C stops after the current step, writes the "
+      "state reached as a last sample and keeps what was written.\n\nExamples:\n"
       "  tumble run examples/t_handle.toml -o out/t_handle.csv\n"
       "  tumble run examples/satellite.toml -o out/satellite.h5 --integrator dopri45 --rtol 1e-10\n"
       "  tumble run examples/t_handle.toml --timestep 1e-4 --duration 5 --quiet");

@@ -46,7 +46,8 @@ void validate(const RunSettings& s) {
 }
 
 SystemState simulate(const Model& model, SystemState state, const RunSettings& settings,
-                     const SampleSink& on_sample, IntegratorStats* stats) {
+                     const SampleSink& on_sample, IntegratorStats* stats,
+                     const std::function<bool()>& stop_requested) {
   validate(settings);
   if (state.bodies.size() != model.bodies.size() || state.particles.size() != model.particles.size()) {
     throw InvalidArgument(fmt::format("state has {} bodies and {} particles, the model {} and {}",
@@ -85,6 +86,7 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
       state = to_state(settings.formulation, x);
       if (stats) *stats = integrator->stats();
       if (on_sample && !on_sample(state)) return state;
+      if (stop_requested && stop_requested()) return state;
     }
     return to_state(settings.formulation, x);
   }
@@ -101,10 +103,12 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
     if (stats) *stats = {step, 0, step * integrator->evaluations_per_step()};
     if (x.t >= t_sample - tiny) x.t = t_sample;  // remove the rounding of the accumulated time
     check(x, step, step_h);
-    if (x.t == t_sample) {
-      ++k_out;
+    const bool stop = stop_requested && stop_requested();
+    if (x.t == t_sample || stop) {
+      if (x.t == t_sample) ++k_out;
       state = to_state(settings.formulation, x);
       if (on_sample && !on_sample(state)) return state;
+      if (stop) return state;
     }
   }
   return to_state(settings.formulation, x);

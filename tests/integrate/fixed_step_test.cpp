@@ -133,3 +133,31 @@ TEST(FixedStep, ABlowUpIsReportedWithBodyTimeAndStep) {
 
 }  // namespace
 }  // namespace tumble
+
+namespace tumble {
+namespace {
+
+TEST(FixedStep, AStopRequestEndsTheRunAfterTheCurrentStepWithALastSample) {
+  Model model;
+  model.add_body(RigidBody::from_principal_moments(1.0, Vec3(1, 2, 2.5)));
+  RunSettings s;
+  s.duration = 10.0;
+  s.timestep = 0.01;
+  s.output_interval = 1.0;
+  int steps_seen = 0;
+  std::vector<double> times;
+  const SystemState end = simulate(
+      model, test::single(BodyState{}), s,
+      [&](const SystemState& x) {
+        times.push_back(x.t);
+        return true;
+      },
+      nullptr, [&] { return ++steps_seen == 250; });  // asked after every step: stop after step 250
+  ASSERT_EQ(times.size(), 4u);  // 0, 1, 2 on the grid, then 2.5 where the run stopped
+  // 50 additions of h after the last snapped sample time: rounding ≤ 50 ulp(2.5) ≈ 2e-14.
+  EXPECT_NEAR(times.back(), 2.5, 1e-13);
+  EXPECT_EQ(end.t, times.back());
+}
+
+}  // namespace
+}  // namespace tumble

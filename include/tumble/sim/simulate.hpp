@@ -27,7 +27,11 @@ using SampleSink = std::function<bool(const SystemState&)>;
 /// Runs the model from `state` and returns the final state. Throws tumble::Error naming the body,
 /// time and step if a state becomes non-finite (a step too large, or a force that blows up).
 /// `stats`, if given, receives the work done (steps, rejections, force evaluations).
+/// `stop_requested`, if given, is asked after every step (fixed-step integrators) or every sample
+/// (adaptive ones); when it answers true the current state is handed to `on_sample` as a last,
+/// off-grid sample and the run ends there (Ctrl-C).
 SystemState simulate(const Model& model, SystemState state, const RunSettings& settings,
-                     const SampleSink& on_sample = {}, IntegratorStats* stats = nullptr);
+                     const SampleSink& on_sample = {}, IntegratorStats* stats = nullptr,
+                     const std::function<bool()>& stop_requested = {});
 
 }  // namespace tumble
