@@ -37,7 +37,7 @@ class ImplicitGyro final : public Integrator {
         c.v += h * f / b.mass();
         c.o += h * c.v;
       }
-      c.q = c.q * quat_exp<double>(h * w_new);
+      c.q = (c.q * quat_exp<double>(h * w_new)).normalized();  // |q| = 1 keeps ω_w ↔ ^bω exact
       c.omega = F == Formulation::world ? Vec3(c.q * w_new) : w_new;
     }
     for (size_t i = 0; i < x.particles.size(); ++i) {

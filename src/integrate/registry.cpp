@@ -20,6 +20,7 @@ const std::map<std::string, std::function<std::unique_ptr<Integrator>()>>& fixed
       {"implicit_gyro", methods::implicit_gyro},
       {"splitting", methods::splitting},
       {"splitting4", methods::splitting4},
+      {"midpoint", methods::implicit_midpoint},
   };
   return r;
 }

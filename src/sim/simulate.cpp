@@ -100,7 +100,9 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
     const double step_h = std::min(h, t_sample - x.t);
     integrator->step(model, settings.formulation, x, step_h);
     ++step;
-    if (stats) *stats = {step, 0, step * integrator->evaluations_per_step()};
+    if (stats) {
+      *stats = {step, 0, integrator->evaluations_counted().value_or(step * integrator->evaluations_per_step())};
+    }
     if (x.t >= t_sample - tiny) x.t = t_sample;  // remove the rounding of the accumulated time
     check(x, step, step_h);
     const bool stop = stop_requested && stop_requested();

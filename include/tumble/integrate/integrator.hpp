@@ -13,8 +13,10 @@
 // | implicit_gyro       | fixed    | 1     | stable at large steps; dissipates E, |L| |
 // | splitting           | fixed    | 2     | L_w, E of the free flow exactly         |
 // | splitting4          | fixed    | 4     | same                                    |
+// | midpoint            | fixed    | 2     | E, |L|, L_w exactly without torque (implicit) |
 // | dopri45             | adaptive | 5(4)  | the tolerances                          |
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,6 +32,9 @@ class Integrator {
   virtual int order() const = 0;
   /// Right-hand-side (force) evaluations per step, for work–precision comparisons.
   virtual int evaluations_per_step() const = 0;
+  /// For methods whose work varies per step (implicit ones): the evaluations made since the object was
+  /// created; nullopt when evaluations_per_step() is exact.
+  virtual std::optional<long> evaluations_counted() const { return std::nullopt; }
   /// Advance the formulation's variables `x` from x.t to x.t + h. Integrators work on the
   /// formulation's own variables from step to step: converting to world quantities and back every step
   /// would rotate ω and v forth and back by a quaternion whose norm is 1 only to rounding, a bias of
