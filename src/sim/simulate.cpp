@@ -1,6 +1,8 @@
 #include "tumble/sim/simulate.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <tuple>
 #include <fmt/format.h>
 
 #include "tumble/error.hpp"
@@ -28,6 +30,36 @@ std::string non_finite(const Model& model, const SystemCoordinates& state) {
   return {};
 }
 
+/// The earliest crossing of `event` inside the step of length h from x0 (where g = g0), located by
+/// bisection on the length of a single step from x0 taken with the run's integrator.
+std::pair<double, SystemCoordinates> locate(const Integrator& integrator, const Model& model, Formulation F,
+                                            const SystemCoordinates& x0, double h, const Event& event,
+                                            double g0) {
+  double lo = 0.0, hi = h;
+  SystemCoordinates at_hi;
+  bool have_hi = false;
+  const double resolution = 4 * 2.220446049250313e-16 * std::max(std::abs(x0.t), h);
+  for (int i = 0; i < 200 && (hi - lo > resolution || !have_hi); ++i) {
+    const double mid = have_hi ? 0.5 * (lo + hi) : hi;
+    SystemCoordinates y = x0;
+    integrator.step(model, F, y, mid);
+    const double g = event.g(to_state(F, y));
+    if ((g0 < 0) == (g < 0) && g != 0 && have_hi) {
+      lo = mid;
+    } else {
+      hi = mid;
+      at_hi = std::move(y);
+      have_hi = true;
+    }
+  }
+  return {hi, at_hi};
+}
+
+bool crosses(const Event& e, double g0, double g1) {
+  const bool rising = g0 < 0 && g1 >= 0, falling = g0 > 0 && g1 <= 0;
+  return (rising && e.direction >= 0) || (falling && e.direction <= 0);
+}
+
 }  // namespace
 
 void validate(const RunSettings& s) {
@@ -45,9 +77,22 @@ void validate(const RunSettings& s) {
   }
 }
 
+
 SystemState simulate(const Model& model, SystemState state, const RunSettings& settings,
                      const SampleSink& on_sample, IntegratorStats* stats,
                      const std::function<bool()>& stop_requested) {
+  RunHooks hooks;
+  hooks.on_sample = on_sample;
+  hooks.stats = stats;
+  hooks.stop_requested = stop_requested;
+  return simulate(model, std::move(state), settings, hooks);
+}
+
+SystemState simulate(const Model& model, SystemState state, const RunSettings& settings, const RunHooks& hooks) {
+  const SampleSink& on_sample = hooks.on_sample;
+  IntegratorStats* stats = hooks.stats;
+  const std::function<bool()>& stop_requested = hooks.stop_requested;
+  const std::vector<Event>& events = hooks.events;
   validate(settings);
   if (state.bodies.size() != model.bodies.size() || state.particles.size() != model.particles.size()) {
     throw InvalidArgument(fmt::format("state has {} bodies and {} particles, the model {} and {}",
@@ -75,6 +120,12 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
   };
 
   if (is_adaptive(settings.integrator)) {
+    if (!events.empty()) {
+      throw InvalidArgument(fmt::format(
+          "events need a fixed-step integrator (they re-step within a step to locate the crossing); "
+          "'{}' is adaptive: use rk4, splitting or another fixed-step method",
+          settings.integrator));
+    }
     const auto integrator = make_adaptive_integrator(settings.integrator, settings.tolerances);
     integrator->start(model, settings.formulation, x, std::min(h, std::max(settings.duration, h)));
     while (true) {
@@ -95,9 +146,13 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
   long step = 0;
   // A step shorter than this fraction of h is rounding of the sample grid, not a real step.
   const double tiny = 1e-9 * h;
+  std::vector<double> g_prev;
+  for (const Event& e : events) g_prev.push_back(e.g(state));
+  SystemCoordinates x_prev;
   while (x.t < t_end - tiny) {
     const double t_sample = std::min(t0 + static_cast<double>(k_out) * dt_out, t_end);
     const double step_h = std::min(h, t_sample - x.t);
+    if (!events.empty()) x_prev = x;
     integrator->step(model, settings.formulation, x, step_h);
     ++step;
     if (stats) {
@@ -105,6 +160,28 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
     }
     if (x.t >= t_sample - tiny) x.t = t_sample;  // remove the rounding of the accumulated time
     check(x, step, step_h);
+    if (!events.empty()) {
+      // Every crossing in this step, located and reported in time order; a stopping one ends the run.
+      const SystemState after = to_state(settings.formulation, x);
+      std::vector<std::tuple<double, size_t, SystemCoordinates>> hits;
+      for (size_t i = 0; i < events.size(); ++i) {
+        const double g1 = events[i].g(after);
+        if (crosses(events[i], g_prev[i], g1)) {
+          auto [tau, y] = locate(*integrator, model, settings.formulation, x_prev, step_h, events[i], g_prev[i]);
+          hits.emplace_back(tau, i, std::move(y));
+        }
+        g_prev[i] = g1;
+      }
+      std::sort(hits.begin(), hits.end(), [](const auto& a, const auto& b) { return std::get<0>(a) < std::get<0>(b); });
+      for (const auto& [tau, i, y] : hits) {
+        const SystemState at = to_state(settings.formulation, y);
+        if (hooks.on_event) hooks.on_event(EventHit{events[i].name, at});
+        if (events[i].stop) {
+          if (on_sample) on_sample(at);
+          return at;
+        }
+      }
+    }
     const bool stop = stop_requested && stop_requested();
     if (x.t == t_sample || stop) {
       if (x.t == t_sample) ++k_out;

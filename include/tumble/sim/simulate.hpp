@@ -2,6 +2,7 @@
 // The time loop: fixed steps from t₀ to t₀ + duration, samples at every output interval and at the end.
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "tumble/integrate/integrator.hpp"
 
@@ -24,12 +25,42 @@ void validate(const RunSettings& settings);
 /// Called with every sample (the initial state first); return false to stop the run early (Ctrl-C).
 using SampleSink = std::function<bool(const SystemState&)>;
 
+/// A condition watched during a run: the moment g(state) crosses zero (a flip, an impact, an
+/// attitude reached). Located within a step by bisection on the step length, re-stepping with the
+/// run's own integrator from the start of the step, to 4 ulp of the time.
+struct Event {
+  std::string name;
+  std::function<double(const SystemState&)> g;
+  int direction = 0;  ///< +1: only rising crossings (g < 0 → g ≥ 0), −1: only falling, 0: both
+  bool stop = false;  ///< end the run at the crossing (the state there is the last sample)
+};
+
+/// An event that happened: its name and the state just after the crossing.
+struct EventHit {
+  std::string name;
+  SystemState state;
+};
+
+/// What a run reports back, all optional.
+struct RunHooks {
+  /// Called with every sample (the initial state first); return false to stop the run early.
+  SampleSink on_sample;
+  /// Conditions to watch (fixed-step integrators only: an adaptive run with events is refused).
+  std::vector<Event> events;
+  /// Called for every event crossing, in time order.
+  std::function<void(const EventHit&)> on_event;
+  /// Asked after every step (fixed-step integrators) or every sample (adaptive ones); when it answers
+  /// true the current state is handed to on_sample as a last, off-grid sample and the run ends (Ctrl-C).
+  std::function<bool()> stop_requested;
+  /// Receives the work done (steps, rejections, force evaluations).
+  IntegratorStats* stats = nullptr;
+};
+
 /// Runs the model from `state` and returns the final state. Throws tumble::Error naming the body,
 /// time and step if a state becomes non-finite (a step too large, or a force that blows up).
-/// `stats`, if given, receives the work done (steps, rejections, force evaluations).
-/// `stop_requested`, if given, is asked after every step (fixed-step integrators) or every sample
-/// (adaptive ones); when it answers true the current state is handed to `on_sample` as a last,
-/// off-grid sample and the run ends there (Ctrl-C).
+SystemState simulate(const Model& model, SystemState state, const RunSettings& settings, const RunHooks& hooks);
+
+/// The same with only the commonly used hooks.
 SystemState simulate(const Model& model, SystemState state, const RunSettings& settings,
                      const SampleSink& on_sample = {}, IntegratorStats* stats = nullptr,
                      const std::function<bool()>& stop_requested = {});

@@ -1,0 +1,82 @@
+// Events: the moment a condition crosses zero, located inside a step.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "../support/sim_helpers.hpp"
+#include "tumble/error.hpp"
+#include "tumble/forces/forces.hpp"
+#include "tumble/integrate/euler_poinsot.hpp"
+
+namespace tumble {
+namespace {
+
+TEST(Events, ABallStopsWhenItLandsAtTheClosedFormTime) {
+  // Thrown up from z₀ = 2 m at 10 m/s: it lands at t* = (v₀ + √(v₀² + 2g z₀))/g.
+  const double g = 9.81, z0 = 2.0, v0 = 10.0;
+  Model model;
+  model.add_body(RigidBody::from_principal_moments(1.0, Vec3(1, 1, 1), "ball"));
+  model.add_force<UniformGravity>(Vec3(0, 0, -g));
+  RunSettings rs;
+  rs.duration = 10.0;
+  rs.timestep = 0.01;
+  rs.output_interval = 0.5;
+  RunHooks hooks;
+  hooks.events.push_back({"landing", [](const SystemState& s) { return s.bodies[0].o.z(); }, -1, true});
+  std::vector<EventHit> hits;
+  hooks.on_event = [&](const EventHit& hit) { hits.push_back(hit); };
+  double last_sample = -1;
+  hooks.on_sample = [&](const SystemState& s) {
+    last_sample = s.t;
+    return true;
+  };
+  const SystemState end =
+      simulate(model, test::single({Vec3(0, 0, z0), Quat::Identity(), Vec3(0, 0, v0), Vec3::Zero()}), rs, hooks);
+  const double t_star = (v0 + std::sqrt(v0 * v0 + 2 * g * z0)) / g;
+  ASSERT_EQ(hits.size(), 1u);
+  EXPECT_EQ(hits[0].name, "landing");
+  // RK4 integrates the parabola exactly; bisection resolves the time to 4 ulp of t ≈ 2.2 s.
+  EXPECT_NEAR(hits[0].state.t, t_star, 1e-14 * 4);
+  EXPECT_LE(hits[0].state.bodies[0].o.z(), 0.0);
+  EXPECT_GT(hits[0].state.bodies[0].o.z(), -1e-13);
+  EXPECT_EQ(end.t, hits[0].state.t);
+  EXPECT_EQ(last_sample, end.t);  // the stopping state is the last sample
+}
+
+TEST(Events, TheTHandleFlipsAreRecordedAtTheEllipticInterval) {
+  const Vec3 Lambda(1.2e-5, 3.1e-5, 4.0e-5), w0(2.0, 20.0, 2.0);
+  Model model;
+  model.add_body(RigidBody::from_principal_moments(0.1, Lambda, "t_handle"));
+  RunSettings rs;
+  rs.duration = 10.0;
+  rs.timestep = 0.05;
+  rs.integrator = "splitting";  // exact for a free body: only the event location's resolution remains
+  RunHooks hooks;
+  hooks.events.push_back({"flip", [](const SystemState& s) { return s.bodies[0].omega_b().y(); }, 0, false});
+  hooks.events.push_back({"flip up", [](const SystemState& s) { return s.bodies[0].omega_b().y(); }, +1, false});
+  std::vector<double> flips, ups;
+  hooks.on_event = [&](const EventHit& hit) { (hit.name == "flip" ? flips : ups).push_back(hit.state.t); };
+  simulate(model, test::single({Vec3::Zero(), Quat::Identity(), Vec3::Zero(), w0}), rs, hooks);
+  const EulerPoinsot exact(Lambda, Quat::Identity(), w0);
+  ASSERT_GE(flips.size(), 10u);
+  for (size_t i = 1; i < flips.size(); ++i) {
+    // ω₂ ∝ sn: its zeros are 2K/λ apart; located to 4 ulp of t by bisection on exact steps.
+    EXPECT_NEAR(flips[i] - flips[i - 1], exact.flip_interval(), 1e-13) << i;
+  }
+  // ω₂ starts positive, so the rising crossings are every second one, beginning with the second.
+  ASSERT_EQ(ups.size(), flips.size() / 2);
+  for (size_t i = 0; i < ups.size(); ++i) EXPECT_EQ(ups[i], flips[2 * i + 1]);
+}
+
+TEST(Events, AdaptiveRunsWithEventsAreRefused) {
+  Model model;
+  model.add_body(RigidBody::from_principal_moments(1.0, Vec3(1, 2, 2.5)));
+  RunSettings rs;
+  rs.integrator = "dopri45";
+  RunHooks hooks;
+  hooks.events.push_back({"never", [](const SystemState&) { return 1.0; }, 0, false});
+  EXPECT_THROW(simulate(model, test::single(BodyState{}), rs, hooks), InvalidArgument);
+}
+
+}  // namespace
+}  // namespace tumble
