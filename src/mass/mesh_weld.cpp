@@ -1,4 +1,5 @@
-// Welding vertices at identical positions, by sorting the positions (exact, O(n log n)).
+// Welding vertices at identical positions (exact: bit-identical coordinates, −0 = +0), in one pass
+// with a hash table of the positions.
 //
 // Why here and not assimp's aiProcess_JoinIdenticalVertices: that step works per mesh (so the seams
 // between the meshes of a multi-part file stay open after PreTransformVertices merges them) and it
@@ -7,7 +8,6 @@
 #include "tumble/mass/mesh_weld.hpp"
 
 #include <algorithm>
-#include <boost/sort/spreadsort/integer_sort.hpp>
 #include <bit>
 #include <cstdint>
 #include <vector>
@@ -19,8 +19,8 @@ namespace {
 std::uint64_t bits(double x) { return std::bit_cast<std::uint64_t>(x + 0.0); }
 
 /// A 64-bit mix of the three bit patterns (splitmix64 finaliser on a running combination): equal
-/// positions give equal keys; different positions collide with probability ~2⁻⁶⁴, and collisions are
-/// separated below by comparing the positions themselves.
+/// positions give equal keys; different positions rarely share a key, and never get welded for it
+/// (the positions themselves are compared).
 std::uint64_t position_key(const Vec3& v) {
   auto mix = [](std::uint64_t z) {
     z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
@@ -30,61 +30,63 @@ std::uint64_t position_key(const Vec3& v) {
   return mix(mix(mix(bits(v.x())) ^ bits(v.y())) ^ bits(v.z()));
 }
 
-struct Key {
-  std::uint64_t key;
-  std::uint32_t index;
-};
-
 bool same_position(const Vec3& a, const Vec3& b) {
   return bits(a.x()) == bits(b.x()) && bits(a.y()) == bits(b.y()) && bits(a.z()) == bits(b.z());
+}
+
+/// first[i]: the first input vertex at vertex i's position, found with an open-addressing hash table
+/// of the positions seen so far (linear probing, load ≤ ½, grown by doubling). One pass in input
+/// order: a vertex usually matches one seen a few triangles earlier, still in cache, so this runs at
+/// about one cache miss per vertex — 0.2 s for the 6 M corners of a 2 M-triangle STL, against 0.55 s
+/// for sorting them (and 0.9 s for sorting by the three coordinates).
+std::vector<std::uint32_t> first_occurrences(const std::vector<Vec3>& vertices) {
+  struct Slot {
+    std::uint64_t key;
+    std::uint32_t index;  // kEmpty: free
+  };
+  constexpr std::uint32_t kEmpty = 0xffffffffu;
+  std::vector<Slot> table(1024, Slot{0, kEmpty});
+  std::size_t used = 0;
+  auto place = [](std::vector<Slot>& t, const Slot& e) {
+    const std::size_t mask = t.size() - 1;
+    std::size_t s = e.key & mask;
+    while (t[s].index != kEmpty) s = (s + 1) & mask;
+    t[s] = e;
+  };
+  std::vector<std::uint32_t> first(vertices.size());
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    if (2 * (used + 1) > table.size()) {
+      std::vector<Slot> old(table.size() * 2, Slot{0, kEmpty});
+      old.swap(table);
+      for (const Slot& e : old) {
+        if (e.index != kEmpty) place(table, e);
+      }
+    }
+    const std::uint64_t key = position_key(vertices[i]);
+    const std::size_t mask = table.size() - 1;
+    for (std::size_t s = key & mask;; s = (s + 1) & mask) {
+      Slot& e = table[s];
+      if (e.index == kEmpty) {  // a new position
+        e = {key, static_cast<std::uint32_t>(i)};
+        ++used;
+        first[i] = static_cast<std::uint32_t>(i);
+        break;
+      }
+      // Equal keys are checked on the positions themselves: a 64-bit collision must not weld.
+      if (e.key == key && same_position(vertices[e.index], vertices[i])) {
+        first[i] = e.index;
+        break;
+      }
+    }
+  }
+  return first;
 }
 
 }  // namespace
 
 TriangleMesh weld_identical_vertices(const TriangleMesh& mesh) {
   const std::size_t n = mesh.vertices.size();
-  std::vector<Key> keys(n);
-  for (std::size_t i = 0; i < n; ++i) keys[i] = {position_key(mesh.vertices[i]), static_cast<std::uint32_t>(i)};
-  // Boost's spreadsort (a radix/comparison hybrid) on the 64-bit keys: ~5× faster than std::sort on
-  // three-double keys for the millions of corners of a large STL, where welding used to dominate the
-  // time from file to result.
-  boost::sort::spreadsort::integer_sort(keys.begin(), keys.end(),
-                                        [](const Key& k, unsigned shift) { return k.key >> shift; },
-                                        [](const Key& a, const Key& b) { return a.key < b.key; });
-
-  // first[i]: the first input vertex at vertex i's position.
-  std::vector<std::uint32_t> first(n);
-  for (std::size_t g = 0; g < n;) {
-    std::size_t e = g + 1;
-    while (e < n && keys[e].key == keys[g].key) ++e;
-    // A run of equal keys holds one position unless the hash collided: check against its first member
-    // (one pass, no sorting); only a collision takes the exact quadratic grouping.
-    std::uint32_t lowest = keys[g].index;
-    bool one_position = true;
-    const Vec3& p = mesh.vertices[keys[g].index];
-    for (std::size_t i = g + 1; i < e; ++i) {
-      lowest = std::min(lowest, keys[i].index);
-      one_position = one_position && same_position(mesh.vertices[keys[i].index], p);
-    }
-    if (one_position) {
-      for (std::size_t i = g; i < e; ++i) first[keys[i].index] = lowest;
-    } else {
-      std::sort(keys.begin() + static_cast<std::ptrdiff_t>(g), keys.begin() + static_cast<std::ptrdiff_t>(e),
-                [](const Key& a, const Key& b) { return a.index < b.index; });
-      for (std::size_t i = g; i < e; ++i) {
-        const std::uint32_t vi = keys[i].index;
-        first[vi] = vi;
-        for (std::size_t j = g; j < i; ++j) {
-          const std::uint32_t vj = keys[j].index;
-          if (first[vj] == vj && same_position(mesh.vertices[vj], mesh.vertices[vi])) {
-            first[vi] = vj;
-            break;
-          }
-        }
-      }
-    }
-    g = e;
-  }
+  const std::vector<std::uint32_t> first = first_occurrences(mesh.vertices);
   // New numbering in order of first occurrence.
   TriangleMesh out;
   std::vector<std::uint32_t> renumber(n);
