@@ -73,15 +73,21 @@ class DormandPrince45 final : public AdaptiveIntegrator {
     stepper_.initialize(pack(x0), x0.t, initial_step);
   }
 
-  SystemCoordinates at(double t) override {
+  double step() override {
     auto rhs = [this](const Packed& p, Packed& dpdt, double time) {
       ++stats_.evaluations;
       dpdt = pack_rates(system_rates(*model_, formulation_, unpack(p, time, n_bodies_, n_particles_)));
     };
-    while (stepper_.current_time() < t) {
-      stepper_.do_step(rhs);
-      ++stats_.steps;
-    }
+    stepper_.do_step(rhs);
+    ++stats_.steps;
+    return stepper_.current_time();
+  }
+
+  double previous_time() const override { return stats_.steps == 0 ? stepper_.current_time() : stepper_.previous_time(); }
+  double current_time() const override { return stepper_.current_time(); }
+
+  SystemCoordinates interpolate(double t) const override {
+    if (stats_.steps == 0) return unpack(stepper_.current_state(), t, n_bodies_, n_particles_);
     Packed p(stepper_.current_state().size());
     stepper_.calc_state(t, p);
     return unpack(p, t, n_bodies_, n_particles_);

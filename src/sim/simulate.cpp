@@ -30,34 +30,50 @@ std::string non_finite(const Model& model, const SystemCoordinates& state) {
   return {};
 }
 
-/// The earliest crossing of `event` inside the step of length h from x0 (where g = g0), located by
-/// bisection on the length of a single step from x0 taken with the run's integrator.
-std::pair<double, SystemCoordinates> locate(const Integrator& integrator, const Model& model, Formulation F,
-                                            const SystemCoordinates& x0, double h, const Event& event,
-                                            double g0) {
-  double lo = 0.0, hi = h;
-  SystemCoordinates at_hi;
-  bool have_hi = false;
-  const double resolution = 4 * 2.220446049250313e-16 * std::max(std::abs(x0.t), h);
-  for (int i = 0; i < 200 && (hi - lo > resolution || !have_hi); ++i) {
-    const double mid = have_hi ? 0.5 * (lo + hi) : hi;
-    SystemCoordinates y = x0;
-    integrator.step(model, F, y, mid);
-    const double g = event.g(to_state(F, y));
-    if ((g0 < 0) == (g < 0) && g != 0 && have_hi) {
-      lo = mid;
-    } else {
-      hi = mid;
-      at_hi = std::move(y);
-      have_hi = true;
-    }
-  }
-  return {hi, at_hi};
-}
-
 bool crosses(const Event& e, double g0, double g1) {
   const bool rising = g0 < 0 && g1 >= 0, falling = g0 > 0 && g1 <= 0;
   return (rising && e.direction >= 0) || (falling && e.direction <= 0);
+}
+
+/// The variables at an offset τ ∈ (0, h] into the current step: one step of length τ from the step's
+/// start (fixed-step methods) or the dense output (adaptive ones).
+using StateInStep = std::function<SystemCoordinates(double tau)>;
+
+struct Hit {
+  double tau;
+  size_t event;
+  SystemCoordinates x;
+};
+
+/// Every crossing in the step of length h whose end state is `after`, located by bisection on τ to
+/// 4 ulp of the time and returned in time order; g_prev (the values at the step's start) is updated
+/// to the values at its end.
+std::vector<Hit> find_hits(const std::vector<Event>& events, std::vector<double>& g_prev, Formulation F,
+                           const SystemCoordinates& after, double t_start, double h, const StateInStep& state_at) {
+  std::vector<Hit> hits;
+  const SystemState end = to_state(F, after);
+  const double resolution = 4 * 2.220446049250313e-16 * std::max(std::abs(t_start), h);
+  for (size_t i = 0; i < events.size(); ++i) {
+    const double g0 = g_prev[i], g1 = events[i].g(end);
+    g_prev[i] = g1;
+    if (!crosses(events[i], g0, g1)) continue;
+    double lo = 0.0, hi = h;
+    SystemCoordinates at_hi = after;
+    for (int k = 0; k < 200 && hi - lo > resolution; ++k) {
+      const double mid = 0.5 * (lo + hi);
+      SystemCoordinates y = state_at(mid);
+      const double g = events[i].g(to_state(F, y));
+      if ((g0 < 0) == (g < 0) && g != 0) {
+        lo = mid;
+      } else {
+        hi = mid;
+        at_hi = std::move(y);
+      }
+    }
+    hits.push_back({hi, i, std::move(at_hi)});
+  }
+  std::sort(hits.begin(), hits.end(), [](const Hit& a, const Hit& b) { return a.tau < b.tau; });
+  return hits;
 }
 
 }  // namespace
@@ -119,35 +135,62 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
     }
   };
 
+  std::vector<double> g_prev;
+  for (const Event& e : events) g_prev.push_back(e.g(state));
+  // Reports the crossings of one step in time order; the state of a stopping event ends the run.
+  auto report = [&](const Hit& hit, SystemState& out) {
+    out = to_state(settings.formulation, hit.x);
+    if (hooks.on_event) hooks.on_event(EventHit{events[hit.event].name, out});
+    if (!events[hit.event].stop) return false;
+    if (on_sample) on_sample(out);
+    return true;
+  };
+
   if (is_adaptive(settings.integrator)) {
-    if (!events.empty()) {
-      throw InvalidArgument(fmt::format(
-          "events need a fixed-step integrator (they re-step within a step to locate the crossing); "
-          "'{}' is adaptive: use rk4, splitting or another fixed-step method",
-          settings.integrator));
-    }
     const auto integrator = make_adaptive_integrator(settings.integrator, settings.tolerances);
     integrator->start(model, settings.formulation, x, std::min(h, std::max(settings.duration, h)));
-    while (true) {
-      const double t_sample = std::min(t0 + static_cast<double>(k_out) * dt_out, t_end);
-      if (t_sample <= x.t) break;
-      x = integrator->at(t_sample);
-      check(x, integrator->stats().steps, 0.0);
-      ++k_out;
-      state = to_state(settings.formulation, x);
+    bool finished = t_end <= t0;
+    while (!finished) {
+      const double t_a = integrator->current_time();
+      integrator->step();
+      const double t_b = std::min(integrator->current_time(), t_end);
+      const SystemCoordinates x_b = integrator->interpolate(t_b);
+      check(x_b, integrator->stats().steps, t_b - t_a);
       if (stats) *stats = integrator->stats();
-      if (on_sample && !on_sample(state)) return state;
-      if (stop_requested && stop_requested()) return state;
+      const std::vector<Hit> hits =
+          events.empty() ? std::vector<Hit>{}
+                         : find_hits(events, g_prev, settings.formulation, x_b, t_a, t_b - t_a,
+                                     [&](double tau) { return integrator->interpolate(t_a + tau); });
+      // Samples and crossings inside this step, in time order.
+      size_t next_hit = 0;
+      while (true) {
+        const double t_sample = std::min(t0 + static_cast<double>(k_out) * dt_out, t_end);
+        const bool hit_first = next_hit < hits.size() && t_a + hits[next_hit].tau <= std::min(t_sample, t_b);
+        if (hit_first) {
+          if (report(hits[next_hit++], state)) return state;
+          continue;
+        }
+        if (t_sample > t_b) break;
+        x = integrator->interpolate(t_sample);
+        ++k_out;
+        state = to_state(settings.formulation, x);
+        finished = t_sample >= t_end;
+        if (on_sample && !on_sample(state)) return state;
+        if (finished) break;
+      }
+      if (!finished && stop_requested && stop_requested()) {
+        state = to_state(settings.formulation, x_b);
+        if (on_sample) on_sample(state);
+        return state;
+      }
     }
-    return to_state(settings.formulation, x);
+    return state;
   }
 
   const auto integrator = make_integrator(settings.integrator);
   long step = 0;
   // A step shorter than this fraction of h is rounding of the sample grid, not a real step.
   const double tiny = 1e-9 * h;
-  std::vector<double> g_prev;
-  for (const Event& e : events) g_prev.push_back(e.g(state));
   SystemCoordinates x_prev;
   while (x.t < t_end - tiny) {
     const double t_sample = std::min(t0 + static_cast<double>(k_out) * dt_out, t_end);
@@ -161,25 +204,13 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
     if (x.t >= t_sample - tiny) x.t = t_sample;  // remove the rounding of the accumulated time
     check(x, step, step_h);
     if (!events.empty()) {
-      // Every crossing in this step, located and reported in time order; a stopping one ends the run.
-      const SystemState after = to_state(settings.formulation, x);
-      std::vector<std::tuple<double, size_t, SystemCoordinates>> hits;
-      for (size_t i = 0; i < events.size(); ++i) {
-        const double g1 = events[i].g(after);
-        if (crosses(events[i], g_prev[i], g1)) {
-          auto [tau, y] = locate(*integrator, model, settings.formulation, x_prev, step_h, events[i], g_prev[i]);
-          hits.emplace_back(tau, i, std::move(y));
-        }
-        g_prev[i] = g1;
-      }
-      std::sort(hits.begin(), hits.end(), [](const auto& a, const auto& b) { return std::get<0>(a) < std::get<0>(b); });
-      for (const auto& [tau, i, y] : hits) {
-        const SystemState at = to_state(settings.formulation, y);
-        if (hooks.on_event) hooks.on_event(EventHit{events[i].name, at});
-        if (events[i].stop) {
-          if (on_sample) on_sample(at);
-          return at;
-        }
+      const auto hits = find_hits(events, g_prev, settings.formulation, x, x_prev.t, step_h, [&](double tau) {
+        SystemCoordinates y = x_prev;
+        integrator->step(model, settings.formulation, y, tau);
+        return y;
+      });
+      for (const Hit& hit : hits) {
+        if (report(hit, state)) return state;
       }
     }
     const bool stop = stop_requested && stop_requested();

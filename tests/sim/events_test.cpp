@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "../support/sim_helpers.hpp"
-#include "tumble/error.hpp"
 #include "tumble/forces/forces.hpp"
 #include "tumble/integrate/euler_poinsot.hpp"
 
@@ -68,14 +67,65 @@ TEST(Events, TheTHandleFlipsAreRecordedAtTheEllipticInterval) {
   for (size_t i = 0; i < ups.size(); ++i) EXPECT_EQ(ups[i], flips[2 * i + 1]);
 }
 
-TEST(Events, AdaptiveRunsWithEventsAreRefused) {
+TEST(Events, AdaptiveRunsLocateEventsOnTheirDenseOutput) {
+  // The same landing with dopri45: its continuous extension is exact for the parabola (degree 2 ≤ 4),
+  // so the landing time is again exact to the bisection's resolution.
+  const double g = 9.81, z0 = 2.0, v0 = 10.0;
+  Model model;
+  model.add_body(RigidBody::from_principal_moments(1.0, Vec3(1, 2, 2.5), "ball"));
+  model.add_force<UniformGravity>(Vec3(0, 0, -g));
+  RunSettings rs;
+  rs.duration = 10.0;
+  rs.integrator = "dopri45";
+  rs.output_interval = 0.25;
+  RunHooks hooks;
+  hooks.events.push_back({"landing", [](const SystemState& s) { return s.bodies[0].o.z(); }, -1, true});
+  hooks.events.push_back({"apex", [](const SystemState& s) { return s.bodies[0].v.z(); }, -1, false});
+  std::vector<EventHit> hits;
+  hooks.on_event = [&](const EventHit& hit) { hits.push_back(hit); };
+  std::vector<double> samples;
+  hooks.on_sample = [&](const SystemState& s) {
+    samples.push_back(s.t);
+    return true;
+  };
+  const SystemState end =
+      simulate(model, test::single({Vec3(0, 0, z0), Quat::Identity(), Vec3(0, 0, v0), Vec3(0.1, 3, 0)}), rs, hooks);
+  ASSERT_EQ(hits.size(), 2u);
+  EXPECT_EQ(hits[0].name, "apex");
+  EXPECT_NEAR(hits[0].state.t, v0 / g, 1e-13);
+  EXPECT_EQ(hits[1].name, "landing");
+  EXPECT_NEAR(hits[1].state.t, (v0 + std::sqrt(v0 * v0 + 2 * g * z0)) / g, 1e-13);
+  EXPECT_EQ(end.t, hits[1].state.t);
+  // Samples on the grid up to the landing, then the landing itself, in time order.
+  ASSERT_GE(samples.size(), 3u);
+  for (size_t i = 0; i + 1 < samples.size(); ++i) EXPECT_NEAR(samples[i], 0.25 * static_cast<double>(i), 1e-12);
+  EXPECT_EQ(samples.back(), end.t);
+}
+
+TEST(Events, AdaptiveRunsStopAfterTheStepInWhichAStopIsRequested) {
   Model model;
   model.add_body(RigidBody::from_principal_moments(1.0, Vec3(1, 2, 2.5)));
   RunSettings rs;
+  rs.duration = 100.0;
   rs.integrator = "dopri45";
+  rs.output_interval = 50.0;  // samples far apart: the stop must not wait for one
+  int asked = 0;
+  std::vector<double> samples;
+  IntegratorStats stats;
   RunHooks hooks;
-  hooks.events.push_back({"never", [](const SystemState&) { return 1.0; }, 0, false});
-  EXPECT_THROW(simulate(model, test::single(BodyState{}), rs, hooks), InvalidArgument);
+  hooks.on_sample = [&](const SystemState& s) {
+    samples.push_back(s.t);
+    return true;
+  };
+  hooks.stats = &stats;
+  hooks.stop_requested = [&] { return ++asked == 5; };
+  const SystemState end =
+      simulate(model, test::single({Vec3::Zero(), Quat::Identity(), Vec3::Zero(), Vec3(0.3, 2, 0.1)}), rs, hooks);
+  EXPECT_EQ(stats.steps, 5);  // asked once per accepted step
+  ASSERT_EQ(samples.size(), 2u);  // t = 0, then the state where the run stopped
+  EXPECT_GT(end.t, 0.0);
+  EXPECT_LT(end.t, 50.0);
+  EXPECT_EQ(samples.back(), end.t);
 }
 
 }  // namespace

@@ -63,10 +63,21 @@ class AdaptiveIntegrator {
   /// Begin at x0 with a first trial step; `model` must outlive the integrator's use.
   virtual void start(const Model& model, Formulation formulation, const SystemCoordinates& x0,
                      double initial_step) = 0;
-  /// The variables at time t (non-decreasing between calls), stepping as far as needed and
-  /// interpolating inside the last step (dense output).
-  virtual SystemCoordinates at(double t) = 0;
+  /// Take one accepted step (rejected attempts are retried inside); returns the new current time.
+  virtual double step() = 0;
+  /// Time at the start and the end of the last accepted step (both the start time before any step).
+  virtual double previous_time() const = 0;
+  virtual double current_time() const = 0;
+  /// The variables at t ∈ [previous_time(), current_time()], by dense output.
+  virtual SystemCoordinates interpolate(double t) const = 0;
   virtual IntegratorStats stats() const = 0;
+
+  /// The variables at time t (non-decreasing between calls), stepping as far as needed and
+  /// interpolating inside the last step.
+  SystemCoordinates at(double t) {
+    while (current_time() < t) step();
+    return interpolate(t);
+  }
 };
 
 /// Every registered integrator name, fixed-step and adaptive.

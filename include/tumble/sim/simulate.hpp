@@ -26,8 +26,9 @@ void validate(const RunSettings& settings);
 using SampleSink = std::function<bool(const SystemState&)>;
 
 /// A condition watched during a run: the moment g(state) crosses zero (a flip, an impact, an
-/// attitude reached). Located within a step by bisection on the step length, re-stepping with the
-/// run's own integrator from the start of the step, to 4 ulp of the time.
+/// attitude reached). Located within a step by bisection, to 4 ulp of the time, on states the run's
+/// own integrator gives inside the step: one step of the shorter length from the step's start
+/// (fixed-step methods) or the dense output (adaptive ones, accurate to their tolerance).
 struct Event {
   std::string name;
   std::function<double(const SystemState&)> g;
@@ -45,12 +46,12 @@ struct EventHit {
 struct RunHooks {
   /// Called with every sample (the initial state first); return false to stop the run early.
   SampleSink on_sample;
-  /// Conditions to watch (fixed-step integrators only: an adaptive run with events is refused).
+  /// Conditions to watch.
   std::vector<Event> events;
   /// Called for every event crossing, in time order.
   std::function<void(const EventHit&)> on_event;
-  /// Asked after every step (fixed-step integrators) or every sample (adaptive ones); when it answers
-  /// true the current state is handed to on_sample as a last, off-grid sample and the run ends (Ctrl-C).
+  /// Asked after every step; when it answers true the state reached is handed to on_sample as a last,
+  /// off-grid sample and the run ends (Ctrl-C).
   std::function<bool()> stop_requested;
   /// Receives the work done (steps, rejections, force evaluations).
   IntegratorStats* stats = nullptr;
