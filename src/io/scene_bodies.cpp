@@ -43,7 +43,7 @@ void read_bodies(const TableReader& root, const std::filesystem::path& directory
                  Scene& scene) {
   const auto bodies = root.tables("bodies");
   for (size_t i = 0; i < bodies.size(); ++i) {
-    const std::vector<std::string> keys = {"name", "shape", "mesh", "scale", "parts", "inertia",
+    const std::vector<std::string> keys = {"name", "shape", "mesh", "scale", "thickness", "parts", "inertia",
                                            "center_of_mass", "density", "mass", "position", "orientation",
                                            "velocity", "angular_velocity", "angular_velocity_frame"};
     // The name first (any keys allowed), so that every other message can name the body.

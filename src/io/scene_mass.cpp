@@ -212,12 +212,21 @@ MassProperties solid(const TableReader& t, const Material& mat, const Pose& pose
   const MassSpec spec = mat.kind == Material::Kind::mass ? MassSpec::mass(mat.value)
                         : mat.kind == Material::Kind::density ? MassSpec::density(mat.value)
                                                               : MassSpec::density(1.0);
+  // A thickness makes the shape or mesh a thin shell: surface density ρ·t, open meshes allowed.
+  const bool is_shell = t.has("thickness");
+  const double thickness = is_shell ? t.number("thickness", 0.0, "m", Domain::positive) : 0.0;
+  if (is_shell && mat.kind == Material::Kind::polynomial) {
+    t.fail_at("thickness", "a thin shell takes a uniform density or a mass; a polynomial density applies to "
+                           "solids only: remove thickness or give density = RHO");
+  }
+  const std::string shell = is_shell ? fmt::format(", thin shell {:g} m thick", thickness) : "";
   try {
     if (t.has("shape")) {
       t.at_most_one_of({"shape", "mesh"});
       if (t.has("scale")) t.fail_at("scale", "scale applies to a mesh only: remove it or give mesh = \"...\"");
       const Shape shape = read_shape(t);
-      source = describe_shape(shape) + ", " + mat.describe();
+      source = describe_shape(shape) + shell + ", " + mat.describe();
+      if (is_shell) return shell_mass_properties(shape, thickness, spec);
       if (mat.kind == Material::Kind::polynomial) return integrate_density(shape, rho_part, degree).properties;
       return solid_mass_properties(shape, spec);
     }
@@ -232,8 +241,13 @@ MassProperties solid(const TableReader& t, const Material& mat, const Pose& pose
                                     "file's directory",
                                     file, e.what()));
     }
-    source = fmt::format("mesh {} ({} triangles{}), {}", file, mesh.triangles.size(),
-                         scale != 1.0 ? fmt::format(", scale {:g}", scale) : "", mat.describe());
+    source = fmt::format("mesh {} ({} triangles{}){}, {}", file, mesh.triangles.size(),
+                         scale != 1.0 ? fmt::format(", scale {:g}", scale) : "", shell, mat.describe());
+    if (is_shell) {
+      MeshMassResult r = shell_mass_properties(mesh, thickness, spec, file);
+      for (auto& w : r.warnings) scene.warnings.push_back(location(t.file(), t.where("mesh")) + ": " + w);
+      return r.properties;
+    }
     if (mat.kind == Material::Kind::polynomial) {
       DensityResult r = integrate_density(mesh, rho_part, degree, file);
       for (auto& w : r.warnings) scene.warnings.push_back(location(t.file(), t.where("mesh")) + ": " + w);
@@ -325,7 +339,7 @@ BodyMass read_body_mass(const TableReader& body, const std::filesystem::path& di
   int holes = 0;
   for (size_t i = 0; i < parts.size(); ++i) {
     const TableReader part(*parts[i], fmt::format("{} part {}", body.context(), i + 1), body.file(),
-                           {"shape", "mesh", "scale", "inertia", "center_of_mass", "density", "mass",
+                           {"shape", "mesh", "scale", "thickness", "inertia", "center_of_mass", "density", "mass",
                             "position", "orientation", "hole"});
     part.require_one_of({"shape", "mesh", "inertia"});
     Material m = read_material(part);

@@ -277,3 +277,41 @@ velocity = [0, 0, 1]
 
 }  // namespace
 }  // namespace tumble
+
+namespace tumble {
+namespace {
+
+TEST(SceneFile, ThinShellsFromShapesAndOpenMeshes) {
+  // A hollow sphere of radius r: m = ρ·t·4πr², I = 2/3 m r² (thin-wall limit).
+  const Scene s = parse_scene(R"([simulation]
+duration = 1.0
+[[bodies]]
+name = "ball"
+shape = { type = "sphere", radius = 0.5 }
+thickness = 0.002
+density = 2700
+)",
+                              "shell.toml");
+  const double m = 2700 * 0.002 * 4 * std::numbers::pi * 0.25;
+  EXPECT_NEAR(s.model.bodies[0].mass(), m, 1e-13 * m);
+  EXPECT_NEAR(s.model.bodies[0].Lambda()(0), 2.0 / 3.0 * m * 0.25, 1e-13 * m);
+  // A polynomial density is for solids.
+  try {
+    parse_scene(R"([simulation]
+duration = 1.0
+[[bodies]]
+name = "ball"
+shape = { type = "sphere", radius = 0.5 }
+thickness = 0.002
+density = { polynomial = [[1000, 0, 0, 0]] }
+)",
+                "shell.toml");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("shell.toml:6:13"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("solids only"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace tumble
