@@ -120,6 +120,13 @@ std::string QuadraticDrag::describe() const {
 // ---- springs ----------------------------------------------------------------------------------
 
 std::pair<Vec3, Vec3> Spring::end_state(const End& e, const SystemView& view) const {
+  if (e.particle != all_bodies) {
+    if (e.particle >= view.particles.size()) {
+      throw InvalidArgument(fmt::format("spring refers to particle #{}, but the model has {} particles", e.particle,
+                                        view.particles.size()));
+    }
+    return {view.particle_states[e.particle].x, view.particle_states[e.particle].v};
+  }
   if (e.body == all_bodies) return {e.point, Vec3::Zero()};
   check_body(e.body, view, "spring");
   const RigidBody& b = view.bodies[e.body];
@@ -135,8 +142,15 @@ void Spring::accumulate(const SystemView& view, Loads& loads) const {
   if (len == 0.0) return;  // direction undefined; a spring of zero length pulls nowhere
   const Vec3 n = d / len;
   const Vec3 f = -(k_ * (len - rest_) + c_ * (va - vb).dot(n)) * n;  // on end a
-  if (a_.body != all_bodies) loads.add_force_at(a_.body, view.body_states[a_.body], f, xa);
-  if (b_.body != all_bodies) loads.add_force_at(b_.body, view.body_states[b_.body], -f, xb);
+  auto apply = [&](const End& e, const Vec3& force, const Vec3& x) {
+    if (e.particle != all_bodies) {
+      loads.particles[e.particle] += force;
+    } else if (e.body != all_bodies) {
+      loads.add_force_at(e.body, view.body_states[e.body], force, x);
+    }
+  };
+  apply(a_, f, xa);
+  apply(b_, -f, xb);
 }
 std::string Spring::describe() const {
   return fmt::format("spring k={} N/m, rest length {} m, damping {} N*s/m", k_, rest_, c_);

@@ -39,19 +39,35 @@ Vec3 required_vec3(const TableReader& t, const std::string& key, const char* uni
 }
 
 Spring::End spring_end(const TableReader& spring, const std::string& key, const Scene& scene, bool& anchored) {
-  const auto end = spring.table(key, spring.context() + " end " + key, {"body", "point", "anchor"});
+  const auto end = spring.table(key, spring.context() + " end " + key, {"body", "point", "anchor", "particle"});
   if (!end) {
-    spring.fail_here(fmt::format("missing '{}': give {} = {{ body = \"NAME\", point = [x, y, z] }} or "
-                                 "{} = {{ anchor = [x, y, z] }}",
-                                 key, key, key));
+    spring.fail_here(fmt::format("missing '{}': give {} = {{ body = \"NAME\", point = [x, y, z] }}, "
+                                 "{} = {{ particle = \"NAME\" }} or {} = {{ anchor = [x, y, z] }}",
+                                 key, key, key, key));
   }
-  end->at_most_one_of({"body", "anchor"});
+  end->at_most_one_of({"body", "anchor", "particle"});
+  if (end->has("particle")) {
+    if (end->has("point")) end->fail_at("point", "point goes with body; a particle is a point by itself");
+    const std::string name = *end->string("particle");
+    std::vector<std::string> names;
+    for (size_t i = 0; i < scene.model.particles.size(); ++i) {
+      if (scene.model.particles[i].name == name) return Spring::End{all_bodies, Vec3::Zero(), i};
+      names.push_back(scene.model.particles[i].name);
+    }
+    const auto s = closest(name, names);
+    end->fail_at("particle", fmt::format("no particle named \"{}\"; {}", name,
+                                         s ? fmt::format("did you mean \"{}\"?", *s)
+                                           : names.empty() ? std::string("the scene has no [[particles]]")
+                                                           : fmt::format("the particles are: {}", fmt::join(names, ", "))));
+  }
   if (end->has("anchor")) {
     if (end->has("point")) end->fail_at("point", "point goes with body; an anchor is a world point by itself");
     anchored = true;
     return Spring::End{all_bodies, *end->vec3("anchor", "m")};
   }
-  if (!end->has("body")) end->fail_here("give body = \"NAME\" (with point) or anchor = [x, y, z] (world, m)");
+  if (!end->has("body")) {
+    end->fail_here("give body = \"NAME\" (with point), particle = \"NAME\" or anchor = [x, y, z] (world, m)");
+  }
   const size_t i = body_index(*end, "body", scene);
   // Default: the body's centre of mass (in its reference frame), where a spring exerts no torque.
   return Spring::End{i, end->vec3("point", scene.model.bodies[i].center_of_mass(), "m")};
@@ -122,7 +138,8 @@ void read_forces(const TableReader& root, Scene& scene) {
       bool anchored = false;
       const Spring::End a = spring_end(t, "a", scene, anchored);
       const Spring::End b = spring_end(t, "b", scene, anchored);
-      if (a.body == all_bodies && b.body == all_bodies) t.fail_here("both ends are anchors: attach one to a body");
+      const auto is_anchor = [](const Spring::End& e) { return e.body == all_bodies && e.particle == all_bodies; };
+      if (is_anchor(a) && is_anchor(b)) t.fail_here("both ends are anchors: attach one to a body or a particle");
       const double k = t.required_number("stiffness", "N/m", Domain::positive);
       const double rest = t.number("rest_length", 0.0, "m", Domain::non_negative);
       const double damping = t.number("damping", 0.0, "N*s/m", Domain::non_negative);

@@ -7,6 +7,8 @@
 #include "../support/scene_files.hpp"
 #include "tumble/forces/forces.hpp"
 #include "tumble/io/scene.hpp"
+#include "tumble/sim/diagnostics.hpp"
+#include "tumble/sim/simulate.hpp"
 
 namespace tumble {
 namespace {
@@ -310,6 +312,74 @@ density = { polynomial = [[1000, 0, 0, 0]] }
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("shell.toml:6:13"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("solids only"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace tumble
+
+namespace tumble {
+namespace {
+
+TEST(SceneFile, SpringsBetweenParticlesAndBodiesConserveMomentaAndEnergy) {
+  // Two particles on a spring and one tied to a body: internal, central forces, so the total linear
+  // and angular momentum and the energy are conserved (the scene says so, and RK4 keeps them to its
+  // error, (h ω)⁴ t with ω = √(k/m) ≈ 7 rad/s, h = 1e-3: ~1e-11).
+  const Scene s = parse_scene(R"([simulation]
+duration = 2.0
+timestep = 1e-3
+[[bodies]]
+name = "hub"
+shape = { type = "sphere", radius = 0.1 }
+mass = 2.0
+angular_velocity = [0.0, 0.0, 3.0]
+[[particles]]
+name = "p"
+mass = 0.5
+position = [1.0, 0.0, 0.0]
+velocity = [0.0, 1.0, 0.0]
+[[particles]]
+name = "q"
+mass = 0.5
+position = [1.5, 0.5, 0.0]
+[[forces]]
+type = "spring"
+a = { particle = "p" }
+b = { particle = "q" }
+stiffness = 25.0
+rest_length = 0.3
+[[forces]]
+type = "spring"
+a = { body = "hub", point = [0.1, 0.0, 0.0] }
+b = { particle = "p" }
+stiffness = 25.0
+)",
+                              "springs.toml");
+  EXPECT_TRUE(s.conserved.energy);
+  EXPECT_TRUE(s.conserved.linear_momentum);
+  EXPECT_TRUE(s.conserved.angular_momentum);
+  const Invariants a = invariants(s.model, s.initial);
+  const Invariants b = invariants(s.model, simulate(s.model, s.initial, s.settings));
+  EXPECT_LT((b.linear_momentum - a.linear_momentum).norm(), 1e-12);
+  EXPECT_LT((b.angular_momentum - a.angular_momentum).norm(), 1e-10);
+  EXPECT_NEAR(*b.total_energy(), *a.total_energy(), 1e-10 * *a.total_energy());
+  // A name that is not a particle is refused with the closest one suggested.
+  try {
+    parse_scene(R"([simulation]
+duration = 1.0
+[[particles]]
+name = "p"
+mass = 1.0
+[[forces]]
+type = "spring"
+a = { particle = "pp" }
+b = { anchor = [0.0, 0.0, 0.0] }
+stiffness = 1.0
+)",
+                "springs.toml");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("no particle named \"pp\"; did you mean \"p\"?"), std::string::npos) << e.what();
   }
 }
 

@@ -77,14 +77,15 @@ class QuadraticDrag final : public ForceModel {
   double linear_, angular_;
 };
 
-/// A linear spring–damper between a body point and a world anchor, or between points of two bodies:
+/// A linear spring–damper between any two of: a body point, a particle, a world anchor:
 /// f = −(k(|d| − L₀) + c ḋ·d̂) d̂ on the first end (d from the second end to the first), the opposite
 /// on the second. Potential ½k(|d| − L₀)².
 class Spring final : public ForceModel {
  public:
   struct End {
-    size_t body = all_bodies;  ///< all_bodies means: a world anchor
-    Vec3 point = Vec3::Zero();  ///< reference-frame coordinates on the body, or the world anchor
+    size_t body = all_bodies;      ///< a body index; all_bodies means a world anchor or a particle
+    Vec3 point = Vec3::Zero();     ///< reference-frame coordinates on the body, or the world anchor
+    size_t particle = all_bodies;  ///< a particle index (then body and point are not used)
   };
   Spring(End a, End b, double stiffness, double rest_length, double damping)
       : a_(a), b_(b), k_(stiffness), rest_(rest_length), c_(damping) {}
