@@ -132,12 +132,6 @@ TEST(FixedStep, ABlowUpIsReportedWithBodyTimeAndStep) {
   }
 }
 
-}  // namespace
-}  // namespace tumble
-
-namespace tumble {
-namespace {
-
 TEST(FixedStep, AStopRequestEndsTheRunAfterTheCurrentStepWithALastSample) {
   Model model;
   model.add_body(RigidBody::from_principal_moments(1.0, Vec3(1, 2, 2.5)));

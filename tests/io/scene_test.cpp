@@ -277,12 +277,6 @@ velocity = [0, 0, 1]
   EXPECT_EQ(s.initial.particles[0].v, Vec3(0, 0, 1));
 }
 
-}  // namespace
-}  // namespace tumble
-
-namespace tumble {
-namespace {
-
 TEST(SceneFile, ThinShellsFromShapesAndOpenMeshes) {
   // A hollow sphere of radius r: m = ρ·t·4πr², I = 2/3 m r² (thin-wall limit).
   const Scene s = parse_scene(R"([simulation]
@@ -314,12 +308,6 @@ density = { polynomial = [[1000, 0, 0, 0]] }
     EXPECT_NE(std::string(e.what()).find("solids only"), std::string::npos) << e.what();
   }
 }
-
-}  // namespace
-}  // namespace tumble
-
-namespace tumble {
-namespace {
 
 TEST(SceneFile, SpringsBetweenParticlesAndBodiesConserveMomentaAndEnergy) {
   // Two particles on a spring and one tied to a body: internal, central forces, so the total linear

@@ -10,18 +10,25 @@
 namespace tumble {
 namespace {
 
-TEST(Events, ABallStopsWhenItLandsAtTheClosedFormTime) {
-  // Thrown up from z₀ = 2 m at 10 m/s: it lands at t* = (v₀ + √(v₀² + 2g z₀))/g.
-  const double g = 9.81, z0 = 2.0, v0 = 10.0;
+// A ball thrown up from z₀ = 2 m at v₀ = 10 m/s: its apex is at t = v₀/g and it lands at
+// t* = (v₀ + √(v₀² + 2g z₀))/g.
+constexpr double g = 9.81, z0 = 2.0, v0 = 10.0;
+Model thrown_ball() {
   Model model;
-  model.add_body(RigidBody::from_principal_moments(1.0, Vec3(1, 1, 1), "ball"));
+  model.add_body(RigidBody::from_principal_moments(1.0, Vec3(1, 2, 2.5), "ball"));
   model.add_force<UniformGravity>(Vec3(0, 0, -g));
+  return model;
+}
+Event landing() { return {"landing", [](const SystemState& s) { return s.bodies[0].o.z(); }, -1, true}; }
+
+TEST(Events, ABallStopsWhenItLandsAtTheClosedFormTime) {
+  const Model model = thrown_ball();
   RunSettings rs;
   rs.duration = 10.0;
   rs.timestep = 0.01;
   rs.output_interval = 0.5;
   RunHooks hooks;
-  hooks.events.push_back({"landing", [](const SystemState& s) { return s.bodies[0].o.z(); }, -1, true});
+  hooks.events.push_back(landing());
   std::vector<EventHit> hits;
   hooks.on_event = [&](const EventHit& hit) { hits.push_back(hit); };
   double last_sample = -1;
@@ -70,16 +77,13 @@ TEST(Events, TheTHandleFlipsAreRecordedAtTheEllipticInterval) {
 TEST(Events, AdaptiveRunsLocateEventsOnTheirDenseOutput) {
   // The same landing with dopri45: its continuous extension is exact for the parabola (degree 2 ≤ 4),
   // so the landing time is again exact to the bisection's resolution.
-  const double g = 9.81, z0 = 2.0, v0 = 10.0;
-  Model model;
-  model.add_body(RigidBody::from_principal_moments(1.0, Vec3(1, 2, 2.5), "ball"));
-  model.add_force<UniformGravity>(Vec3(0, 0, -g));
+  const Model model = thrown_ball();
   RunSettings rs;
   rs.duration = 10.0;
   rs.integrator = "dopri45";
   rs.output_interval = 0.25;
   RunHooks hooks;
-  hooks.events.push_back({"landing", [](const SystemState& s) { return s.bodies[0].o.z(); }, -1, true});
+  hooks.events.push_back(landing());
   hooks.events.push_back({"apex", [](const SystemState& s) { return s.bodies[0].v.z(); }, -1, false});
   std::vector<EventHit> hits;
   hooks.on_event = [&](const EventHit& hit) { hits.push_back(hit); };
