@@ -30,6 +30,17 @@ std::string non_finite(const Model& model, const SystemCoordinates& state) {
   return {};
 }
 
+/// g of an event at a state; a NaN or infinity would hide every crossing, so it is an error.
+double evaluate(const Event& e, const SystemState& s) {
+  const double g = e.g(s);
+  if (!std::isfinite(g)) {
+    throw InvalidArgument(fmt::format("event '{}' returned {} at t = {} s; an event function must return a "
+                                      "finite number whose sign changes at the event",
+                                      e.name, g, s.t));
+  }
+  return g;
+}
+
 bool crosses(const Event& e, double g0, double g1) {
   const bool rising = g0 < 0 && g1 >= 0, falling = g0 > 0 && g1 <= 0;
   return (rising && e.direction >= 0) || (falling && e.direction <= 0);
@@ -54,7 +65,7 @@ std::vector<Hit> find_hits(const std::vector<Event>& events, std::vector<double>
   const SystemState end = to_state(F, after);
   const double resolution = 4 * 2.220446049250313e-16 * std::max(std::abs(t_start), h);
   for (size_t i = 0; i < events.size(); ++i) {
-    const double g0 = g_prev[i], g1 = events[i].g(end);
+    const double g0 = g_prev[i], g1 = evaluate(events[i], end);
     g_prev[i] = g1;
     if (!crosses(events[i], g0, g1)) continue;
     double lo = 0.0, hi = h;
@@ -62,7 +73,7 @@ std::vector<Hit> find_hits(const std::vector<Event>& events, std::vector<double>
     for (int k = 0; k < 200 && hi - lo > resolution; ++k) {
       const double mid = 0.5 * (lo + hi);
       SystemCoordinates y = state_at(mid);
-      const double g = events[i].g(to_state(F, y));
+      const double g = evaluate(events[i], to_state(F, y));
       if ((g0 < 0) == (g < 0) && g != 0) {
         lo = mid;
       } else {
@@ -136,7 +147,10 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
   };
 
   std::vector<double> g_prev;
-  for (const Event& e : events) g_prev.push_back(e.g(state));
+  for (const Event& e : events) {
+    if (!e.g) throw InvalidArgument(fmt::format("event '{}' has no function g", e.name));
+    g_prev.push_back(evaluate(e, state));
+  }
   // Reports the crossings of one step in time order; the state of a stopping event ends the run.
   auto report = [&](const Hit& hit, SystemState& out) {
     out = to_state(settings.formulation, hit.x);

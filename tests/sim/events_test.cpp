@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "../support/sim_helpers.hpp"
+#include "tumble/error.hpp"
 #include "tumble/forces/forces.hpp"
 #include "tumble/integrate/euler_poinsot.hpp"
 
@@ -130,6 +131,19 @@ TEST(Events, AdaptiveRunsStopAfterTheStepInWhichAStopIsRequested) {
   EXPECT_GT(end.t, 0.0);
   EXPECT_LT(end.t, 50.0);
   EXPECT_EQ(samples.back(), end.t);
+}
+
+TEST(Events, ANonFiniteEventValueIsAnErrorNamingTheEvent) {
+  const Model model = thrown_ball();
+  RunSettings rs;
+  RunHooks hooks;
+  hooks.events.push_back({"broken", [](const SystemState& s) { return s.t > 0.5 ? std::nan("") : 1.0; }, 0, false});
+  try {
+    simulate(model, test::single({Vec3(0, 0, z0), Quat::Identity(), Vec3(0, 0, v0), Vec3::Zero()}), rs, hooks);
+    FAIL();
+  } catch (const InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("event 'broken' returned nan"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
