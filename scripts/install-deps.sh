@@ -3,7 +3,7 @@
 set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config g++ clang-14 libclang-rt-14-dev
-  libeigen3-dev libboost-dev libfmt-dev libcli11-dev libassimp-dev libtomlplusplus-dev libhdf5-dev
+  libeigen3-dev libxsimd-dev libomp-14-dev libboost-dev libfmt-dev libcli11-dev libassimp-dev libtomlplusplus-dev libhdf5-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-numpy python3-h5py
 )

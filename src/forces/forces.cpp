@@ -11,23 +11,24 @@ namespace {
 std::string vec(const Vec3& v) { return fmt::format("({}, {}, {})", v.x(), v.y(), v.z()); }
 const char* frame_name(Frame f) { return f == Frame::world ? "world" : "body"; }
 
-void check_body(size_t i, const SystemView& view, const char* model) {
-  if (i >= view.bodies.size()) {
-    throw InvalidArgument(fmt::format("{} refers to body #{}, but the model has {} bodies", model, i,
-                                      view.bodies.size()));
+void check_body(size_t i, size_t n_bodies, const char* model) {
+  if (i != all_bodies && i >= n_bodies) {
+    throw InvalidArgument(fmt::format("{} refers to body #{}, but the model has {} bodies", model, i, n_bodies));
   }
 }
 
-/// Calls f(i) for body `which`, or for every body when which == all_bodies.
+/// Calls f(j) for the bodies of the block that `which` selects: all of them, or body #which if it is
+/// in the block.
 template <class F>
-void for_bodies(size_t which, const SystemView& view, const char* model, F&& f) {
+void for_bodies(size_t which, const BodyBlock& block, F&& f) {
   if (which == all_bodies) {
-    for (size_t i = 0; i < view.bodies.size(); ++i) f(i);
-  } else {
-    check_body(which, view, model);
-    f(which);
+    for (size_t j = 0; j < block.count; ++j) f(j);
+  } else if (block.contains(which)) {
+    f(which - block.begin);
   }
 }
+
+Vec3 column_vec(const double* const c[3], size_t j) { return {c[0][j], c[1][j], c[2][j]}; }
 
 std::string target(size_t body) { return body == all_bodies ? "all bodies" : fmt::format("body #{}", body); }
 
@@ -43,11 +44,72 @@ void Loads::add_force_at(size_t i, const BodyState& s, const Vec3& f, const Vec3
   bodies[i].torque += (x - s.o).cross(f);  // τ = (x − o) × f (tutorial, section I)
 }
 
+BodyState BodyBlock::state(size_t j) const {
+  BodyState s;
+  s.o = column_vec(o, j);
+  s.q = Quat(q[0][j], q[1][j], q[2][j], q[3][j]);
+  if (v[0]) s.v = column_vec(v, j);
+  if (omega_w[0]) s.omega_w = column_vec(omega_w, j);
+  return s;
+}
+
+void LocalForceModel::accumulate(const SystemView& view, Loads& loads) const {
+  // The same code as the engine runs, on one block gathered from the structs.
+  const size_t n = view.bodies.size();
+  std::vector<double> columns(18 * n, 0.0);
+  auto column = [&](size_t k) { return columns.data() + k * n; };
+  std::vector<double> m(n);
+  BodyBlock block;
+  block.t = view.t;
+  block.count = n;
+  block.bodies = view.bodies.data();
+  block.m = m.data();
+  for (size_t k = 0; k < 3; ++k) {
+    block.Lambda[k] = column(k);
+    block.o[k] = column(3 + k);
+    block.v[k] = column(10 + k);
+    block.omega_w[k] = column(13 + k);
+  }
+  for (size_t k = 0; k < 4; ++k) block.q[k] = column(6 + k);
+  for (size_t j = 0; j < n; ++j) {
+    const RigidBody& b = view.bodies[j];
+    const BodyState& s = view.body_states[j];
+    m[j] = b.mass();
+    const double q[4] = {s.q.w(), s.q.x(), s.q.y(), s.q.z()};
+    for (size_t k = 0; k < 3; ++k) {
+      column(k)[j] = b.Lambda()(static_cast<Eigen::Index>(k));
+      column(3 + k)[j] = s.o(static_cast<Eigen::Index>(k));
+      column(10 + k)[j] = s.v(static_cast<Eigen::Index>(k));
+      column(13 + k)[j] = s.omega_w(static_cast<Eigen::Index>(k));
+    }
+    for (size_t k = 0; k < 4; ++k) column(6 + k)[j] = q[k];
+  }
+  std::vector<double> out(6 * n, 0.0);
+  BlockLoads block_loads;
+  for (size_t k = 0; k < 3; ++k) {
+    block_loads.f[k] = out.data() + k * n;
+    block_loads.tau[k] = out.data() + (3 + k) * n;
+  }
+  accumulate_block(block, block_loads);
+  for (size_t j = 0; j < n; ++j) {
+    for (Eigen::Index k = 0; k < 3; ++k) {
+      loads.bodies[j].force(k) += block_loads.f[k][j];
+      loads.bodies[j].torque(k) += block_loads.tau[k][j];
+    }
+  }
+  accumulate_particles(view, loads.particles);
+}
+
 // ---- gravity ----------------------------------------------------------------------------------
 
-void UniformGravity::accumulate(const SystemView& view, Loads& loads) const {
-  for (size_t i = 0; i < view.bodies.size(); ++i) loads.bodies[i].force += view.bodies[i].mass() * g_;
-  for (size_t i = 0; i < view.particles.size(); ++i) loads.particles[i] += view.particles[i].mass * g_;
+void UniformGravity::accumulate_block(const BodyBlock& block, BlockLoads& loads) const {
+  for (size_t k = 0; k < 3; ++k) {
+    const double g = g_(static_cast<Eigen::Index>(k));
+    for (size_t j = 0; j < block.count; ++j) loads.f[k][j] += block.m[j] * g;  // f = m g
+  }
+}
+void UniformGravity::accumulate_particles(const SystemView& view, std::span<Vec3> f) const {
+  for (size_t i = 0; i < view.particles.size(); ++i) f[i] += view.particles[i].mass * g_;
 }
 std::string UniformGravity::describe() const { return "uniform gravity " + vec(g_) + " m/s^2"; }
 std::optional<double> UniformGravity::potential_energy(const SystemView& view) const {
@@ -59,60 +121,65 @@ std::optional<double> UniformGravity::potential_energy(const SystemView& view) c
 
 // ---- applied forces and torques ----------------------------------------------------------------
 
-void PointForce::accumulate(const SystemView& view, Loads& loads) const {
-  check_body(body_, view, "point force");
-  const RigidBody& b = view.bodies[body_];
-  const BodyState& s = view.body_states[body_];
+void PointForce::accumulate_block(const BodyBlock& block, BlockLoads& loads) const {
+  if (!block.contains(body_)) return;
+  const size_t j = body_ - block.begin;
+  const RigidBody& b = block.bodies[j];
+  const BodyState s = block.state(j);
   const ReferenceFrameState ref = reference_state(b, s);
   const Vec3 f = force_frame_ == Frame::world ? force_ : Vec3(ref.orientation * force_);
   const Vec3 x = point_frame_ == Frame::world ? point_ : point_position(b, s, point_);
-  loads.add_force_at(body_, s, f, x);
+  loads.add_force_at(j, s.o, f, x);
 }
+void PointForce::check(size_t n_bodies, size_t) const { check_body(body_, n_bodies, "point force"); }
 std::string PointForce::describe() const {
   return fmt::format("force {} N ({} axes) at {} ({} point) on body #{}", vec(force_),
                      frame_name(force_frame_), vec(point_), frame_name(point_frame_), body_);
 }
 
-void PureTorque::accumulate(const SystemView& view, Loads& loads) const {
-  check_body(body_, view, "torque");
-  const Vec3 tau = frame_ == Frame::world
-                       ? torque_
-                       : Vec3(reference_state(view.bodies[body_], view.body_states[body_]).orientation * torque_);
-  loads.bodies[body_].torque += tau;
+void PureTorque::accumulate_block(const BodyBlock& block, BlockLoads& loads) const {
+  if (!block.contains(body_)) return;
+  const size_t j = body_ - block.begin;
+  const Vec3 tau =
+      frame_ == Frame::world ? torque_ : Vec3(reference_state(block.bodies[j], block.state(j)).orientation * torque_);
+  loads.add(j, Vec3::Zero(), tau);
 }
+void PureTorque::check(size_t n_bodies, size_t) const { check_body(body_, n_bodies, "torque"); }
 std::string PureTorque::describe() const {
   return fmt::format("torque {} N*m ({} axes) on body #{}", vec(torque_), frame_name(frame_), body_);
 }
 
 // ---- dissipation ------------------------------------------------------------------------------
 
-void ViscousDamping::accumulate(const SystemView& view, Loads& loads) const {
-  for_bodies(body_, view, "damping", [&](size_t i) {
-    loads.bodies[i].force -= linear_ * view.body_states[i].v;
-    loads.bodies[i].torque -= angular_ * view.body_states[i].omega_w;
+void ViscousDamping::accumulate_block(const BodyBlock& block, BlockLoads& loads) const {
+  for_bodies(body_, block, [&](size_t j) {
+    loads.add(j, -linear_ * column_vec(block.v, j), -angular_ * column_vec(block.omega_w, j));
   });
-  if (body_ == all_bodies) {
-    for (size_t i = 0; i < view.particles.size(); ++i) loads.particles[i] -= linear_ * view.particle_states[i].v;
-  }
 }
+void ViscousDamping::accumulate_particles(const SystemView& view, std::span<Vec3> f) const {
+  if (body_ != all_bodies) return;
+  for (size_t i = 0; i < view.particles.size(); ++i) f[i] -= linear_ * view.particle_states[i].v;
+}
+void ViscousDamping::check(size_t n_bodies, size_t) const { check_body(body_, n_bodies, "damping"); }
 std::string ViscousDamping::describe() const {
   return fmt::format("viscous damping {} N*s/m, {} N*m*s on {}", linear_, angular_, target(body_));
 }
 
-void QuadraticDrag::accumulate(const SystemView& view, Loads& loads) const {
-  for_bodies(body_, view, "drag", [&](size_t i) {
-    const Vec3& v = view.body_states[i].v;
-    const Vec3& w = view.body_states[i].omega_w;
-    loads.bodies[i].force -= linear_ * v.norm() * v;
-    loads.bodies[i].torque -= angular_ * w.norm() * w;
+void QuadraticDrag::accumulate_block(const BodyBlock& block, BlockLoads& loads) const {
+  for_bodies(body_, block, [&](size_t j) {
+    const Vec3 v = column_vec(block.v, j);
+    const Vec3 w = column_vec(block.omega_w, j);
+    loads.add(j, -linear_ * v.norm() * v, -angular_ * w.norm() * w);
   });
-  if (body_ == all_bodies) {
-    for (size_t i = 0; i < view.particles.size(); ++i) {
-      const Vec3& v = view.particle_states[i].v;
-      loads.particles[i] -= linear_ * v.norm() * v;
-    }
+}
+void QuadraticDrag::accumulate_particles(const SystemView& view, std::span<Vec3> f) const {
+  if (body_ != all_bodies) return;
+  for (size_t i = 0; i < view.particles.size(); ++i) {
+    const Vec3& v = view.particle_states[i].v;
+    f[i] -= linear_ * v.norm() * v;
   }
 }
+void QuadraticDrag::check(size_t n_bodies, size_t) const { check_body(body_, n_bodies, "drag"); }
 std::string QuadraticDrag::describe() const {
   return fmt::format("quadratic drag {} kg/m, {} kg*m^2 on {}", linear_, angular_, target(body_));
 }
@@ -121,14 +188,9 @@ std::string QuadraticDrag::describe() const {
 
 std::pair<Vec3, Vec3> Spring::end_state(const End& e, const SystemView& view) const {
   if (e.particle != all_bodies) {
-    if (e.particle >= view.particles.size()) {
-      throw InvalidArgument(fmt::format("spring refers to particle #{}, but the model has {} particles", e.particle,
-                                        view.particles.size()));
-    }
     return {view.particle_states[e.particle].x, view.particle_states[e.particle].v};
   }
   if (e.body == all_bodies) return {e.point, Vec3::Zero()};
-  check_body(e.body, view, "spring");
   const RigidBody& b = view.bodies[e.body];
   const BodyState& s = view.body_states[e.body];
   return {point_position(b, s, e.point), point_velocity(b, s, e.point)};
@@ -152,6 +214,15 @@ void Spring::accumulate(const SystemView& view, Loads& loads) const {
   apply(a_, f, xa);
   apply(b_, -f, xb);
 }
+void Spring::check(size_t n_bodies, size_t n_particles) const {
+  for (const End& e : {a_, b_}) {
+    if (e.particle != all_bodies && e.particle >= n_particles) {
+      throw InvalidArgument(
+          fmt::format("spring refers to particle #{}, but the model has {} particles", e.particle, n_particles));
+    }
+    if (e.particle == all_bodies) check_body(e.body, n_bodies, "spring");
+  }
+}
 std::string Spring::describe() const {
   return fmt::format("spring k={} N/m, rest length {} m, damping {} N*s/m", k_, rest_, c_);
 }
@@ -162,22 +233,28 @@ std::optional<double> Spring::potential_energy(const SystemView& view) const {
 
 // ---- gravity gradient -------------------------------------------------------------------------
 
-void GravityGradient::accumulate(const SystemView& view, Loads& loads) const {
-  for (size_t i = 0; i < view.bodies.size(); ++i) {
-    const BodyState& s = view.body_states[i];
-    const Vec3 r = s.o - center_;
+void GravityGradient::accumulate_block(const BodyBlock& block, BlockLoads& loads) const {
+  for (size_t j = 0; j < block.count; ++j) {
+    const Vec3 o = column_vec(block.o, j);
+    const Quat q(block.q[0][j], block.q[1][j], block.q[2][j], block.q[3][j]);
+    const Vec3 Lambda(block.Lambda[0][j], block.Lambda[1][j], block.Lambda[2][j]);
+    const Vec3 r = o - center_;
     const double r2 = r.squaredNorm();
     const double r1 = std::sqrt(r2);
-    const Mat3 I = inertia_world(view.bodies[i], s);
+    const Mat3 R = q.toRotationMatrix();
+    const Mat3 I = R * Lambda.asDiagonal() * R.transpose();  // I = R Λ Rᵀ
     const Vec3 Ir = I * r;
     // τ = 3μ/|r|⁵ r × (I r)
-    loads.bodies[i].torque += 3.0 * mu_ / (r2 * r2 * r1) * r.cross(Ir);
-    if (torque_only_) continue;
+    const Vec3 tau = 3.0 * mu_ / (r2 * r2 * r1) * r.cross(Ir);
+    if (torque_only_) {
+      loads.add(j, Vec3::Zero(), tau);
+      continue;
+    }
     // f = −∇V with V = −μm/r + μ/2 (3 rᵀIr/r⁵ − tr I/r³): the point-mass pull plus the small
     // correction of the same expansion, which makes the model exactly conservative with the torque.
     const double r5 = r2 * r2 * r1, r7 = r5 * r2;
     const Vec3 grad_V2 = 0.5 * mu_ * (3.0 * (2.0 * Ir / r5 - 5.0 * r.dot(Ir) * r / r7) + 3.0 * I.trace() * r / r5);
-    loads.bodies[i].force -= mu_ * view.bodies[i].mass() / (r2 * r1) * r + grad_V2;
+    loads.add(j, -(mu_ * block.m[j] / (r2 * r1) * r + grad_V2), tau);
   }
 }
 std::string GravityGradient::describe() const {
@@ -200,15 +277,16 @@ std::optional<double> GravityGradient::potential_energy(const SystemView& view) 
 
 // ---- user callbacks ---------------------------------------------------------------------------
 
-void BodyCallback::accumulate(const SystemView& view, Loads& loads) const {
-  check_body(body_, view, "callback");
-  const Wrench w = f_(view.t, view.bodies[body_], view.body_states[body_]);
+void BodyCallback::accumulate_block(const BodyBlock& block, BlockLoads& loads) const {
+  if (!block.contains(body_)) return;
+  const size_t j = body_ - block.begin;
+  const Wrench w = f_(block.t, block.bodies[j], block.state(j));
   if (!w.force.allFinite() || !w.torque.allFinite()) {
-    throw InvalidArgument(fmt::format("{} returned a non-finite wrench at t = {} s for body '{}'", label_,
-                                      view.t, view.bodies[body_].name()));
+    throw InvalidArgument(fmt::format("{} returned a non-finite wrench at t = {} s for body '{}'", label_, block.t,
+                                      block.bodies[j].name()));
   }
-  loads.bodies[body_].force += w.force;
-  loads.bodies[body_].torque += w.torque;
+  loads.add(j, w.force, w.torque);
 }
+void BodyCallback::check(size_t n_bodies, size_t) const { check_body(body_, n_bodies, "callback"); }
 
 }  // namespace tumble

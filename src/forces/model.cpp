@@ -18,6 +18,7 @@ size_t Model::body_index(const std::string& name) const {
 
 void evaluate_loads(const Model& model, const SystemState& state, Loads& loads) {
   loads.reset(model.bodies.size(), model.particles.size());
+  for (const auto& force : model.forces) force->check(model.bodies.size(), model.particles.size());
   const SystemView view = model.view(state);
   for (const auto& force : model.forces) force->accumulate(view, loads);
 }

@@ -7,6 +7,7 @@
 // exact arithmetic, so |q| − 1 stays at the size of the local error tolerance and is removed at output.
 #include <boost/numeric/odeint.hpp>
 
+#include "engine.hpp"
 #include "methods.hpp"
 
 namespace tumble {
@@ -16,45 +17,31 @@ namespace odeint = boost::numeric::odeint;
 using Packed = std::vector<double>;
 constexpr size_t kBody = 13, kParticle = 6;
 
-void put(double* d, const Vec3& v) { d[0] = v.x(), d[1] = v.y(), d[2] = v.z(); }
-
-Packed pack(const SystemCoordinates& x) {
-  Packed p(x.bodies.size() * kBody + x.particles.size() * kParticle);
+/// (o, q, v, ω) of every body, then (x, v) of every particle; `columns` holds either variables or rates.
+void pack(const BodyColumns& columns, const std::vector<ParticleState>& particles, Packed& p) {
+  const size_t n = columns.size();
+  p.resize(n * kBody + particles.size() * kParticle);
   double* d = p.data();
-  for (const auto& c : x.bodies) {
-    put(d, c.o);
-    d[3] = c.q.w(), d[4] = c.q.x(), d[5] = c.q.y(), d[6] = c.q.z();
-    put(d + 7, c.v);
-    put(d + 10, c.omega);
-    d += kBody;
+  for (size_t i = 0; i < n; ++i, d += kBody) {
+    for (size_t k = 0; k < kBody; ++k) d[k] = columns[k][i];
   }
-  for (const auto& s : x.particles) {
-    put(d, s.x);
-    put(d + 3, s.v);
+  for (const auto& s : particles) {
+    for (Eigen::Index k = 0; k < 3; ++k) d[k] = s.x(k), d[3 + k] = s.v(k);
     d += kParticle;
   }
-  return p;
 }
 
-SystemCoordinates unpack(const Packed& p, double t, size_t n_bodies, size_t n_particles) {
-  SystemCoordinates x;
+void unpack(const Packed& p, double t, SystemCoordinates& x) {
   x.t = t;
   const double* d = p.data();
-  for (size_t i = 0; i < n_bodies; ++i, d += kBody) {
-    x.bodies.push_back({Vec3(d[0], d[1], d[2]), Quat(d[3], d[4], d[5], d[6]).normalized(), Vec3(d[7], d[8], d[9]),
-                        Vec3(d[10], d[11], d[12])});
+  for (size_t i = 0; i < x.bodies.size(); ++i, d += kBody) {
+    for (size_t k = 0; k < kBody; ++k) x.bodies[k][i] = d[k];
+    x.bodies.store_quat<double>(i, x.bodies.quat(i).normalized());
   }
-  for (size_t i = 0; i < n_particles; ++i, d += kParticle) {
-    x.particles.push_back({Vec3(d[0], d[1], d[2]), Vec3(d[3], d[4], d[5])});
+  for (auto& s : x.particles) {
+    s = {Vec3(d[0], d[1], d[2]), Vec3(d[3], d[4], d[5])};
+    d += kParticle;
   }
-  return x;
-}
-
-Packed pack_rates(const SystemRates& k) {
-  SystemCoordinates as_coordinates;  // the same layout: (ȯ, q̇, v̇, ω̇) and (ẋ, v̇)
-  for (const auto& r : k.bodies) as_coordinates.bodies.push_back({r.o_dot, r.q_dot, r.v_dot, r.omega_dot});
-  as_coordinates.particles = k.particles;
-  return pack(as_coordinates);
 }
 
 class DormandPrince45 final : public AdaptiveIntegrator {
@@ -65,18 +52,27 @@ class DormandPrince45 final : public AdaptiveIntegrator {
   std::string name() const override { return "dopri45"; }
 
   void start(const Model& model, Formulation F, const SystemCoordinates& x0, double initial_step) override {
-    model_ = &model;
-    formulation_ = F;
-    n_bodies_ = x0.bodies.size();
-    n_particles_ = x0.particles.size();
+    engine_.prepare(model, F, 1);
+    y_ = x0;
+    rates_.ensure(x0.bodies.size());
+    particle_rates_.resize(x0.particles.size());
     stats_ = {};
-    stepper_.initialize(pack(x0), x0.t, initial_step);
+    Packed p;
+    pack(x0.bodies, x0.particles, p);
+    stepper_.initialize(p, x0.t, initial_step);
   }
 
   double step() override {
     auto rhs = [this](const Packed& p, Packed& dpdt, double time) {
       ++stats_.evaluations;
-      dpdt = pack_rates(system_rates(*model_, formulation_, unpack(p, time, n_bodies_, n_particles_)));
+      unpack(p, time, y_);
+      engine_.evaluate(y_, [&](const engine::Block& blk) {
+        for (size_t i = blk.begin; i < blk.end; i += engine::kWidth) {
+          rates_.store(i, engine_.rates<engine::Pack>(blk, i, y_.bodies.load<engine::Pack>(i)));
+        }
+      });
+      for (size_t i = 0; i < y_.particles.size(); ++i) particle_rates_[i] = engine_.particle_rates(i, y_.particles[i]);
+      pack(rates_, particle_rates_, dpdt);
     };
     stepper_.do_step(rhs);
     ++stats_.steps;
@@ -87,10 +83,15 @@ class DormandPrince45 final : public AdaptiveIntegrator {
   double current_time() const override { return stepper_.current_time(); }
 
   SystemCoordinates interpolate(double t) const override {
-    if (stats_.steps == 0) return unpack(stepper_.current_state(), t, n_bodies_, n_particles_);
+    SystemCoordinates x = y_;
+    if (stats_.steps == 0) {
+      unpack(stepper_.current_state(), t, x);
+      return x;
+    }
     Packed p(stepper_.current_state().size());
     stepper_.calc_state(t, p);
-    return unpack(p, t, n_bodies_, n_particles_);
+    unpack(p, t, x);
+    return x;
   }
 
   IntegratorStats stats() const override {
@@ -103,9 +104,10 @@ class DormandPrince45 final : public AdaptiveIntegrator {
 
  private:
   decltype(odeint::make_dense_output(1.0, 1.0, odeint::runge_kutta_dopri5<Packed>())) stepper_;
-  const Model* model_ = nullptr;
-  Formulation formulation_ = Formulation::mixed;
-  size_t n_bodies_ = 0, n_particles_ = 0;
+  engine::Engine engine_;
+  SystemCoordinates y_;  // the state handed to the right-hand side
+  BodyColumns rates_;
+  std::vector<ParticleState> particle_rates_;
   IntegratorStats stats_;
 };
 

@@ -4,74 +4,103 @@
 // formulations) or R(t) = exp([θ(t)]×) R_n (world ω), with θ̇ = dexp⁻¹_{∓θ}(ω), integrated by the
 // classical RK4 tableau; every other variable takes the ordinary RK4 stages. Each orientation is a
 // product of exact rotations, so R stays orthogonal to rounding without renormalisation.
+#include "engine.hpp"
 #include "methods.hpp"
 
 namespace tumble {
 namespace {
 
+using engine::Block;
+using engine::kWidth;
+using engine::Pack;
+
 /// dexp⁻¹ truncated after the double commutator, enough for order 4:
 ///   left  (Ṙ = [ω]× R, R = exp(θ) R_n):   θ̇ = ω − ½ θ × ω + (1/12) θ × (θ × ω)
 ///   right (Ṙ = R [ω]×, R = R_n exp(θ)):   θ̇ = ω + ½ θ × ω + (1/12) θ × (θ × ω)
-Vec3 dexpinv(const Vec3& theta, const Vec3& w, bool right) {
-  const Vec3 half = 0.5 * theta.cross(w);
-  return (right ? Vec3(w + half) : Vec3(w - half)) + theta.cross(theta.cross(w)) / 12.0;
+template <class T>
+Vec3T<T> dexpinv(const Vec3T<T>& theta, const Vec3T<T>& w, bool right) {
+  const Vec3T<T> half = T(0.5) * theta.cross(w);
+  return (right ? Vec3T<T>(w + half) : Vec3T<T>(w - half)) + theta.cross(theta.cross(w)) / T(12);
 }
 
+/// The RK4 tableau of rk4 (fixed_step.cpp) in the same low-storage form, with the rotation advanced
+/// through θ: at stage s the orientation is R_n·exp(θ_s) (right) or exp(θ_s)·R_n (left), the other
+/// variables x + c_s h k_{s−1}; θ_{s+1} = c_{s+1} h F_s with F_s = dexp⁻¹_{θ_s}(ω_s), and the step ends
+/// at θ = (h/6)(F₁ + 2F₂ + 2F₃ + F₄). Whole-system arrays: x, y, A and θ, ΣF (45 doubles per body).
 class LieRungeKutta4 final : public Integrator {
  public:
   std::string name() const override { return "lie_rk4"; }
   int order() const override { return 4; }
   int evaluations_per_step() const override { return 4; }
 
-  void step(const Model& model, Formulation F, SystemCoordinates& x, double h) const override {
+  void step(const Model& model, Formulation F, SystemCoordinates& x, double h) override {
+    static constexpr double c[4] = {0.0, 0.5, 0.5, 1.0}, b[4] = {1.0, 2.0, 2.0, 1.0};
     const bool right = F != Formulation::world;  // mixed and body integrate ^bω
-    const size_t n = x.bodies.size();
-    std::vector<Vec3> theta(n, Vec3::Zero());
-
-    // Stage i: vector variables x + c·h·k_{i−1}; rotation R_n · exp(θ_i).
-    auto stage = [&](double ch, const SystemRates* k, const std::vector<Vec3>& th) {
-      SystemCoordinates y = k ? advance(x, ch, *k) : x;
-      for (size_t b = 0; b < n; ++b) {
-        const Quat e = quat_exp<double>(th[b]);
-        y.bodies[b].q = right ? Quat(x.bodies[b].q * e) : Quat(e * x.bodies[b].q);
+    engine_.prepare(model, F, threads_);
+    const size_t n = x.bodies.size(), np = x.particles.size();
+    y_.bodies.ensure(n);
+    A_.ensure(n);
+    theta_.ensure(n, 6);  // θ_s (3), Σ b_s F_s (3)
+    y_.particles.resize(np);
+    A_particles_.resize(np);
+    auto rotated = [right](const QuatT<Pack>& q, const Vec3T<Pack>& th) {
+      const QuatT<Pack> e = quat_exp<Pack>(th);
+      return right ? QuatT<Pack>(q * e) : QuatT<Pack>(e * q);
+    };
+    for (int s = 0; s < 4; ++s) {
+      const SystemCoordinates& in = s == 0 ? x : y_;
+      const Pack weight(b[s]);
+      const Pack step_next(s < 3 ? c[s + 1] * h : h / 6);
+      engine_.evaluate(in, [&](const Block& blk) {
+        for (size_t i = blk.begin; i < blk.end; i += kWidth) {
+          const Coordinates<Pack> yi = in.bodies.load<Pack>(i);
+          const CoordinateRates<Pack> k = engine_.rates<Pack>(blk, i, yi);
+          const Vec3T<Pack> th = s == 0 ? Vec3T<Pack>::Zero() : vec3(theta_, 0, i);
+          const Vec3T<Pack> Fs = dexpinv<Pack>(th, yi.omega, right);
+          const Coordinates<Pack> xi = x.bodies.load<Pack>(i);
+          if (s < 3) {
+            A_.store(i, s == 0 ? k : axpy<Pack>(A_.load_rates<Pack>(i), weight, k));
+            store3(theta_, 3, i, s == 0 ? Fs : Vec3T<Pack>(vec3(theta_, 3, i) + weight * Fs));
+            const Vec3T<Pack> th_next = step_next * Fs;
+            store3(theta_, 0, i, th_next);
+            Coordinates<Pack> next = advanced<Pack>(xi, step_next, k);
+            next.q = rotated(xi.q, th_next);
+            y_.bodies.store(i, next);
+          } else {
+            const Vec3T<Pack> theta = step_next * (vec3(theta_, 3, i) + Fs);
+            Coordinates<Pack> next = advanced<Pack>(xi, step_next, axpy<Pack>(A_.load_rates<Pack>(i), Pack(1.0), k));
+            next.q = rotated(xi.q, theta);
+            x.bodies.store(i, next);
+          }
+        }
+      });
+      for (size_t p = 0; p < np; ++p) {
+        const ParticleState k = engine_.particle_rates(p, in.particles[p]);
+        if (s < 3) {
+          A_particles_[p] = s == 0 ? k : axpy(A_particles_[p], b[s], k);
+          y_.particles[p] = advanced(x.particles[p], c[s + 1] * h, k);
+        } else {
+          x.particles[p] = advanced(x.particles[p], h / 6, axpy(A_particles_[p], 1.0, k));
+        }
       }
-      return y;
-    };
-    // F_i = dexp⁻¹_θᵢ(ω at stage i): the rotation generator at the stage.
-    auto generator = [&](const SystemCoordinates& y, const std::vector<Vec3>& th) {
-      std::vector<Vec3> g(n);
-      for (size_t b = 0; b < n; ++b) g[b] = dexpinv(th[b], y.bodies[b].omega, right);
-      return g;
-    };
-    auto scaled = [&](const std::vector<Vec3>& g, double s) {
-      std::vector<Vec3> th(n);
-      for (size_t b = 0; b < n; ++b) th[b] = s * g[b];
-      return th;
-    };
-
-    const SystemCoordinates y1 = x;
-    const SystemRates k1 = system_rates(model, F, y1);
-    const std::vector<Vec3> F1 = generator(y1, theta);
-
-    const std::vector<Vec3> th2 = scaled(F1, h / 2);
-    const SystemCoordinates y2 = stage(h / 2, &k1, th2);
-    const SystemRates k2 = system_rates(model, F, y2);
-    const std::vector<Vec3> F2 = generator(y2, th2);
-
-    const std::vector<Vec3> th3 = scaled(F2, h / 2);
-    const SystemCoordinates y3 = stage(h / 2, &k2, th3);
-    const SystemRates k3 = system_rates(model, F, y3);
-    const std::vector<Vec3> F3 = generator(y3, th3);
-
-    const std::vector<Vec3> th4 = scaled(F3, h);
-    const SystemCoordinates y4 = stage(h, &k3, th4);
-    const SystemRates k4 = system_rates(model, F, y4);
-    const std::vector<Vec3> F4 = generator(y4, th4);
-
-    for (size_t b = 0; b < n; ++b) theta[b] = h / 6.0 * (F1[b] + 2.0 * F2[b] + 2.0 * F3[b] + F4[b]);
-    const SystemRates k = combine({{1.0 / 6, &k1}, {2.0 / 6, &k2}, {2.0 / 6, &k3}, {1.0 / 6, &k4}});
-    x = stage(h, &k, theta);
+      y_.t = x.t + (s < 3 ? c[s + 1] : 1.0) * h;
+    }
+    x.t += h;
   }
+
+ private:
+  static Vec3T<Pack> vec3(const Columns& c, size_t first, size_t i) {
+    return {Pack::load_aligned(c[first] + i), Pack::load_aligned(c[first + 1] + i), Pack::load_aligned(c[first + 2] + i)};
+  }
+  static void store3(Columns& c, size_t first, size_t i, const Vec3T<Pack>& u) {
+    for (size_t k = 0; k < 3; ++k) u(static_cast<Eigen::Index>(k)).store_aligned(c[first + k] + i);
+  }
+
+  engine::Engine engine_;
+  SystemCoordinates y_;
+  BodyColumns A_;
+  Columns theta_;
+  std::vector<ParticleState> A_particles_;
 };
 
 }  // namespace

@@ -13,11 +13,14 @@
 // splitting4 is Yoshida's fourth-order composition S(w₁h) S(w₀h) S(w₁h), w₁ = 1/(2 − 2^⅓),
 // w₀ = 1 − 2w₁ (the middle step runs backwards in time; the exact flow handles that).
 //
-// The loads at the end of a step are the loads at the start of the next: they are kept, so a step costs
-// one force evaluation (three for splitting4). An instance is therefore not to be shared between
-// threads (make_integrator gives each simulation its own).
+// The loads at the end of a step are the loads at the start of the next: they are kept (with a copy of
+// the state they belong to, to notice a state changed between steps), so a step costs one force
+// evaluation (three for splitting4). The kick and the drift of a body follow its loads in the same
+// pass over the block. The exact flow is per body (its regimes branch on values); it allocates nothing.
 #include <cmath>
+#include <cstring>
 
+#include "engine.hpp"
 #include "methods.hpp"
 #include "tumble/integrate/euler_poinsot.hpp"
 
@@ -26,68 +29,97 @@ namespace {
 
 class Strang {
  public:
-  void step(const Model& model, Formulation F, SystemCoordinates& x, double h) const {
-    kick(model, F, x, 0.5 * h, loads_at(model, F, x));
-    drift(model, F, x, h);
+  void step(const Model& model, Formulation F, SystemCoordinates& x, double h, int threads) {
+    engine_.prepare(model, F, threads);
+    const size_t n = x.bodies.size();
+    loads_.ensure(n, 6);
+    const bool reuse = cached_ && same(x);
+    // K(h/2) with the loads at the start, then D(h), body by body.
+    auto kick_drift = [&](const engine::Block& blk, bool fresh) {
+      for (size_t i = blk.begin; i < std::min(blk.end, n); ++i) {
+        Coordinates<double> c = x.bodies.load(i);
+        const Vec3 f = fresh ? blk.force<double>(i) : cached(0, i), tau = fresh ? blk.torque<double>(i) : cached(3, i);
+        kick(F, c, 0.5 * h, f, tau, engine_.m<double>(i), engine_.Lambda<double>(i));
+        drift(F, c, h, engine_.Lambda<double>(i));
+        x.bodies.store(i, c);
+      }
+    };
+    if (reuse) {
+      engine_.for_each_block(n, [&](const engine::Block& blk) { kick_drift(blk, false); });
+      for (size_t p = 0; p < x.particles.size(); ++p) x.particles[p].v += 0.5 * h * particle_loads_[p] / model.particles[p].mass;
+    } else {
+      engine_.evaluate(x, [&](const engine::Block& blk) { kick_drift(blk, true); });
+      for (size_t p = 0; p < x.particles.size(); ++p) x.particles[p].v += 0.5 * h * engine_.particle_rates(p, x.particles[p]).v;
+    }
+    for (auto& p : x.particles) p.x += h * p.v;
     x.t += h;
-    kick(model, F, x, 0.5 * h, loads_at(model, F, x));
+    // K(h/2) with the loads at the end, which are kept for the next step.
+    engine_.evaluate(x, [&](const engine::Block& blk) {
+      for (size_t i = blk.begin; i < std::min(blk.end, n); ++i) {
+        Coordinates<double> c = x.bodies.load(i);
+        const Vec3 f = blk.force<double>(i), tau = blk.torque<double>(i);
+        for (size_t k = 0; k < 3; ++k) {
+          loads_[k][i] = f(static_cast<Eigen::Index>(k));
+          loads_[3 + k][i] = tau(static_cast<Eigen::Index>(k));
+        }
+        kick(F, c, 0.5 * h, f, tau, engine_.m<double>(i), engine_.Lambda<double>(i));
+        x.bodies.store(i, c);
+      }
+    });
+    particle_loads_.assign(engine_.particle_forces().begin(), engine_.particle_forces().end());
+    for (size_t p = 0; p < x.particles.size(); ++p) x.particles[p].v += 0.5 * h * particle_loads_[p] / model.particles[p].mass;
+    remember(x);
   }
 
  private:
-  const Loads& loads_at(const Model& model, Formulation F, const SystemCoordinates& x) const {
-    if (!(cached_ && same(x, cached_x_))) {
-      evaluate_loads(model, to_state(F, x), cached_loads_);
-      cached_x_ = x;
-      cached_ = true;
-    }
-    return cached_loads_;
-  }
+  Vec3 cached(size_t first, size_t i) const { return {loads_[first][i], loads_[first + 1][i], loads_[first + 2][i]}; }
 
-  static bool same(const SystemCoordinates& a, const SystemCoordinates& b) {
-    if (a.t != b.t || a.bodies.size() != b.bodies.size() || a.particles.size() != b.particles.size()) return false;
-    for (size_t i = 0; i < a.bodies.size(); ++i) {
-      const auto &p = a.bodies[i], &q = b.bodies[i];
-      if (p.o != q.o || p.q.coeffs() != q.q.coeffs() || p.v != q.v || p.omega != q.omega) return false;
+  void remember(const SystemCoordinates& x) {
+    state_ = x.bodies;  // same shape from the second step on: a copy, no allocation
+    particles_ = x.particles;
+    t_ = x.t;
+    cached_ = true;
+  }
+  bool same(const SystemCoordinates& x) const {
+    if (x.t != t_ || x.bodies.size() != state_.size() || x.particles.size() != particles_.size()) return false;
+    for (size_t k = 0; k < BodyColumns::kCount; ++k) {
+      if (std::memcmp(x.bodies[k], state_[k], x.bodies.size() * sizeof(double)) != 0) return false;
     }
-    for (size_t i = 0; i < a.particles.size(); ++i) {
-      if (a.particles[i].x != b.particles[i].x || a.particles[i].v != b.particles[i].v) return false;
+    for (size_t i = 0; i < particles_.size(); ++i) {
+      if (x.particles[i].x != particles_[i].x || x.particles[i].v != particles_[i].v) return false;
     }
     return true;
   }
 
   /// K(τ): v += τ f/m and L_w += τ τ_w with the pose frozen, in the formulation's variables.
-  static void kick(const Model& model, Formulation F, SystemCoordinates& x, double tau, const Loads& loads) {
-    for (size_t i = 0; i < x.bodies.size(); ++i) {
-      auto& c = x.bodies[i];
-      const RigidBody& b = model.bodies[i];
-      const Quat q_inv = c.q.conjugate();
-      const Vec3 dv_w = tau * loads.bodies[i].force / b.mass();
-      const Vec3 dw_b = tau * (q_inv * loads.bodies[i].torque).cwiseQuotient(b.Lambda());  // Λ⁻¹ Rᵀ Δl
-      c.v += F == Formulation::body ? Vec3(q_inv * dv_w) : dv_w;
-      c.omega += F == Formulation::world ? Vec3(c.q * dw_b) : dw_b;
-    }
-    for (size_t i = 0; i < x.particles.size(); ++i) x.particles[i].v += tau * loads.particles[i] / model.particles[i].mass;
+  static void kick(Formulation F, Coordinates<double>& c, double tau, const Vec3& f_w, const Vec3& tau_w, double m,
+                   const Vec3& Lambda) {
+    const Quat q_inv = c.q.conjugate();
+    const Vec3 dv_w = tau * f_w / m;
+    const Vec3 dw_b = tau * (q_inv * tau_w).cwiseQuotient(Lambda);  // Λ⁻¹ Rᵀ Δl
+    c.v += F == Formulation::body ? Vec3(q_inv * dv_w) : dv_w;
+    c.omega += F == Formulation::world ? Vec3(c.q * dw_b) : dw_b;
   }
 
   /// D(h): the exact force-free, torque-free motion.
-  static void drift(const Model& model, Formulation F, SystemCoordinates& x, double h) {
-    for (size_t i = 0; i < x.bodies.size(); ++i) {
-      auto& c = x.bodies[i];
-      const Vec3 v_w = F == Formulation::body ? Vec3(c.q * c.v) : c.v;
-      const Vec3 w_b = F == Formulation::world ? Vec3(c.q.conjugate() * c.omega) : c.omega;
-      const EulerPoinsot flow(model.bodies[i].Lambda(), c.q, w_b);
-      c.o += h * v_w;
-      c.q = flow.q(h);
-      const Vec3 w_b_new = flow.omega_b(h);
-      c.omega = F == Formulation::world ? Vec3(c.q * w_b_new) : w_b_new;
-      if (F == Formulation::body) c.v = c.q.conjugate() * v_w;
-    }
-    for (auto& p : x.particles) p.x += h * p.v;
+  static void drift(Formulation F, Coordinates<double>& c, double h, const Vec3& Lambda) {
+    const Vec3 v_w = F == Formulation::body ? Vec3(c.q * c.v) : c.v;
+    const Vec3 w_b = F == Formulation::world ? Vec3(c.q.conjugate() * c.omega) : c.omega;
+    const EulerPoinsot flow(Lambda, c.q, w_b);
+    c.o += h * v_w;
+    c.q = flow.q(h);
+    const Vec3 w_b_new = flow.omega_b(h);
+    c.omega = F == Formulation::world ? Vec3(c.q * w_b_new) : w_b_new;
+    if (F == Formulation::body) c.v = c.q.conjugate() * v_w;
   }
 
-  mutable bool cached_ = false;
-  mutable SystemCoordinates cached_x_;
-  mutable Loads cached_loads_;
+  engine::Engine engine_;
+  Columns loads_;  // loads at the end of the last step: f (3), τ (3)
+  std::vector<Vec3> particle_loads_;
+  bool cached_ = false;
+  BodyColumns state_;  // the state they belong to
+  std::vector<ParticleState> particles_;
+  double t_ = 0.0;
 };
 
 class Splitting2 final : public Integrator {
@@ -95,8 +127,8 @@ class Splitting2 final : public Integrator {
   std::string name() const override { return "splitting"; }
   int order() const override { return 2; }
   int evaluations_per_step() const override { return 1; }
-  void step(const Model& model, Formulation F, SystemCoordinates& x, double h) const override {
-    strang_.step(model, F, x, h);
+  void step(const Model& model, Formulation F, SystemCoordinates& x, double h) override {
+    strang_.step(model, F, x, h, threads_);
   }
 
  private:
@@ -108,13 +140,13 @@ class Splitting4 final : public Integrator {
   std::string name() const override { return "splitting4"; }
   int order() const override { return 4; }
   int evaluations_per_step() const override { return 3; }
-  void step(const Model& model, Formulation F, SystemCoordinates& x, double h) const override {
+  void step(const Model& model, Formulation F, SystemCoordinates& x, double h) override {
     static const double w1 = 1.0 / (2.0 - std::cbrt(2.0));
     static const double w0 = 1.0 - 2.0 * w1;
     const double t_end = x.t + h;
-    strang_.step(model, F, x, w1 * h);
-    strang_.step(model, F, x, w0 * h);
-    strang_.step(model, F, x, w1 * h);
+    strang_.step(model, F, x, w1 * h, threads_);
+    strang_.step(model, F, x, w0 * h, threads_);
+    strang_.step(model, F, x, w1 * h, threads_);
     x.t = t_end;  // the three substeps add to h up to rounding
   }
 

@@ -14,22 +14,6 @@ void require(bool ok, const std::string& message) {
   if (!ok) throw InvalidArgument(message);
 }
 
-/// The first non-finite body or particle in `state`, as a message; empty if all is finite.
-std::string non_finite(const Model& model, const SystemCoordinates& state) {
-  for (size_t i = 0; i < state.bodies.size(); ++i) {
-    const Coordinates<double>& s = state.bodies[i];
-    if (!s.o.allFinite() || !s.q.coeffs().allFinite() || !s.v.allFinite() || !s.omega.allFinite()) {
-      return fmt::format("body '{}'", model.bodies[i].name());
-    }
-  }
-  for (size_t i = 0; i < state.particles.size(); ++i) {
-    if (!state.particles[i].x.allFinite() || !state.particles[i].v.allFinite()) {
-      return fmt::format("particle '{}'", model.particles[i].name);
-    }
-  }
-  return {};
-}
-
 /// g of an event at a state; a NaN or infinity would hide every crossing, so it is an error.
 double evaluate(const Event& e, const SystemState& s) {
   const double g = e.g(s);
@@ -127,7 +111,7 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
                                       model.particles.size()));
   }
   SystemCoordinates x = to_coordinates(settings.formulation, state);
-  if (const std::string bad = non_finite(model, x); !bad.empty()) {
+  if (const std::string bad = first_non_finite(model, x); !bad.empty()) {
     throw InvalidArgument(fmt::format("initial state of {} is not finite", bad));
   }
   const double t0 = state.t;
@@ -138,7 +122,7 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
   long k_out = 1;
   if (on_sample && !on_sample(state)) return state;
   auto check = [&](const SystemCoordinates& y, long step, double step_h) {
-    if (const std::string bad = non_finite(model, y); !bad.empty()) {
+    if (const std::string bad = first_non_finite(model, y); !bad.empty()) {
       throw Error(fmt::format(
           "the state of {} became non-finite at t = {} s (step {}, h = {} s, integrator {}); reduce "
           "the timestep (or tolerances) or check the forces for singularities",
@@ -202,6 +186,7 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
   }
 
   const auto integrator = make_integrator(settings.integrator);
+  integrator->set_threads(settings.threads);
   long step = 0;
   // A step shorter than this fraction of h is rounding of the sample grid, not a real step.
   const double tiny = 1e-9 * h;

@@ -35,7 +35,7 @@ TEST(LieRk4, OrientationStaysOnSO3WithoutRenormalisation) {
     const auto integrator = make_integrator("lie_rk4");
     SystemCoordinates x = to_coordinates(F, test::single(s0));
     for (int i = 0; i < 100000; ++i) integrator->step(model, F, x, 1e-3);
-    EXPECT_LT(std::abs(x.bodies[0].q.norm() - 1.0), 1e-13) << formulation_name(F);
+    EXPECT_LT(std::abs(x.bodies.quat(0).norm() - 1.0), 1e-13) << formulation_name(F);
   }
 }
 

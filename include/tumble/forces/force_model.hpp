@@ -2,6 +2,14 @@
 // Forces and torques. Every force model adds its contribution to one wrench per body (force in world,
 // torque about the body's centre of mass in world) and one force per particle; the integrators sum
 // them once per right-hand-side evaluation.
+//
+// Two kinds of model:
+//  - local models (LocalForceModel: gravity, central gravity, damping, drag, applied forces and
+//    torques, callbacks): the load on a body depends on that body's own state only. The engine hands
+//    them the bodies block by block as columns (BodyBlock), so they run over many bodies at once, in
+//    parallel, without gathering anything;
+//  - system models (springs between bodies, and any model a user writes on ForceModel directly): they
+//    see the whole system as per-body structs (SystemView) and may read and load any body or particle.
 #include <optional>
 #include <span>
 #include <string>
@@ -14,11 +22,11 @@ namespace tumble {
 
 /// Force and torque on a rigid body, world axes; the torque is about the centre of mass.
 struct Wrench {
-  Vec3 force = Vec3::Zero();
-  Vec3 torque = Vec3::Zero();
+  Vec3 force = Vec3::Zero();   ///< N, world
+  Vec3 torque = Vec3::Zero();  ///< N·m, world, about the centre of mass
 };
 
-/// What a force model can read: bodies, particles and their current states.
+/// What a system model can read: bodies, particles and their current states.
 struct SystemView {
   double t = 0.0;
   std::span<const RigidBody> bodies;
@@ -30,11 +38,46 @@ struct SystemView {
 /// What force models write: the summed loads.
 struct Loads {
   std::vector<Wrench> bodies;
-  std::vector<Vec3> particles;
+  std::vector<Vec3> particles;  ///< N, world
 
   void reset(size_t n_bodies, size_t n_particles);
   /// A force f applied at the world point x of body i: adds f and the moment (x − o) × f.
   void add_force_at(size_t i, const BodyState& s, const Vec3& f, const Vec3& x);
+};
+
+/// World quantities of the consecutive bodies begin … begin + count − 1 at time t, as columns indexed
+/// by j = i − begin. v and omega_w are filled only when some model of the run needs_velocity().
+struct BodyBlock {
+  double t = 0.0;
+  size_t begin = 0, count = 0;
+  const RigidBody* bodies = nullptr;  ///< bodies[j]
+  const double* m = nullptr;          ///< mass (kg)
+  const double* Lambda[3] = {};       ///< principal moments (kg·m²)
+  const double* o[3] = {};            ///< centre of mass, world (m)
+  const double* q[4] = {};            ///< orientation of {b}, (w, x, y, z)
+  const double* v[3] = {};            ///< velocity of the centre of mass, world (m/s)
+  const double* omega_w[3] = {};      ///< angular velocity, world (rad/s)
+
+  /// Body j as a struct (for models that treat one body at a time).
+  BodyState state(size_t j) const;
+  /// Whether global body index i is in this block.
+  bool contains(size_t i) const { return i >= begin && i < begin + count; }
+};
+
+/// The loads of a block, columns indexed like BodyBlock: force (N) and torque about the centre of mass
+/// (N·m), world axes.
+struct BlockLoads {
+  double* f[3] = {};
+  double* tau[3] = {};
+
+  void add(size_t j, const Vec3& force, const Vec3& torque) {
+    for (int k = 0; k < 3; ++k) {
+      f[k][j] += force(k);
+      tau[k][j] += torque(k);
+    }
+  }
+  /// A force applied at the world point x of body j, whose centre of mass is at o: f and (x − o) × f.
+  void add_force_at(size_t j, const Vec3& o, const Vec3& force, const Vec3& x) { add(j, force, (x - o).cross(force)); }
 };
 
 class ForceModel {
@@ -46,6 +89,27 @@ class ForceModel {
   virtual std::string describe() const = 0;
   /// The potential energy, for conservative models (gravity, springs); nullopt otherwise.
   virtual std::optional<double> potential_energy(const SystemView&) const { return std::nullopt; }
+  /// Local models are evaluated block by block (LocalForceModel); the others on the whole system.
+  virtual bool local() const { return false; }
+  /// Whether the model reads velocities (the engine then forms world v and ω for it).
+  virtual bool needs_velocity() const { return true; }
+  /// Throws InvalidArgument when the model refers to a body or particle index the system does not
+  /// have. Called once before a run, so that evaluations need not check.
+  virtual void check(size_t /*n_bodies*/, size_t /*n_particles*/) const {}
+};
+
+/// A model whose load on each body depends only on that body's state. It is written once, over a
+/// block of bodies in columns; `accumulate` on a SystemView runs the same code on one block gathered
+/// from the structs.
+class LocalForceModel : public ForceModel {
+ public:
+  /// Add the loads on the bodies of `block` to `loads` (same indices j).
+  virtual void accumulate_block(const BodyBlock& block, BlockLoads& loads) const = 0;
+  /// Add the loads on particles (default: none).
+  virtual void accumulate_particles(const SystemView&, std::span<Vec3>) const {}
+
+  void accumulate(const SystemView& view, Loads& loads) const final;
+  bool local() const final { return true; }
 };
 
 }  // namespace tumble

@@ -3,6 +3,7 @@
 // (x, y, z, w): convert here and nowhere else.
 #include <cmath>
 
+#include "tumble/math/lanes.hpp"
 #include "tumble/math/types.hpp"
 
 namespace tumble {
@@ -26,23 +27,29 @@ QuatT<T> pure(const Vec3T<T>& v) {
 }
 
 /// exp of the rotation vector φ: the unit quaternion (cos(|φ|/2), sin(|φ|/2) φ/|φ|), i.e. the rotation
-/// by |φ| about φ. Near zero the Taylor series keeps full accuracy.
+/// by |φ| about φ. Below |φ|² = 1e-8 the Taylor series (error < 1e-26, under rounding) replaces
+/// sin(θ/2)/θ, whose quotient loses accuracy as θ → 0 and is 0/0 at 0. Branch-free: both forms are
+/// computed and `select` keeps one per lane (the other may be 0/0 there, and is discarded).
 template <class T>
 QuatT<T> quat_exp(const Vec3T<T>& phi) {
   using std::cos;
   using std::sin;
   using std::sqrt;
   const T theta2 = phi.squaredNorm();
-  T c, s;  // cos(θ/2), sin(θ/2)/θ
-  if (theta2 < T(1e-8)) {
-    c = T(1) - theta2 / T(8) + theta2 * theta2 / T(384);
-    s = T(0.5) - theta2 / T(48) + theta2 * theta2 / T(3840);
-  } else {
-    const T theta = sqrt(theta2);
-    c = cos(theta / T(2));
-    s = sin(theta / T(2)) / theta;
-  }
+  const T theta = sqrt(theta2);
+  const auto small = theta2 < T(1e-8);
+  const T c = select(small, T(1) - theta2 / T(8) + theta2 * theta2 / T(384), cos(theta / T(2)));
+  const T s = select(small, T(0.5) - theta2 / T(48) + theta2 * theta2 / T(3840), sin(theta / T(2)) / theta);
   return QuatT<T>(c, s * phi.x(), s * phi.y(), s * phi.z());
+}
+
+/// q/|q|, branch-free (Eigen's normalize() tests the norm, a branch on a value). Projects a stage or
+/// step quaternion back onto the unit sphere.
+template <class T>
+QuatT<T> normalized(const QuatT<T>& q) {
+  using std::sqrt;
+  const T inv_norm = T(1) / sqrt(q.coeffs().squaredNorm());
+  return QuatT<T>(q.w() * inv_norm, q.x() * inv_norm, q.y() * inv_norm, q.z() * inv_norm);
 }
 
 /// The rotation vector of a unit quaternion (angle in [0, π]).

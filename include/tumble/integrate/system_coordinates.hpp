@@ -1,0 +1,27 @@
+#pragma once
+// A Model's integrated variables in one formulation, as columns: what every integrator steps in place.
+#include <vector>
+
+#include "tumble/dynamics/columns.hpp"
+#include "tumble/forces/model.hpp"
+
+namespace tumble {
+
+/// The variables of every body (o, q, v, ω in the formulation's frames, newton_euler.hpp) as columns,
+/// and the particles' positions and velocities (world), at time t.
+struct SystemCoordinates {
+  double t = 0.0;
+  BodyColumns bodies;
+  std::vector<ParticleState> particles;
+};
+
+SystemCoordinates to_coordinates(Formulation formulation, const SystemState& state);
+SystemState to_state(Formulation formulation, const SystemCoordinates& x);
+/// The same into `state`, reusing its storage.
+void to_state(Formulation formulation, const SystemCoordinates& x, SystemState& state);
+
+/// The first body or particle of x that is not finite, as "body 'name'" or "particle 'name'"; empty
+/// when everything is finite.
+std::string first_non_finite(const Model& model, const SystemCoordinates& x);
+
+}  // namespace tumble

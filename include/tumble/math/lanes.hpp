@@ -1,0 +1,26 @@
+#pragma once
+// Scalars and packs of lanes. The equations of tumble are templates on a number type T that is either
+// `double` (one body) or a SIMD pack (one body per lane, tumble/math/simd.hpp). They are written
+// branch-free on values: a choice between two values is `select(condition, a, b)`, never `if`, so
+// every lane computes exactly what the scalar path computes for that body.
+//
+// Lanes<T> says how T meets memory: the number of bodies it holds and how it loads and stores a run
+// of that many doubles from a column (columns are padded and aligned, dynamics/columns.hpp).
+#include <cstddef>
+
+namespace tumble {
+
+template <class T>
+struct Lanes;
+
+template <>
+struct Lanes<double> {
+  static constexpr std::size_t width = 1;
+  static double load(const double* p) { return *p; }
+  static void store(double* p, double v) { *p = v; }
+};
+
+/// The scalar form of a lane-wise choice: a where `condition` holds, else b.
+inline double select(bool condition, double a, double b) { return condition ? a : b; }
+
+}  // namespace tumble

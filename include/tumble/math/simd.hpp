@@ -1,0 +1,38 @@
+#pragma once
+// xsimd packs of doubles as the number type of tumble's templated equations (math/lanes.hpp): the
+// Lanes<> trait for them, and the Eigen::NumTraits that lets Eigen's fixed-size vectors, matrices and
+// quaternions hold one body per lane. Comparisons give xsimd::batch_bool, which `select` (found by
+// argument-dependent lookup in xsimd) turns into a blend.
+#include <xsimd/xsimd.hpp>
+
+#include "tumble/math/lanes.hpp"
+#include "tumble/math/types.hpp"
+
+namespace tumble {
+
+template <class Arch>
+struct Lanes<xsimd::batch<double, Arch>> {
+  using Pack = xsimd::batch<double, Arch>;
+  static constexpr std::size_t width = Pack::size;
+  static Pack load(const double* p) { return Pack::load_aligned(p); }
+  static void store(double* p, const Pack& v) { v.store_aligned(p); }
+};
+
+}  // namespace tumble
+
+namespace Eigen {
+
+template <class Arch>
+struct NumTraits<xsimd::batch<double, Arch>> : GenericNumTraits<double> {
+  using Real = xsimd::batch<double, Arch>;
+  using NonInteger = Real;
+  using Literal = Real;
+  using Nested = Real;
+  enum { IsComplex = 0, IsInteger = 0, IsSigned = 1, RequireInitialization = 1, ReadCost = 1, AddCost = 1,
+         MulCost = 1 };
+  static Real epsilon() { return Real(NumTraits<double>::epsilon()); }
+  static Real dummy_precision() { return Real(NumTraits<double>::dummy_precision()); }
+  static int digits10() { return NumTraits<double>::digits10(); }
+};
+
+}  // namespace Eigen

@@ -1,0 +1,113 @@
+#include "engine.hpp"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace tumble::engine {
+
+int omp_thread() {
+#ifdef _OPENMP
+  return omp_get_thread_num();
+#else
+  return 0;
+#endif
+}
+
+int max_threads() {
+#ifdef _OPENMP
+  return omp_get_max_threads();
+#else
+  return 1;
+#endif
+}
+
+void Engine::prepare(const Model& model, Formulation formulation, int threads) {
+  const int wanted = threads > 0 ? threads : max_threads();
+  if (model_ == &model && bodies_data_ == model.bodies.data() && n_bodies_ == model.bodies.size() &&
+      n_particles_ == model.particles.size() && n_forces_ == model.forces.size() && formulation_ == formulation &&
+      threads_ == wanted) {
+    return;
+  }
+  model_ = &model;
+  bodies_data_ = model.bodies.data();
+  n_bodies_ = model.bodies.size();
+  n_particles_ = model.particles.size();
+  n_forces_ = model.forces.size();
+  formulation_ = formulation;
+  threads_ = wanted;
+
+  constants_.resize(n_bodies_, 4);
+  for (size_t k = 0; k < 4; ++k) std::fill(constants_[k], constants_[k] + constants_.stride(), 1.0);
+  for (size_t i = 0; i < n_bodies_; ++i) {
+    constants_[0][i] = model.bodies[i].mass();
+    for (size_t k = 0; k < 3; ++k) constants_[1 + k][i] = model.bodies[i].Lambda()(static_cast<Eigen::Index>(k));
+  }
+
+  local_.clear();
+  system_.clear();
+  needs_velocity_ = false;
+  for (const auto& force : model.forces) {
+    force->check(n_bodies_, n_particles_);
+    needs_velocity_ = needs_velocity_ || force->needs_velocity();
+    if (force->local()) {
+      local_.push_back(static_cast<const LocalForceModel*>(force.get()));
+    } else {
+      system_.push_back(force.get());
+    }
+  }
+  scratch_.resize(static_cast<size_t>(threads_));
+  system_loads_.bodies.assign(system_.empty() ? 0 : n_bodies_, Wrench{});
+  system_loads_.particles.assign(n_particles_, Vec3::Zero());
+  body_states_.assign(system_.empty() ? 0 : n_bodies_, BodyState{});
+}
+
+void Engine::system_part(const SystemCoordinates& y) {
+  if (system_.empty() && n_particles_ == 0) return;
+  for (Wrench& w : system_loads_.bodies) w = Wrench{};
+  for (Vec3& f : system_loads_.particles) f.setZero();
+  if (!system_.empty()) {
+    for (size_t i = 0; i < n_bodies_; ++i) body_states_[i] = to_state(formulation_, y.bodies.load(i));
+  }
+  const SystemView view{y.t, model_->bodies, body_states_, model_->particles, y.particles};
+  for (const ForceModel* force : system_) force->accumulate(view, system_loads_);
+  if (n_particles_ > 0) {
+    for (const LocalForceModel* force : local_) force->accumulate_particles(view, system_loads_.particles);
+  }
+}
+
+BodyBlock Engine::block_view(const SystemCoordinates& y, size_t begin, size_t count, Scratch& s) const {
+  BodyBlock b;
+  b.t = y.t;
+  b.begin = begin;
+  b.count = count;
+  b.bodies = model_->bodies.data() + begin;
+  b.m = constants_[0] + begin;
+  for (size_t k = 0; k < 3; ++k) {
+    b.Lambda[k] = constants_[1 + k] + begin;
+    b.o[k] = y.bodies[BodyColumns::o + k] + begin;
+  }
+  for (size_t k = 0; k < 4; ++k) b.q[k] = y.bodies[BodyColumns::q + k] + begin;
+  if (!needs_velocity_) return b;
+  // World v and ω: the formulation's own columns where they are world quantities, else rotated into
+  // the block's scratch (v_w = R ^bv, ω_w = R ^bω).
+  const bool v_world = formulation_ != Formulation::body, omega_world = formulation_ == Formulation::world;
+  for (size_t k = 0; k < 3; ++k) {
+    b.v[k] = v_world ? y.bodies[BodyColumns::v + k] + begin : s.world[k];
+    b.omega_w[k] = omega_world ? y.bodies[BodyColumns::omega + k] + begin : s.world[3 + k];
+  }
+  for (size_t j = 0; j < count; ++j) {
+    const Quat q = y.bodies.quat(begin + j);
+    if (!v_world) {
+      const Vec3 v = q * y.bodies.vec3(BodyColumns::v, begin + j);
+      for (size_t k = 0; k < 3; ++k) s.world[k][j] = v(static_cast<Eigen::Index>(k));
+    }
+    if (!omega_world) {
+      const Vec3 w = q * y.bodies.vec3(BodyColumns::omega, begin + j);
+      for (size_t k = 0; k < 3; ++k) s.world[3 + k][j] = w(static_cast<Eigen::Index>(k));
+    }
+  }
+  return b;
+}
+
+}  // namespace tumble::engine

@@ -1,0 +1,190 @@
+#pragma once
+// The batched core shared by every fixed-step integrator: it evaluates the loads on all bodies block
+// by block and hands each block, right after its loads, to the integrator's kernel, which updates the
+// columns in place (one pack of bodies at a time, tumble/math/simd.hpp).
+//
+// Why blocks: a block of kBlock bodies keeps its loads and world-velocity scratch in L1 cache, so the
+// only whole-system arrays are the state columns themselves; blocks are also the unit of parallel work.
+// Every body is computed by the same pack code whatever the block or thread it falls in (blocks start
+// at multiples of the pack width; padding lanes are harmless), so results are bit-identical for any
+// number of bodies around it and any thread count.
+//
+// Allocation happens in prepare(), once per run (again only when the model changes size); a step
+// allocates nothing.
+#include <exception>
+#include <span>
+#include <vector>
+
+#include "stages.hpp"
+#include "tumble/integrate/system_coordinates.hpp"
+#include "tumble/math/simd.hpp"
+
+namespace tumble::engine {
+
+/// The OpenMP thread number inside a parallel region (0 outside, or without OpenMP).
+int omp_thread();
+/// Hardware threads available to OpenMP.
+int max_threads();
+
+/// The pack the build's instruction set offers (AVX-512: 8 doubles, AVX2: 4, SSE2: 2).
+using Pack = xsimd::batch<double>;
+inline constexpr size_t kWidth = Pack::size;
+/// Bodies per block (a multiple of every pack width).
+inline constexpr size_t kBlock = 256;
+
+/// One block as a kernel sees it: bodies [begin, end) (end a multiple of the pack width, so it may
+/// include padding lanes) and their loads (world force and torque), indexed i − begin.
+struct Block {
+  size_t begin = 0, end = 0;
+  const double* f[3] = {};
+  const double* tau[3] = {};
+
+  template <class T>
+  Vec3T<T> force(size_t i) const {
+    return {Lanes<T>::load(f[0] + (i - begin)), Lanes<T>::load(f[1] + (i - begin)), Lanes<T>::load(f[2] + (i - begin))};
+  }
+  template <class T>
+  Vec3T<T> torque(size_t i) const {
+    return {Lanes<T>::load(tau[0] + (i - begin)), Lanes<T>::load(tau[1] + (i - begin)),
+            Lanes<T>::load(tau[2] + (i - begin))};
+  }
+};
+
+class Engine {
+ public:
+  /// Binds the engine to a model and formulation and sizes every buffer. Cheap when nothing changed.
+  /// threads ≤ 0 means one per hardware thread. Checks every force model's body references once.
+  void prepare(const Model& model, Formulation formulation, int threads);
+
+  /// Evaluates the loads at y (forces at time y.t) and calls kernel(const Block&) for every block right
+  /// after its loads, in parallel across blocks. Particle loads are in particle_forces() afterwards.
+  template <class Kernel>
+  void evaluate(const SystemCoordinates& y, Kernel&& kernel);
+
+  /// Calls kernel(const Block&) for every block without evaluating loads (they read as zero).
+  template <class Kernel>
+  void for_each_block(size_t n, Kernel&& kernel);
+
+  /// The Newton–Euler rates of body (or pack) i at y, with the loads of its block (newton_euler.hpp).
+  template <class T>
+  CoordinateRates<T> rates(const Block& block, size_t i, const Coordinates<T>& y) const {
+    return newton_euler<T>(formulation_, m<T>(i), Lambda<T>(i), y, block.force<T>(i), block.torque<T>(i));
+  }
+  /// (ẋ, v̇) of particle p at s, with the loads of the last evaluate().
+  ParticleState particle_rates(size_t p, const ParticleState& s) const {
+    return tumble::particle_rates(model_->particles[p], s, system_loads_.particles[p]);
+  }
+  std::span<const Vec3> particle_forces() const { return system_loads_.particles; }
+  const Model& model() const { return *model_; }
+  Formulation formulation() const { return formulation_; }
+
+  /// Per-body constants, padded with ones: m (kg) and Λ (kg·m²).
+  template <class T>
+  T m(size_t i) const {
+    return Lanes<T>::load(constants_[0] + i);
+  }
+  template <class T>
+  Vec3T<T> Lambda(size_t i) const {
+    return {Lanes<T>::load(constants_[1] + i), Lanes<T>::load(constants_[2] + i), Lanes<T>::load(constants_[3] + i)};
+  }
+
+ private:
+  struct Scratch {
+    Columns loads{kBlock, 6};  // f (3), τ (3)
+    Columns world{kBlock, 6};  // v, ω in world axes, when the formulation does not integrate them
+    std::exception_ptr error;
+    size_t error_block = 0;
+  };
+  void system_part(const SystemCoordinates& y);
+  BodyBlock block_view(const SystemCoordinates& y, size_t begin, size_t count, Scratch& s) const;
+  template <class F>
+  void parallel_blocks(size_t n, F&& f);
+
+  const Model* model_ = nullptr;
+  const RigidBody* bodies_data_ = nullptr;
+  size_t n_bodies_ = 0, n_particles_ = 0, n_forces_ = 0;
+  Formulation formulation_ = Formulation::mixed;
+  int threads_ = 1;
+  Columns constants_;
+  std::vector<const LocalForceModel*> local_;
+  std::vector<const ForceModel*> system_;
+  bool needs_velocity_ = false;
+  std::vector<Scratch> scratch_;
+  Loads system_loads_;               // loads of the system models, and every particle load
+  std::vector<BodyState> body_states_;  // world structs, gathered only for system models
+};
+
+// ---- templates ------------------------------------------------------------------------------------
+
+template <class F>
+void Engine::parallel_blocks(size_t n, F&& f) {
+  const size_t blocks = (n + kBlock - 1) / kBlock;
+  auto run = [&](size_t b, Scratch& s) {
+    try {
+      f(b, s);
+    } catch (...) {
+      if (!s.error || b < s.error_block) {
+        s.error = std::current_exception();
+        s.error_block = b;
+      }
+    }
+  };
+  const int threads = static_cast<int>(std::min<size_t>(static_cast<size_t>(threads_), blocks));
+  if (threads <= 1) {
+    for (size_t b = 0; b < blocks; ++b) run(b, scratch_[0]);
+  } else {
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (size_t b = 0; b < blocks; ++b) run(b, scratch_[static_cast<size_t>(omp_thread())]);
+  }
+  // The error of the first block that failed, whatever the thread count.
+  Scratch* first = nullptr;
+  for (Scratch& s : scratch_) {
+    if (s.error && (!first || s.error_block < first->error_block)) first = &s;
+  }
+  if (first) {
+    const std::exception_ptr e = first->error;
+    for (Scratch& s : scratch_) s.error = nullptr;
+    std::rethrow_exception(e);
+  }
+}
+
+template <class Kernel>
+void Engine::evaluate(const SystemCoordinates& y, Kernel&& kernel) {
+  system_part(y);
+  const size_t n = n_bodies_;
+  parallel_blocks(n, [&](size_t b, Scratch& s) {
+    const size_t begin = b * kBlock, count = std::min(kBlock, n - begin);
+    std::fill(s.loads[0], s.loads[0] + 6 * kBlock, 0.0);
+    const BodyBlock view = block_view(y, begin, count, s);
+    BlockLoads loads;
+    for (size_t k = 0; k < 3; ++k) {
+      loads.f[k] = s.loads[k];
+      loads.tau[k] = s.loads[3 + k];
+    }
+    for (const LocalForceModel* force : local_) force->accumulate_block(view, loads);
+    if (!system_loads_.bodies.empty()) {
+      for (size_t j = 0; j < count; ++j) loads.add(j, system_loads_.bodies[begin + j].force, system_loads_.bodies[begin + j].torque);
+    }
+    Block block{begin, std::min(begin + kBlock, padded_size(n)), {}, {}};
+    for (size_t k = 0; k < 3; ++k) {
+      block.f[k] = loads.f[k];
+      block.tau[k] = loads.tau[k];
+    }
+    kernel(static_cast<const Block&>(block));
+  });
+}
+
+template <class Kernel>
+void Engine::for_each_block(size_t n, Kernel&& kernel) {
+  parallel_blocks(n, [&](size_t b, Scratch& s) {
+    std::fill(s.loads[0], s.loads[0] + 6 * kBlock, 0.0);
+    Block block{b * kBlock, std::min(b * kBlock + kBlock, padded_size(n)), {}, {}};
+    for (size_t k = 0; k < 3; ++k) {
+      block.f[k] = s.loads[k];
+      block.tau[k] = s.loads[3 + k];
+    }
+    kernel(static_cast<const Block&>(block));
+  });
+}
+
+}  // namespace tumble::engine

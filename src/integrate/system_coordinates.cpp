@@ -1,0 +1,54 @@
+#include "tumble/integrate/system_coordinates.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace tumble {
+
+SystemCoordinates to_coordinates(Formulation formulation, const SystemState& state) {
+  SystemCoordinates x;
+  x.t = state.t;
+  x.bodies.resize(state.bodies.size());
+  for (size_t i = 0; i < state.bodies.size(); ++i) x.bodies.store(i, to_coordinates(formulation, state.bodies[i]));
+  x.particles = state.particles;
+  return x;
+}
+
+void to_state(Formulation formulation, const SystemCoordinates& x, SystemState& s) {
+  s.t = x.t;
+  s.bodies.resize(x.bodies.size());
+  for (size_t i = 0; i < x.bodies.size(); ++i) s.bodies[i] = to_state(formulation, x.bodies.load(i));
+  s.particles = x.particles;
+}
+
+SystemState to_state(Formulation formulation, const SystemCoordinates& x) {
+  SystemState s;
+  to_state(formulation, x, s);
+  return s;
+}
+
+std::string first_non_finite(const Model& model, const SystemCoordinates& x) {
+  // x·0 is 0 for a finite x and NaN for ±∞ and NaN: one sum per column finds out whether to look closer.
+  const size_t n = x.bodies.size();
+  double probe = 0.0;
+  for (size_t k = 0; k < BodyColumns::kCount; ++k) {
+    const double* c = x.bodies[k];
+    for (size_t i = 0; i < n; ++i) probe += c[i] * 0.0;
+  }
+  if (!std::isfinite(probe)) {
+    for (size_t i = 0; i < n; ++i) {
+      for (size_t k = 0; k < BodyColumns::kCount; ++k) {
+        if (!std::isfinite(x.bodies[k][i])) return fmt::format("body '{}'", model.bodies[i].name());
+      }
+    }
+  }
+  for (size_t i = 0; i < x.particles.size(); ++i) {
+    if (!x.particles[i].x.allFinite() || !x.particles[i].v.allFinite()) {
+      return fmt::format("particle '{}'", model.particles[i].name);
+    }
+  }
+  return {};
+}
+
+}  // namespace tumble
