@@ -1,5 +1,7 @@
 #include "engine.hpp"
 
+#include "tumble/integrate/integrator.hpp"
+
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -21,6 +23,14 @@ int max_threads() {
   return 1;
 #endif
 }
+
+}  // namespace tumble::engine
+
+namespace tumble {
+EngineInfo engine_info() { return {xsimd::default_arch::name(), static_cast<int>(engine::kWidth)}; }
+}  // namespace tumble
+
+namespace tumble::engine {
 
 void Engine::prepare(const Model& model, Formulation formulation, int threads) {
   const int wanted = threads > 0 ? threads : max_threads();

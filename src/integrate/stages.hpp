@@ -8,14 +8,14 @@ namespace tumble {
 
 /// x + h·k; the quaternion is projected back onto |q| = 1 (which keeps the method's order).
 template <class T>
-Coordinates<T> advanced(const Coordinates<T>& x, T h, const CoordinateRates<T>& k) {
+TUMBLE_INLINE Coordinates<T> advanced(const Coordinates<T>& x, T h, const CoordinateRates<T>& k) {
   return {x.o + h * k.o_dot, normalized<T>(QuatT<T>(x.q.coeffs() + h * k.q_dot.coeffs())), x.v + h * k.v_dot,
           x.omega + h * k.omega_dot};
 }
 
 /// a + w·b.
 template <class T>
-CoordinateRates<T> axpy(const CoordinateRates<T>& a, T w, const CoordinateRates<T>& b) {
+TUMBLE_INLINE CoordinateRates<T> axpy(const CoordinateRates<T>& a, T w, const CoordinateRates<T>& b) {
   return {a.o_dot + w * b.o_dot, QuatT<T>(a.q_dot.coeffs() + w * b.q_dot.coeffs()), a.v_dot + w * b.v_dot,
           a.omega_dot + w * b.omega_dot};
 }

@@ -93,22 +93,22 @@ class BodyColumns : public Columns {
   }
 
   template <class T = double>
-  Coordinates<T> load(std::size_t i) const {
+  TUMBLE_INLINE Coordinates<T> load(std::size_t i) const {
     return {vec3<T>(o, i), quat<T>(i), vec3<T>(v, i), vec3<T>(omega, i)};
   }
   template <class T>
-  void store(std::size_t i, const Coordinates<T>& c) {
+  TUMBLE_INLINE void store(std::size_t i, const Coordinates<T>& c) {
     store_vec3<T>(o, i, c.o);
     store_quat<T>(i, c.q);
     store_vec3<T>(v, i, c.v);
     store_vec3<T>(omega, i, c.omega);
   }
   template <class T = double>
-  CoordinateRates<T> load_rates(std::size_t i) const {
+  TUMBLE_INLINE CoordinateRates<T> load_rates(std::size_t i) const {
     return {vec3<T>(o, i), quat<T>(i), vec3<T>(v, i), vec3<T>(omega, i)};
   }
   template <class T>
-  void store(std::size_t i, const CoordinateRates<T>& r) {
+  TUMBLE_INLINE void store(std::size_t i, const CoordinateRates<T>& r) {
     store_vec3<T>(o, i, r.o_dot);
     store_quat<T>(i, r.q_dot);
     store_vec3<T>(v, i, r.v_dot);
@@ -117,21 +117,21 @@ class BodyColumns : public Columns {
 
   /// Columns first … first+2 of body (or pack) i as a vector.
   template <class T = double>
-  Vec3T<T> vec3(std::size_t first, std::size_t i) const {
+  TUMBLE_INLINE Vec3T<T> vec3(std::size_t first, std::size_t i) const {
     return {Lanes<T>::load((*this)[first] + i), Lanes<T>::load((*this)[first + 1] + i),
             Lanes<T>::load((*this)[first + 2] + i)};
   }
   template <class T = double>
-  QuatT<T> quat(std::size_t i) const {
+  TUMBLE_INLINE QuatT<T> quat(std::size_t i) const {
     return QuatT<T>(Lanes<T>::load((*this)[q] + i), Lanes<T>::load((*this)[q + 1] + i),
                     Lanes<T>::load((*this)[q + 2] + i), Lanes<T>::load((*this)[q + 3] + i));
   }
   template <class T>
-  void store_vec3(std::size_t first, std::size_t i, const Vec3T<T>& u) {
+  TUMBLE_INLINE void store_vec3(std::size_t first, std::size_t i, const Vec3T<T>& u) {
     for (std::size_t k = 0; k < 3; ++k) Lanes<T>::store((*this)[first + k] + i, u(static_cast<Eigen::Index>(k)));
   }
   template <class T>
-  void store_quat(std::size_t i, const QuatT<T>& u) {
+  TUMBLE_INLINE void store_quat(std::size_t i, const QuatT<T>& u) {
     Lanes<T>::store((*this)[q] + i, u.w());
     Lanes<T>::store((*this)[q + 1] + i, u.x());
     Lanes<T>::store((*this)[q + 2] + i, u.y());

@@ -41,7 +41,7 @@ struct CoordinateRates {
 
 /// Ṙ = [ω]× R as a quaternion: q̇ = ½ (0, ω) ⊗ q.
 template <class T>
-QuatT<T> q_dot_world(const QuatT<T>& q, const Vec3T<T>& omega_w) {
+TUMBLE_INLINE QuatT<T> q_dot_world(const QuatT<T>& q, const Vec3T<T>& omega_w) {
   QuatT<T> q_dot;
   q_dot.coeffs() = T(0.5) * (pure<T>(omega_w) * q).coeffs();
   return q_dot;
@@ -49,7 +49,7 @@ QuatT<T> q_dot_world(const QuatT<T>& q, const Vec3T<T>& omega_w) {
 
 /// Ṙ = R [^bω]× as a quaternion: q̇ = ½ q ⊗ (0, ^bω).
 template <class T>
-QuatT<T> q_dot_body(const QuatT<T>& q, const Vec3T<T>& omega_b) {
+TUMBLE_INLINE QuatT<T> q_dot_body(const QuatT<T>& q, const Vec3T<T>& omega_b) {
   QuatT<T> q_dot;
   q_dot.coeffs() = T(0.5) * (q * pure<T>(omega_b)).coeffs();
   return q_dot;
@@ -58,13 +58,13 @@ QuatT<T> q_dot_body(const QuatT<T>& q, const Vec3T<T>& omega_b) {
 /// Euler's equation in the body frame solved for the angular acceleration:
 /// d/dt(^bω) = Λ⁻¹(^bτ − ^bω × (Λ ^bω)).
 template <class T>
-Vec3T<T> euler_body(const Vec3T<T>& Lambda, const Vec3T<T>& omega_b, const Vec3T<T>& tau_b) {
+TUMBLE_INLINE Vec3T<T> euler_body(const Vec3T<T>& Lambda, const Vec3T<T>& omega_b, const Vec3T<T>& tau_b) {
   return (tau_b - omega_b.cross(Lambda.cwiseProduct(omega_b))).cwiseQuotient(Lambda);
 }
 
 /// World formulation. ω̇ = I⁻¹(τ − ω × Iω) with I = RΛRᵀ, I⁻¹ = RΛ⁻¹Rᵀ.
 template <class T>
-CoordinateRates<T> newton_euler_world(T m, const Vec3T<T>& Lambda, const Coordinates<T>& x,
+TUMBLE_INLINE CoordinateRates<T> newton_euler_world(T m, const Vec3T<T>& Lambda, const Coordinates<T>& x,
                                       const Vec3T<T>& f_w, const Vec3T<T>& tau_w) {
   const Mat3T<T> R = x.q.toRotationMatrix();
   const Mat3T<T> I = R * Lambda.asDiagonal() * R.transpose();
@@ -79,7 +79,7 @@ CoordinateRates<T> newton_euler_world(T m, const Vec3T<T>& Lambda, const Coordin
 
 /// Mixed formulation: v in world, ^bω in body.
 template <class T>
-CoordinateRates<T> newton_euler_mixed(T m, const Vec3T<T>& Lambda, const Coordinates<T>& x,
+TUMBLE_INLINE CoordinateRates<T> newton_euler_mixed(T m, const Vec3T<T>& Lambda, const Coordinates<T>& x,
                                       const Vec3T<T>& f_w, const Vec3T<T>& tau_b) {
   CoordinateRates<T> r;
   r.o_dot = x.v;
@@ -91,7 +91,7 @@ CoordinateRates<T> newton_euler_mixed(T m, const Vec3T<T>& Lambda, const Coordin
 
 /// Body formulation: ^bv and ^bω in body; ^bv̇ = ^bf/m − ^bω × ^bv, ȯ = R ^bv.
 template <class T>
-CoordinateRates<T> newton_euler_body(T m, const Vec3T<T>& Lambda, const Coordinates<T>& x,
+TUMBLE_INLINE CoordinateRates<T> newton_euler_body(T m, const Vec3T<T>& Lambda, const Coordinates<T>& x,
                                      const Vec3T<T>& f_b, const Vec3T<T>& tau_b) {
   CoordinateRates<T> r;
   r.o_dot = x.q * x.v;
@@ -104,7 +104,7 @@ CoordinateRates<T> newton_euler_body(T m, const Vec3T<T>& Lambda, const Coordina
 /// The kinematic part alone, (ȯ, q̇), of any formulation (used by integrators that update velocities
 /// and positions separately).
 template <class T>
-std::pair<Vec3T<T>, QuatT<T>> kinematics(Formulation formulation, const Coordinates<T>& x) {
+TUMBLE_INLINE std::pair<Vec3T<T>, QuatT<T>> kinematics(Formulation formulation, const Coordinates<T>& x) {
   switch (formulation) {
     case Formulation::world:
       return {x.v, q_dot_world<T>(x.q, x.omega)};
@@ -119,7 +119,7 @@ std::pair<Vec3T<T>, QuatT<T>> kinematics(Formulation formulation, const Coordina
 /// The rates of any formulation for a wrench given in world axes (force, torque about the centre of
 /// mass): the wrench is rotated into the frames the formulation needs, ^bu = Rᵀ u.
 template <class T>
-CoordinateRates<T> newton_euler(Formulation formulation, T m, const Vec3T<T>& Lambda,
+TUMBLE_INLINE CoordinateRates<T> newton_euler(Formulation formulation, T m, const Vec3T<T>& Lambda,
                                 const Coordinates<T>& x, const Vec3T<T>& f_w, const Vec3T<T>& tau_w) {
   switch (formulation) {
     case Formulation::world:

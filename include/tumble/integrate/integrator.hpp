@@ -102,6 +102,14 @@ std::unique_ptr<Integrator> make_integrator(const std::string& name);
 std::unique_ptr<AdaptiveIntegrator> make_adaptive_integrator(const std::string& name,
                                                              const Tolerances& tolerances);
 
+/// What the batched engine was built for: the SIMD instruction set of its packs (e.g. "sse2", "avx2",
+/// "avx512bw") and the bodies per pack.
+struct EngineInfo {
+  std::string instruction_set;
+  int lanes = 1;
+};
+EngineInfo engine_info();
+
 /// "world", "mixed" or "body" ↔ Formulation; throws InvalidArgument for anything else.
 Formulation parse_formulation(const std::string& name);
 std::string formulation_name(Formulation formulation);

@@ -22,7 +22,7 @@ inline Eigen::Vector4d wxyz(const Quat& q) { return {q.w(), q.x(), q.y(), q.z()}
 
 /// The pure quaternion (0, v).
 template <class T>
-QuatT<T> pure(const Vec3T<T>& v) {
+TUMBLE_INLINE QuatT<T> pure(const Vec3T<T>& v) {
   return QuatT<T>(T(0), v.x(), v.y(), v.z());
 }
 
@@ -31,7 +31,7 @@ QuatT<T> pure(const Vec3T<T>& v) {
 /// sin(θ/2)/θ, whose quotient loses accuracy as θ → 0 and is 0/0 at 0. Branch-free: both forms are
 /// computed and `select` keeps one per lane (the other may be 0/0 there, and is discarded).
 template <class T>
-QuatT<T> quat_exp(const Vec3T<T>& phi) {
+TUMBLE_INLINE QuatT<T> quat_exp(const Vec3T<T>& phi) {
   using std::cos;
   using std::sin;
   using std::sqrt;
@@ -46,7 +46,7 @@ QuatT<T> quat_exp(const Vec3T<T>& phi) {
 /// q/|q|, branch-free (Eigen's normalize() tests the norm, a branch on a value). Projects a stage or
 /// step quaternion back onto the unit sphere.
 template <class T>
-QuatT<T> normalized(const QuatT<T>& q) {
+TUMBLE_INLINE QuatT<T> normalized(const QuatT<T>& q) {
   using std::sqrt;
   const T inv_norm = T(1) / sqrt(q.coeffs().squaredNorm());
   return QuatT<T>(q.w() * inv_norm, q.x() * inv_norm, q.y() * inv_norm, q.z() * inv_norm);

@@ -14,8 +14,8 @@ template <class Arch>
 struct Lanes<xsimd::batch<double, Arch>> {
   using Pack = xsimd::batch<double, Arch>;
   static constexpr std::size_t width = Pack::size;
-  static Pack load(const double* p) { return Pack::load_aligned(p); }
-  static void store(double* p, const Pack& v) { v.store_aligned(p); }
+  TUMBLE_INLINE static Pack load(const double* p) { return Pack::load_aligned(p); }
+  TUMBLE_INLINE static void store(double* p, const Pack& v) { v.store_aligned(p); }
 };
 
 }  // namespace tumble

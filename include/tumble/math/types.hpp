@@ -3,6 +3,8 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "tumble/math/lanes.hpp"
+
 namespace tumble {
 
 using Vec3 = Eigen::Vector3d;
@@ -14,7 +16,7 @@ using Quat = Eigen::Quaterniond;  // Eigen stores (x, y, z, w); tumble's files a
 ///   (  wz   0  -wx )
 ///   ( -wy  wx    0 )
 template <class Scalar>
-Eigen::Matrix<Scalar, 3, 3> skew(const Eigen::Matrix<Scalar, 3, 1>& w) {
+TUMBLE_INLINE Eigen::Matrix<Scalar, 3, 3> skew(const Eigen::Matrix<Scalar, 3, 1>& w) {
   Eigen::Matrix<Scalar, 3, 3> S;
   S << Scalar(0), -w.z(), w.y(),  //
       w.z(), Scalar(0), -w.x(),   //
