@@ -32,13 +32,14 @@ EngineInfo engine_info() { return {xsimd::default_arch::name(), static_cast<int>
 
 namespace tumble::engine {
 
-void Engine::prepare(const Model& model, Formulation formulation, int threads) {
+void Engine::prepare(const Model& model, Formulation formulation, int threads, int work_sets) {
   const int wanted = threads > 0 ? threads : max_threads();
   if (model_ == &model && bodies_data_ == model.bodies.data() && n_bodies_ == model.bodies.size() &&
       n_particles_ == model.particles.size() && n_forces_ == model.forces.size() && formulation_ == formulation &&
-      threads_ == wanted) {
+      threads_ == wanted && work_sets_ >= work_sets) {
     return;
   }
+  work_sets_ = work_sets;
   model_ = &model;
   bodies_data_ = model.bodies.data();
   n_bodies_ = model.bodies.size();
@@ -67,6 +68,7 @@ void Engine::prepare(const Model& model, Formulation formulation, int threads) {
     }
   }
   scratch_.resize(static_cast<size_t>(threads_));
+  for (Scratch& s : scratch_) s.work.ensure(kBlock, static_cast<size_t>(work_sets_) * BodyColumnsRef::kCount);
   system_loads_.bodies.assign(system_.empty() ? 0 : n_bodies_, Wrench{});
   system_loads_.particles.assign(n_particles_, Vec3::Zero());
   body_states_.assign(system_.empty() ? 0 : n_bodies_, BodyState{});
@@ -86,38 +88,51 @@ void Engine::system_part(const SystemCoordinates& y) {
   }
 }
 
-BodyBlock Engine::block_view(const SystemCoordinates& y, size_t begin, size_t count, Scratch& s) const {
-  BodyBlock b;
-  b.t = y.t;
-  b.begin = begin;
-  b.count = count;
-  b.bodies = model_->bodies.data() + begin;
-  b.m = constants_[0] + begin;
+Block Engine::local_loads(const BodyColumnsRef& y, double t, size_t begin, size_t count, size_t n, Scratch& s) const {
+  zero(s.loads);
+  BodyBlock view;
+  view.t = t;
+  view.begin = begin;
+  view.count = count;
+  view.bodies = model_->bodies.data() + begin;
+  view.m = constants_[0] + begin;
   for (size_t k = 0; k < 3; ++k) {
-    b.Lambda[k] = constants_[1 + k] + begin;
-    b.o[k] = y.bodies[BodyColumns::o + k] + begin;
+    view.Lambda[k] = constants_[1 + k] + begin;
+    view.o[k] = y.at(BodyColumnsRef::o + k, begin);
   }
-  for (size_t k = 0; k < 4; ++k) b.q[k] = y.bodies[BodyColumns::q + k] + begin;
-  if (!needs_velocity_) return b;
-  // World v and ω: the formulation's own columns where they are world quantities, else rotated into
-  // the block's scratch (v_w = R ^bv, ω_w = R ^bω).
-  const bool v_world = formulation_ != Formulation::body, omega_world = formulation_ == Formulation::world;
+  for (size_t k = 0; k < 4; ++k) view.q[k] = y.at(BodyColumnsRef::q + k, begin);
+  if (needs_velocity_) {
+    // World v and ω: the formulation's own columns where they are world quantities, else rotated into
+    // the block's scratch (v_w = R ^bv, ω_w = R ^bω).
+    const bool v_world = formulation_ != Formulation::body, omega_world = formulation_ == Formulation::world;
+    for (size_t k = 0; k < 3; ++k) {
+      view.v[k] = v_world ? y.at(BodyColumnsRef::v + k, begin) : s.world[k];
+      view.omega_w[k] = omega_world ? y.at(BodyColumnsRef::omega + k, begin) : s.world[3 + k];
+    }
+    for (size_t j = 0; j < count; ++j) {
+      const Quat q = y.quat(begin + j);
+      if (!v_world) {
+        const Vec3 v = q * y.vec3(BodyColumnsRef::v, begin + j);
+        for (size_t k = 0; k < 3; ++k) s.world[k][j] = v(static_cast<Eigen::Index>(k));
+      }
+      if (!omega_world) {
+        const Vec3 w = q * y.vec3(BodyColumnsRef::omega, begin + j);
+        for (size_t k = 0; k < 3; ++k) s.world[3 + k][j] = w(static_cast<Eigen::Index>(k));
+      }
+    }
+  }
+  BlockLoads loads;
+  Block block;
+  block.begin = begin;
+  block.end = std::min(begin + kBlock, padded_size(n));
   for (size_t k = 0; k < 3; ++k) {
-    b.v[k] = v_world ? y.bodies[BodyColumns::v + k] + begin : s.world[k];
-    b.omega_w[k] = omega_world ? y.bodies[BodyColumns::omega + k] + begin : s.world[3 + k];
+    loads.f[k] = s.loads[k];
+    loads.tau[k] = s.loads[3 + k];
+    block.f[k] = s.loads[k];
+    block.tau[k] = s.loads[3 + k];
   }
-  for (size_t j = 0; j < count; ++j) {
-    const Quat q = y.bodies.quat(begin + j);
-    if (!v_world) {
-      const Vec3 v = q * y.bodies.vec3(BodyColumns::v, begin + j);
-      for (size_t k = 0; k < 3; ++k) s.world[k][j] = v(static_cast<Eigen::Index>(k));
-    }
-    if (!omega_world) {
-      const Vec3 w = q * y.bodies.vec3(BodyColumns::omega, begin + j);
-      for (size_t k = 0; k < 3; ++k) s.world[3 + k][j] = w(static_cast<Eigen::Index>(k));
-    }
-  }
-  return b;
+  for (const LocalForceModel* force : local_) force->accumulate_block(view, loads);
+  return block;
 }
 
 }  // namespace tumble::engine

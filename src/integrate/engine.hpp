@@ -1,17 +1,24 @@
 #pragma once
-// The batched core shared by every fixed-step integrator: it evaluates the loads on all bodies block
-// by block and hands each block, right after its loads, to the integrator's kernel, which updates the
-// columns in place (one pack of bodies at a time, tumble/math/simd.hpp).
+// The batched core shared by every fixed-step integrator. It evaluates the loads on the bodies block by
+// block and hands each block, right after its loads, to the integrator's kernel, which updates columns
+// in place, one pack of bodies at a time (tumble/math/simd.hpp).
 //
-// Why blocks: a block of kBlock bodies keeps its loads and world-velocity scratch in L1 cache, so the
-// only whole-system arrays are the state columns themselves; blocks are also the unit of parallel work.
-// Every body is computed by the same pack code whatever the block or thread it falls in (blocks start
-// at multiples of the pack width; padding lanes are harmless), so results are bit-identical for any
-// number of bodies around it and any thread count.
+// Two ways through a step:
+//  - fused (when every force model is local and there are no particles): each block of kBlock bodies
+//    is taken through all the stages of a step on its own, its stage variables in per-thread scratch
+//    that stays in cache. The only whole-system arrays are the state and the constants (17 doubles per
+//    body), read and written once per step, so the rate does not fall with the number of bodies;
+//  - staged (otherwise): stage by stage over the whole system, because a system model (a spring) needs
+//    every body's stage state before any body can move on; stage variables are whole-system columns.
+// The kernels are the same in both; only where the stage variables live differs. Every body is computed
+// by the same pack code whatever block or thread it falls in (blocks start at multiples of the pack
+// width; padding lanes are harmless), so results are bit-identical for any number of bodies around it,
+// either way through the step, and any thread count.
 //
 // Allocation happens in prepare(), once per run (again only when the model changes size); a step
 // allocates nothing.
 #include <exception>
+#include <initializer_list>
 #include <span>
 #include <vector>
 
@@ -29,15 +36,18 @@ int max_threads();
 /// The pack the build's instruction set offers (AVX-512: 8 doubles, AVX2: 4, SSE2: 2).
 using Pack = xsimd::batch<double>;
 inline constexpr size_t kWidth = Pack::size;
-/// Bodies per block (a multiple of every pack width).
-inline constexpr size_t kBlock = 256;
+/// Bodies per block (a multiple of every pack width): two sets of stage variables of a block (2 × 13 ×
+/// 256 doubles, 52 KiB) stay in the L2 cache.
+inline constexpr size_t kBlock = 64;
 
 /// One block as a kernel sees it: bodies [begin, end) (end a multiple of the pack width, so it may
-/// include padding lanes) and their loads (world force and torque), indexed i − begin.
+/// include padding lanes), their loads (world force and torque) at the stage being computed, and the
+/// integrator's stage variables (block scratch when fused, whole-system columns when staged).
 struct Block {
   size_t begin = 0, end = 0;
   const double* f[3] = {};
   const double* tau[3] = {};
+  BodyColumnsRef work[3];
 
   template <class T>
   TUMBLE_INLINE Vec3T<T> force(size_t i) const {
@@ -52,14 +62,25 @@ struct Block {
 
 class Engine {
  public:
-  /// Binds the engine to a model and formulation and sizes every buffer. Cheap when nothing changed.
-  /// threads ≤ 0 means one per hardware thread. Checks every force model's body references once.
-  void prepare(const Model& model, Formulation formulation, int threads);
+  /// Binds the engine to a model and formulation and sizes every buffer, with `work_sets` (≤ 3) sets
+  /// of stage variables per block. Cheap when nothing changed. threads ≤ 0: one per hardware thread.
+  /// Checks every force model's body references once.
+  void prepare(const Model& model, Formulation formulation, int threads, int work_sets = 0);
 
-  /// Evaluates the loads at y (forces at time y.t) and calls kernel(const Block&) for every block right
-  /// after its loads, in parallel across blocks. Particle loads are in particle_forces() afterwards.
+  /// Whether a step can take each block through all its stages alone (every force model local, no
+  /// particles).
+  bool fused() const { return system_.empty() && n_particles_ == 0; }
+
+  /// Fused steps: calls step(FusedBlock&) for every block, in parallel.
+  class FusedBlock;
+  template <class Step>
+  void for_each_fused_block(size_t n, Step&& step);
+
+  /// Staged steps: evaluates the loads at y (time y.t) and calls kernel(const Block&) for every block
+  /// right after its loads, in parallel; `work` are the whole-system stage variables handed to the
+  /// kernel. Particle loads are in particle_rates() afterwards.
   template <class Kernel>
-  void evaluate(const SystemCoordinates& y, Kernel&& kernel);
+  void evaluate(const SystemCoordinates& y, Kernel&& kernel, std::initializer_list<BodyColumns*> work = {});
 
   /// Calls kernel(const Block&) for every block without evaluating loads (they read as zero).
   template <class Kernel>
@@ -75,8 +96,6 @@ class Engine {
     return tumble::particle_rates(model_->particles[p], s, system_loads_.particles[p]);
   }
   std::span<const Vec3> particle_forces() const { return system_loads_.particles; }
-  const Model& model() const { return *model_; }
-  Formulation formulation() const { return formulation_; }
 
   /// Per-body constants, padded with ones: m (kg) and Λ (kg·m²).
   template <class T>
@@ -92,30 +111,57 @@ class Engine {
   struct Scratch {
     Columns loads{kBlock, 6};  // f (3), τ (3)
     Columns world{kBlock, 6};  // v, ω in world axes, when the formulation does not integrate them
+    Columns work;              // fused steps: the block's stage variables, 13 columns per set
     std::exception_ptr error;
     size_t error_block = 0;
   };
   void system_part(const SystemCoordinates& y);
+  /// The loads of the local models on bodies [begin, begin + count) at the state y (time t) into
+  /// s.loads; returns the block with its loads.
+  Block local_loads(const BodyColumnsRef& y, double t, size_t begin, size_t count, size_t n, Scratch& s) const;
+  template <class F>
+  void parallel_blocks(size_t n, F&& f);
   /// Pack stores (GCC turns a fill with 0.0 into memset, which costs 15 % of a step in `rep stosb`).
   static void zero(Columns& c) {
     for (size_t i = 0; i < c.stride() * c.count(); i += kWidth) Pack(0.0).store_aligned(c[0] + i);
   }
-  BodyBlock block_view(const SystemCoordinates& y, size_t begin, size_t count, Scratch& s) const;
-  template <class F>
-  void parallel_blocks(size_t n, F&& f);
 
   const Model* model_ = nullptr;
   const RigidBody* bodies_data_ = nullptr;
   size_t n_bodies_ = 0, n_particles_ = 0, n_forces_ = 0;
   Formulation formulation_ = Formulation::mixed;
-  int threads_ = 1;
+  int threads_ = 1, work_sets_ = 0;
   Columns constants_;
   std::vector<const LocalForceModel*> local_;
   std::vector<const ForceModel*> system_;
   bool needs_velocity_ = false;
   std::vector<Scratch> scratch_;
-  Loads system_loads_;               // loads of the system models, and every particle load
+  Loads system_loads_;                  // loads of the system models, and every particle load
   std::vector<BodyState> body_states_;  // world structs, gathered only for system models
+
+  friend class FusedBlock;
+};
+
+/// A block taken through a whole step: its bodies, its stage variables and its loads at any state.
+class Engine::FusedBlock {
+ public:
+  size_t begin = 0, end = 0, count = 0;
+  /// The loads at the state y (which holds this block's bodies) at time t, with the block's stage
+  /// variables; valid until the next call.
+  const Block& evaluate(const BodyColumnsRef& y, double t) {
+    block_ = engine_->local_loads(y, t, begin, count, n_, *scratch_);
+    for (size_t k = 0; k < 3; ++k) block_.work[k] = work_[k];
+    return block_;
+  }
+  const BodyColumnsRef& work(size_t k) const { return work_[k]; }
+
+ private:
+  friend class Engine;
+  const Engine* engine_ = nullptr;
+  Scratch* scratch_ = nullptr;
+  size_t n_ = 0;
+  BodyColumnsRef work_[3];
+  Block block_;
 };
 
 // ---- templates ------------------------------------------------------------------------------------
@@ -152,28 +198,45 @@ void Engine::parallel_blocks(size_t n, F&& f) {
   }
 }
 
+template <class Step>
+void Engine::for_each_fused_block(size_t n, Step&& step) {
+  parallel_blocks(n, [&](size_t b, Scratch& s) {
+    FusedBlock fb;
+    fb.begin = b * kBlock;
+    fb.count = std::min(kBlock, n - fb.begin);
+    fb.end = std::min(fb.begin + kBlock, padded_size(n));
+    fb.engine_ = this;
+    fb.scratch_ = &s;
+    fb.n_ = n;
+    for (size_t k = 0; k < static_cast<size_t>(work_sets_); ++k) {
+      double* c[BodyColumnsRef::kCount];
+      for (size_t j = 0; j < BodyColumnsRef::kCount; ++j) c[j] = s.work[k * BodyColumnsRef::kCount + j];
+      fb.work_[k] = BodyColumnsRef(c, fb.begin);
+    }
+    step(fb);
+  });
+}
+
 template <class Kernel>
-void Engine::evaluate(const SystemCoordinates& y, Kernel&& kernel) {
+void Engine::evaluate(const SystemCoordinates& y, Kernel&& kernel, std::initializer_list<BodyColumns*> work) {
   system_part(y);
   const size_t n = n_bodies_;
+  const BodyColumnsRef y_ref = y.bodies.ref();
   parallel_blocks(n, [&](size_t b, Scratch& s) {
     const size_t begin = b * kBlock, count = std::min(kBlock, n - begin);
-    zero(s.loads);
-    const BodyBlock view = block_view(y, begin, count, s);
-    BlockLoads loads;
-    for (size_t k = 0; k < 3; ++k) {
-      loads.f[k] = s.loads[k];
-      loads.tau[k] = s.loads[3 + k];
-    }
-    for (const LocalForceModel* force : local_) force->accumulate_block(view, loads);
+    Block block = local_loads(y_ref, y.t, begin, count, n, s);
     if (!system_loads_.bodies.empty()) {
-      for (size_t j = 0; j < count; ++j) loads.add(j, system_loads_.bodies[begin + j].force, system_loads_.bodies[begin + j].torque);
+      BlockLoads loads;
+      for (size_t k = 0; k < 3; ++k) {
+        loads.f[k] = s.loads[k];
+        loads.tau[k] = s.loads[3 + k];
+      }
+      for (size_t j = 0; j < count; ++j) {
+        loads.add(j, system_loads_.bodies[begin + j].force, system_loads_.bodies[begin + j].torque);
+      }
     }
-    Block block{begin, std::min(begin + kBlock, padded_size(n)), {}, {}};
-    for (size_t k = 0; k < 3; ++k) {
-      block.f[k] = loads.f[k];
-      block.tau[k] = loads.tau[k];
-    }
+    size_t k = 0;
+    for (BodyColumns* w : work) block.work[k++] = w->ref();
     kernel(static_cast<const Block&>(block));
   });
 }
@@ -182,7 +245,7 @@ template <class Kernel>
 void Engine::for_each_block(size_t n, Kernel&& kernel) {
   parallel_blocks(n, [&](size_t b, Scratch& s) {
     zero(s.loads);
-    Block block{b * kBlock, std::min(b * kBlock + kBlock, padded_size(n)), {}, {}};
+    Block block{b * kBlock, std::min(b * kBlock + kBlock, padded_size(n)), {}, {}, {}};
     for (size_t k = 0; k < 3; ++k) {
       block.f[k] = s.loads[k];
       block.tau[k] = s.loads[3 + k];

@@ -26,7 +26,7 @@ Vec3T<T> dexpinv(const Vec3T<T>& theta, const Vec3T<T>& w, bool right) {
 /// The RK4 tableau of rk4 (fixed_step.cpp) in the same low-storage form, with the rotation advanced
 /// through θ: at stage s the orientation is R_n·exp(θ_s) (right) or exp(θ_s)·R_n (left), the other
 /// variables x + c_s h k_{s−1}; θ_{s+1} = c_{s+1} h F_s with F_s = dexp⁻¹_{θ_s}(ω_s), and the step ends
-/// at θ = (h/6)(F₁ + 2F₂ + 2F₃ + F₄). Whole-system arrays: x, y, A and θ, ΣF (45 doubles per body).
+/// at θ = (h/6)(F₁ + 2F₂ + 2F₃ + F₄). Stage variables: y, A, and θ_s, ΣF in a third set's columns.
 class LieRungeKutta4 final : public Integrator {
  public:
   std::string name() const override { return "lie_rk4"; }
@@ -36,70 +36,74 @@ class LieRungeKutta4 final : public Integrator {
   void step(const Model& model, Formulation F, SystemCoordinates& x, double h) override {
     static constexpr double c[4] = {0.0, 0.5, 0.5, 1.0}, b[4] = {1.0, 2.0, 2.0, 1.0};
     const bool right = F != Formulation::world;  // mixed and body integrate ^bω
-    engine_.prepare(model, F, threads_);
+    engine_.prepare(model, F, threads_, 3);
     const size_t n = x.bodies.size(), np = x.particles.size();
-    y_.bodies.ensure(n);
-    A_.ensure(n);
-    theta_.ensure(n, 6);  // θ_s (3), Σ b_s F_s (3)
-    y_.particles.resize(np);
-    A_particles_.resize(np);
+    const BodyColumnsRef xr = x.bodies.ref();
     auto rotated = [right](const QuatT<Pack>& q, const Vec3T<Pack>& th) {
       const QuatT<Pack> e = quat_exp<Pack>(th);
       return right ? QuatT<Pack>(q * e) : QuatT<Pack>(e * q);
     };
-    for (int s = 0; s < 4; ++s) {
-      const SystemCoordinates& in = s == 0 ? x : y_;
+    auto stage = [&](int s, const Block& blk, const BodyColumnsRef& in) {
+      const BodyColumnsRef &y = blk.work[0], &A = blk.work[1], &theta = blk.work[2];  // θ_s: 0–2, ΣF: 3–5
       const Pack weight(b[s]);
       const Pack step_next(s < 3 ? c[s + 1] * h : h / 6);
-      engine_.evaluate(in, [&](const Block& blk) {
-        for (size_t i = blk.begin; i < blk.end; i += kWidth) {
-          const Coordinates<Pack> yi = in.bodies.load<Pack>(i);
-          const CoordinateRates<Pack> k = engine_.rates<Pack>(blk, i, yi);
-          const Vec3T<Pack> th = s == 0 ? Vec3T<Pack>::Zero() : vec3(theta_, 0, i);
-          const Vec3T<Pack> Fs = dexpinv<Pack>(th, yi.omega, right);
-          const Coordinates<Pack> xi = x.bodies.load<Pack>(i);
-          if (s < 3) {
-            A_.store(i, s == 0 ? k : axpy<Pack>(A_.load_rates<Pack>(i), weight, k));
-            store3(theta_, 3, i, s == 0 ? Fs : Vec3T<Pack>(vec3(theta_, 3, i) + weight * Fs));
-            const Vec3T<Pack> th_next = step_next * Fs;
-            store3(theta_, 0, i, th_next);
-            Coordinates<Pack> next = advanced<Pack>(xi, step_next, k);
-            next.q = rotated(xi.q, th_next);
-            y_.bodies.store(i, next);
-          } else {
-            const Vec3T<Pack> theta = step_next * (vec3(theta_, 3, i) + Fs);
-            Coordinates<Pack> next = advanced<Pack>(xi, step_next, axpy<Pack>(A_.load_rates<Pack>(i), Pack(1.0), k));
-            next.q = rotated(xi.q, theta);
-            x.bodies.store(i, next);
-          }
-        }
-      });
-      for (size_t p = 0; p < np; ++p) {
-        const ParticleState k = engine_.particle_rates(p, in.particles[p]);
+      for (size_t i = blk.begin; i < blk.end; i += kWidth) {
+        const Coordinates<Pack> yi = in.load<Pack>(i);
+        const CoordinateRates<Pack> k = engine_.rates<Pack>(blk, i, yi);
+        const Vec3T<Pack> th = s == 0 ? Vec3T<Pack>::Zero() : theta.vec3<Pack>(0, i);
+        const Vec3T<Pack> Fs = dexpinv<Pack>(th, yi.omega, right);
+        const Coordinates<Pack> xi = xr.load<Pack>(i);
         if (s < 3) {
-          A_particles_[p] = s == 0 ? k : axpy(A_particles_[p], b[s], k);
-          y_.particles[p] = advanced(x.particles[p], c[s + 1] * h, k);
+          A.store(i, s == 0 ? k : axpy<Pack>(A.load_rates<Pack>(i), weight, k));
+          theta.store_vec3<Pack>(3, i, s == 0 ? Fs : Vec3T<Pack>(theta.vec3<Pack>(3, i) + weight * Fs));
+          const Vec3T<Pack> th_next = step_next * Fs;
+          theta.store_vec3<Pack>(0, i, th_next);
+          Coordinates<Pack> next = advanced<Pack>(xi, step_next, k);
+          next.q = rotated(xi.q, th_next);
+          y.store(i, next);
         } else {
-          x.particles[p] = advanced(x.particles[p], h / 6, axpy(A_particles_[p], 1.0, k));
+          Coordinates<Pack> next = advanced<Pack>(xi, step_next, axpy<Pack>(A.load_rates<Pack>(i), Pack(1.0), k));
+          next.q = rotated(xi.q, Vec3T<Pack>(step_next * (theta.vec3<Pack>(3, i) + Fs)));
+          xr.store(i, next);
         }
       }
-      y_.t = x.t + (s < 3 ? c[s + 1] : 1.0) * h;
+    };
+    if (engine_.fused()) {
+      engine_.for_each_fused_block(n, [&](engine::Engine::FusedBlock& fb) {
+        for (int s = 0; s < 4; ++s) {
+          const BodyColumnsRef in = s == 0 ? xr : fb.work(0);
+          stage(s, fb.evaluate(in, x.t + c[s] * h), in);
+        }
+      });
+    } else {
+      y_.bodies.ensure(n);
+      A_.ensure(n);
+      theta_.ensure(n);
+      y_.particles.resize(np);
+      A_particles_.resize(np);
+      for (int s = 0; s < 4; ++s) {
+        const SystemCoordinates& in = s == 0 ? x : y_;
+        const BodyColumnsRef in_ref = in.bodies.ref();
+        engine_.evaluate(in, [&](const Block& blk) { stage(s, blk, in_ref); }, {&y_.bodies, &A_, &theta_});
+        for (size_t p = 0; p < np; ++p) {
+          const ParticleState k = engine_.particle_rates(p, in.particles[p]);
+          if (s < 3) {
+            A_particles_[p] = s == 0 ? k : axpy(A_particles_[p], b[s], k);
+            y_.particles[p] = advanced(x.particles[p], c[s + 1] * h, k);
+          } else {
+            x.particles[p] = advanced(x.particles[p], h / 6, axpy(A_particles_[p], 1.0, k));
+          }
+        }
+        y_.t = x.t + (s < 3 ? c[s + 1] : 1.0) * h;
+      }
     }
     x.t += h;
   }
 
  private:
-  static Vec3T<Pack> vec3(const Columns& c, size_t first, size_t i) {
-    return {Pack::load_aligned(c[first] + i), Pack::load_aligned(c[first + 1] + i), Pack::load_aligned(c[first + 2] + i)};
-  }
-  static void store3(Columns& c, size_t first, size_t i, const Vec3T<Pack>& u) {
-    for (size_t k = 0; k < 3; ++k) u(static_cast<Eigen::Index>(k)).store_aligned(c[first + k] + i);
-  }
-
   engine::Engine engine_;
-  SystemCoordinates y_;
-  BodyColumns A_;
-  Columns theta_;
+  SystemCoordinates y_;  // staged steps only
+  BodyColumns A_, theta_;
   std::vector<ParticleState> A_particles_;
 };
 

@@ -73,9 +73,72 @@ class Columns {
   std::unique_ptr<double[], AlignedDelete> data_;
 };
 
+/// 13 columns of body variables (o, q as (w, x, y, z), v, ω) or of their rates, addressed by body
+/// index i: row i is stored at position i − offset (a block's scratch holds rows begin … begin + B − 1
+/// with offset = begin; whole-system columns have offset 0). For a pack of width W, i must be a multiple
+/// of W and the pack holds bodies i … i + W − 1.
+class BodyColumnsRef {
+ public:
+  enum : std::size_t { o = 0, q = 3, v = 7, omega = 10, kCount = 13 };
+
+  BodyColumnsRef() = default;
+  BodyColumnsRef(double* const* columns, std::size_t offset) : offset_(offset) {
+    std::copy(columns, columns + kCount, c_);
+  }
+
+  template <class T = double>
+  TUMBLE_INLINE Coordinates<T> load(std::size_t i) const {
+    return {vec3<T>(o, i), quat<T>(i), vec3<T>(v, i), vec3<T>(omega, i)};
+  }
+  template <class T = double>
+  TUMBLE_INLINE CoordinateRates<T> load_rates(std::size_t i) const {
+    return {vec3<T>(o, i), quat<T>(i), vec3<T>(v, i), vec3<T>(omega, i)};
+  }
+  template <class T>
+  TUMBLE_INLINE void store(std::size_t i, const Coordinates<T>& x) const {
+    store_vec3<T>(o, i, x.o);
+    store_quat<T>(i, x.q);
+    store_vec3<T>(v, i, x.v);
+    store_vec3<T>(omega, i, x.omega);
+  }
+  template <class T>
+  TUMBLE_INLINE void store(std::size_t i, const CoordinateRates<T>& r) const {
+    store_vec3<T>(o, i, r.o_dot);
+    store_quat<T>(i, r.q_dot);
+    store_vec3<T>(v, i, r.v_dot);
+    store_vec3<T>(omega, i, r.omega_dot);
+  }
+  /// Columns first … first+2 of body (or pack) i as a vector.
+  template <class T = double>
+  TUMBLE_INLINE Vec3T<T> vec3(std::size_t first, std::size_t i) const {
+    return {Lanes<T>::load(at(first, i)), Lanes<T>::load(at(first + 1, i)), Lanes<T>::load(at(first + 2, i))};
+  }
+  template <class T = double>
+  TUMBLE_INLINE QuatT<T> quat(std::size_t i) const {
+    return QuatT<T>(Lanes<T>::load(at(q, i)), Lanes<T>::load(at(q + 1, i)), Lanes<T>::load(at(q + 2, i)),
+                    Lanes<T>::load(at(q + 3, i)));
+  }
+  template <class T>
+  TUMBLE_INLINE void store_vec3(std::size_t first, std::size_t i, const Vec3T<T>& u) const {
+    for (std::size_t k = 0; k < 3; ++k) Lanes<T>::store(at(first + k, i), u(static_cast<Eigen::Index>(k)));
+  }
+  template <class T>
+  TUMBLE_INLINE void store_quat(std::size_t i, const QuatT<T>& u) const {
+    Lanes<T>::store(at(q, i), u.w());
+    Lanes<T>::store(at(q + 1, i), u.x());
+    Lanes<T>::store(at(q + 2, i), u.y());
+    Lanes<T>::store(at(q + 3, i), u.z());
+  }
+  /// Where column k of body i is stored.
+  double* at(std::size_t k, std::size_t i) const { return c_[k] + (i - offset_); }
+
+ private:
+  double* c_[kCount] = {};
+  std::size_t offset_ = 0;
+};
+
 /// The integrated variables of n bodies in one formulation (newton_euler.hpp's Coordinates), or their
-/// rates, as 13 columns: o (3), q as (w, x, y, z) (4), v (3), ω (3). Index i addresses body i; for a
-/// pack of width W, i must be a multiple of W and the pack holds bodies i … i + W − 1.
+/// rates, as 13 whole-system columns (BodyColumnsRef's layout, offset 0).
 class BodyColumns : public Columns {
  public:
   enum : std::size_t { o = 0, q = 3, v = 7, omega = 10, kCount = 13 };
@@ -92,50 +155,42 @@ class BodyColumns : public Columns {
     if (n != size() || count() != kCount) resize(n);
   }
 
-  template <class T = double>
-  TUMBLE_INLINE Coordinates<T> load(std::size_t i) const {
-    return {vec3<T>(o, i), quat<T>(i), vec3<T>(v, i), vec3<T>(omega, i)};
+  /// The columns as a view (for the kernels, which address whole-system and block storage alike).
+  BodyColumnsRef ref() {
+    double* c[kCount];
+    for (std::size_t k = 0; k < kCount; ++k) c[k] = (*this)[k];
+    return {c, 0};
   }
-  template <class T>
-  TUMBLE_INLINE void store(std::size_t i, const Coordinates<T>& c) {
-    store_vec3<T>(o, i, c.o);
-    store_quat<T>(i, c.q);
-    store_vec3<T>(v, i, c.v);
-    store_vec3<T>(omega, i, c.omega);
-  }
-  template <class T = double>
-  TUMBLE_INLINE CoordinateRates<T> load_rates(std::size_t i) const {
-    return {vec3<T>(o, i), quat<T>(i), vec3<T>(v, i), vec3<T>(omega, i)};
-  }
-  template <class T>
-  TUMBLE_INLINE void store(std::size_t i, const CoordinateRates<T>& r) {
-    store_vec3<T>(o, i, r.o_dot);
-    store_quat<T>(i, r.q_dot);
-    store_vec3<T>(v, i, r.v_dot);
-    store_vec3<T>(omega, i, r.omega_dot);
-  }
+  /// Read-only use of the same view: the view's store() must not be called on it.
+  BodyColumnsRef ref() const { return const_cast<BodyColumns*>(this)->ref(); }
 
-  /// Columns first … first+2 of body (or pack) i as a vector.
   template <class T = double>
-  TUMBLE_INLINE Vec3T<T> vec3(std::size_t first, std::size_t i) const {
-    return {Lanes<T>::load((*this)[first] + i), Lanes<T>::load((*this)[first + 1] + i),
-            Lanes<T>::load((*this)[first + 2] + i)};
+  Coordinates<T> load(std::size_t i) const {
+    return ref().load<T>(i);
   }
   template <class T = double>
-  TUMBLE_INLINE QuatT<T> quat(std::size_t i) const {
-    return QuatT<T>(Lanes<T>::load((*this)[q] + i), Lanes<T>::load((*this)[q + 1] + i),
-                    Lanes<T>::load((*this)[q + 2] + i), Lanes<T>::load((*this)[q + 3] + i));
+  CoordinateRates<T> load_rates(std::size_t i) const {
+    return ref().load_rates<T>(i);
   }
   template <class T>
-  TUMBLE_INLINE void store_vec3(std::size_t first, std::size_t i, const Vec3T<T>& u) {
-    for (std::size_t k = 0; k < 3; ++k) Lanes<T>::store((*this)[first + k] + i, u(static_cast<Eigen::Index>(k)));
+  void store(std::size_t i, const Coordinates<T>& x) {
+    ref().store<T>(i, x);
   }
   template <class T>
-  TUMBLE_INLINE void store_quat(std::size_t i, const QuatT<T>& u) {
-    Lanes<T>::store((*this)[q] + i, u.w());
-    Lanes<T>::store((*this)[q + 1] + i, u.x());
-    Lanes<T>::store((*this)[q + 2] + i, u.y());
-    Lanes<T>::store((*this)[q + 3] + i, u.z());
+  void store(std::size_t i, const CoordinateRates<T>& r) {
+    ref().store<T>(i, r);
+  }
+  template <class T = double>
+  Vec3T<T> vec3(std::size_t first, std::size_t i) const {
+    return ref().vec3<T>(first, i);
+  }
+  template <class T = double>
+  QuatT<T> quat(std::size_t i) const {
+    return ref().quat<T>(i);
+  }
+  template <class T>
+  void store_quat(std::size_t i, const QuatT<T>& u) {
+    ref().store_quat<T>(i, u);
   }
 };
 
