@@ -129,20 +129,22 @@ class MujocoRunner final : public Runner {
     --last;
     if (last->second < 1.0) return {};
     double exponent = 2;
+    bool measured = false;
     if (last != done.begin()) {
       const auto prev = std::prev(last);
       if (prev->second >= 1.0 && last->second > prev->second) {
         exponent = std::max(1.0, std::log(last->second / prev->second) /
                                      std::log(static_cast<double>(last->first) / static_cast<double>(prev->first)));
+        measured = true;
       }
     }
     const double predicted =
         last->second * std::pow(static_cast<double>(n) / static_cast<double>(last->first), exponent);
     if (predicted <= budget) return {};
     char buf[300];
-    std::snprintf(buf, sizeof buf,
-                  "compile predicted %.0f s (> %.0f s): %.3g s at N = %zu, growing as N^%.2f (%s)", predicted, budget,
-                  last->second, last->first, exponent, setup_note().c_str());
+    std::snprintf(buf, sizeof buf, "compile predicted %.0f s (> %.0f s): %.3g s at N = %zu, times (N ratio)^%.2f%s (%s)",
+                  predicted, budget, last->second, last->first, exponent, measured ? "" : " assumed",
+                  setup_note().c_str());
     return buf;
   }
   std::string notes() const override {
