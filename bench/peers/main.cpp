@@ -8,7 +8,8 @@
 //    Euler–Poinsot solution and the relative change of the rotational kinetic energy.
 // 2. Throughput: for each N, every engine's step count is calibrated so a run lasts about `target`
 //    seconds; then `reps` rounds, each setting up every engine afresh and timing one run, the engine
-//    order rotated by one per round. Rates are body-steps per second (N × steps / wall time).
+//    order rotated by one per round. Rates are body-steps per second (N × steps taken / seconds of
+//    stepping; set-up is timed separately).
 //
 // Prints the machine, compiler, library versions and settings, then tables; writes the CSV
 // (default bench/results/<machine tag>/peers.csv, relative to the working directory).
