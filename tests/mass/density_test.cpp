@@ -17,9 +17,9 @@
 #include <string>
 #include <vector>
 
-#include "../../src/mass/line_quadrature.hpp"
-#include "../../src/mass/tet_quadrature.hpp"
 #include "../support/random.hpp"
+#include "mass/line_quadrature.hpp"  // private to the mass layer: src/ is on the tests' include path
+#include "mass/tet_quadrature.hpp"
 #include "tumble/error.hpp"
 #include "tumble/mass/density.hpp"
 #include "tumble/mass/mesh_mass.hpp"
