@@ -41,7 +41,7 @@ class LieRungeKutta4 final : public Integrator {
     const BodyColumnsRef xr = x.bodies.ref();
     auto rotated = [right](const QuatT<Pack>& q, const Vec3T<Pack>& th) {
       const QuatT<Pack> e = quat_exp<Pack>(th);
-      return right ? QuatT<Pack>(q * e) : QuatT<Pack>(e * q);
+      return right ? quat_mul<Pack>(q, e) : quat_mul<Pack>(e, q);
     };
     auto stage = [&](int s, const Block& blk, const BodyColumnsRef& in) {
       const BodyColumnsRef &y = blk.work[0], &A = blk.work[1], &theta = blk.work[2];  // θ_s: 0–2, ΣF: 3–5

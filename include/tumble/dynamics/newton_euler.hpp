@@ -43,7 +43,7 @@ struct CoordinateRates {
 template <class T>
 TUMBLE_INLINE QuatT<T> q_dot_world(const QuatT<T>& q, const Vec3T<T>& omega_w) {
   QuatT<T> q_dot;
-  q_dot.coeffs() = T(0.5) * (pure<T>(omega_w) * q).coeffs();
+  q_dot.coeffs() = T(0.5) * quat_mul<T>(pure<T>(omega_w), q).coeffs();
   return q_dot;
 }
 
@@ -51,7 +51,7 @@ TUMBLE_INLINE QuatT<T> q_dot_world(const QuatT<T>& q, const Vec3T<T>& omega_w) {
 template <class T>
 TUMBLE_INLINE QuatT<T> q_dot_body(const QuatT<T>& q, const Vec3T<T>& omega_b) {
   QuatT<T> q_dot;
-  q_dot.coeffs() = T(0.5) * (q * pure<T>(omega_b)).coeffs();
+  q_dot.coeffs() = T(0.5) * quat_mul<T>(q, pure<T>(omega_b)).coeffs();
   return q_dot;
 }
 
@@ -62,18 +62,18 @@ TUMBLE_INLINE Vec3T<T> euler_body(const Vec3T<T>& Lambda, const Vec3T<T>& omega_
   return (tau_b - omega_b.cross(Lambda.cwiseProduct(omega_b))).cwiseQuotient(Lambda);
 }
 
-/// World formulation. ω̇ = I⁻¹(τ − ω × Iω) with I = RΛRᵀ, I⁻¹ = RΛ⁻¹Rᵀ.
+/// World formulation. ω̇ = I⁻¹(τ − ω × Iω) with I = RΛRᵀ, I⁻¹ = RΛ⁻¹Rᵀ. Since R is a rotation,
+/// ω × (RΛRᵀω) = R(^bω × Λ^bω), so ω̇ = R Λ⁻¹(Rᵀτ − ^bω × Λ^bω) = R · euler_body(Λ, Rᵀω, Rᵀτ): the same
+/// world-frame rate, with three rotations instead of two 3×3 products (q * v rotates v by q).
 template <class T>
 TUMBLE_INLINE CoordinateRates<T> newton_euler_world(T m, const Vec3T<T>& Lambda, const Coordinates<T>& x,
-                                      const Vec3T<T>& f_w, const Vec3T<T>& tau_w) {
-  const Mat3T<T> R = x.q.toRotationMatrix();
-  const Mat3T<T> I = R * Lambda.asDiagonal() * R.transpose();
-  const Mat3T<T> I_inv = R * Lambda.cwiseInverse().asDiagonal() * R.transpose();
+                                                    const Vec3T<T>& f_w, const Vec3T<T>& tau_w) {
+  const QuatT<T> q_inv = x.q.conjugate();
   CoordinateRates<T> r;
   r.o_dot = x.v;
   r.q_dot = q_dot_world<T>(x.q, x.omega);
   r.v_dot = f_w / m;
-  r.omega_dot = I_inv * (tau_w - x.omega.cross(I * x.omega));
+  r.omega_dot = x.q * euler_body<T>(Lambda, q_inv * x.omega, q_inv * tau_w);
   return r;
 }
 

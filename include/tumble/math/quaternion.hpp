@@ -26,6 +26,27 @@ TUMBLE_INLINE QuatT<T> pure(const Vec3T<T>& v) {
   return QuatT<T>(T(0), v.x(), v.y(), v.z());
 }
 
+/// The Hamilton product a ⊗ b, written out. The equations use this rather than Eigen's operator*, whose
+/// double version is hand-vectorised with another order of operations than its generic one: double and
+/// SIMD packs would then differ in the last bit.
+template <class T>
+TUMBLE_INLINE QuatT<T> quat_mul(const QuatT<T>& a, const QuatT<T>& b) {
+  return QuatT<T>(a.w() * b.w() - a.x() * b.x() - a.y() * b.y() - a.z() * b.z(),
+                  a.w() * b.x() + a.x() * b.w() + a.y() * b.z() - a.z() * b.y(),
+                  a.w() * b.y() - a.x() * b.z() + a.y() * b.w() + a.z() * b.x(),
+                  a.w() * b.z() + a.x() * b.y() - a.y() * b.x() + a.z() * b.w());
+}
+
+/// |v|² and |q|², summed in one fixed order (Eigen's reductions may vectorise for double).
+template <class T>
+TUMBLE_INLINE T squared_norm(const Vec3T<T>& v) {
+  return v.x() * v.x() + v.y() * v.y() + v.z() * v.z();
+}
+template <class T>
+TUMBLE_INLINE T squared_norm(const QuatT<T>& q) {
+  return q.w() * q.w() + q.x() * q.x() + q.y() * q.y() + q.z() * q.z();
+}
+
 /// exp of the rotation vector φ: the unit quaternion (cos(|φ|/2), sin(|φ|/2) φ/|φ|), i.e. the rotation
 /// by |φ| about φ. Below |φ|² = 1e-8 the Taylor series (error < 1e-26, under rounding) replaces
 /// sin(θ/2)/θ, whose quotient loses accuracy as θ → 0 and is 0/0 at 0. Branch-free: both forms are
@@ -35,7 +56,7 @@ TUMBLE_INLINE QuatT<T> quat_exp(const Vec3T<T>& phi) {
   using std::cos;
   using std::sin;
   using std::sqrt;
-  const T theta2 = phi.squaredNorm();
+  const T theta2 = squared_norm<T>(phi);
   const T theta = sqrt(theta2);
   const auto small = theta2 < T(1e-8);
   const T c = select(small, T(1) - theta2 / T(8) + theta2 * theta2 / T(384), cos(theta / T(2)));
@@ -48,7 +69,7 @@ TUMBLE_INLINE QuatT<T> quat_exp(const Vec3T<T>& phi) {
 template <class T>
 TUMBLE_INLINE QuatT<T> normalized(const QuatT<T>& q) {
   using std::sqrt;
-  const T inv_norm = T(1) / sqrt(q.coeffs().squaredNorm());
+  const T inv_norm = T(1) / sqrt(squared_norm<T>(q));
   return QuatT<T>(q.w() * inv_norm, q.x() * inv_norm, q.y() * inv_norm, q.z() * inv_norm);
 }
 
