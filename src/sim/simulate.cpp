@@ -81,6 +81,8 @@ void validate(const RunSettings& s) {
   require(std::isfinite(s.output_interval) && s.output_interval >= 0,
           fmt::format("output interval {} s is invalid: give a time >= 0 (0 = every step)",
                       s.output_interval));
+  require(s.threads >= 0 && s.threads <= 4096,
+          fmt::format("threads = {} is invalid: give a count from 1 to 4096, or 0 for one per core", s.threads));
   if (is_adaptive(s.integrator)) {
     make_adaptive_integrator(s.integrator, s.tolerances);  // validates the tolerances
   } else {

@@ -119,6 +119,28 @@ TEST(RunCli, DriftWarningOnceWithAdvice) {
   EXPECT_EQ(count(quiet.output, "warning"), 0u) << quiet.output;
 }
 
+TEST(RunCli, TheOutputIsByteIdenticalForAnyThreadCount) {
+  // 300 boxes spread over five blocks of the engine, with damping (velocities in world axes): the files
+  // of a run on 1 and on 2 threads are the same, byte for byte.
+  test::TempDir dir("run_threads");
+  std::string toml = "[simulation]\nduration = 0.05\ntimestep = 1e-3\noutput_interval = 0.025\nintegrator = \"rk4\"\n"
+                     "[world]\ngravity = [0, 0, -9.81]\n"
+                     "[[forces]]\ntype = \"damping\"\nlinear = 0.1\nangular = 0.01\n";
+  for (int i = 0; i < 300; ++i) {
+    toml += "[[bodies]]\nname = \"box" + std::to_string(i) + "\"\nshape = { type = \"box\", size = [0.1, 0.2, 0.3] }\n"
+            "density = 1000\nposition = [" + std::to_string(i) + ", 0, 0]\nangular_velocity = [" +
+            std::to_string(1 + i % 7) + ", -3, " + std::to_string(i % 5) + "]\n";
+  }
+  const auto scene = dir.write("boxes.toml", toml);
+  const auto one = dir / "one.csv", two = dir / "two.csv";
+  const auto r1 = run_tumble("run " + scene.string() + " -o " + one.string() + " --threads 1 --quiet");
+  ASSERT_EQ(r1.status, 0) << r1.output;
+  const auto r = run_tumble("run " + scene.string() + " -o " + two.string() + " --threads 2 --quiet");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(test::read_text(one), test::read_text(two));
+  EXPECT_EQ(file_lines(one).size(), 1u + 3u * 300u);  // header, 3 samples of 300 bodies
+}
+
 TEST(RunCli, BadInputGetsOneReadableLine) {
   test::TempDir dir("run_bad");
   auto expect_error = [&](const std::string& args, const std::string& expected) {
@@ -132,6 +154,7 @@ TEST(RunCli, BadInputGetsOneReadableLine) {
   expect_error("run " + scene + " --integrator rk5", "tumble: error: unknown integrator 'rk5'; choose one of: ");
   expect_error("run " + scene + " --formulation sideways", "unknown formulation 'sideways'; choose world, mixed or body");
   expect_error("run " + scene + " --drift-threshold -1", "--drift-threshold -1 is invalid");
+  expect_error("run " + scene + " --threads -2", "threads = -2 is invalid: give a count from 1 to 4096, or 0");
   expect_error("run " + example("t_handle.toml") + " -o " + dir.path().string(), "is a directory: give a file name, e.g. ");
   expect_error("run no/such/scene.toml", "tumble: error: cannot read scene file no/such/scene.toml: no such file");
   const auto bad = dir.write("bad.toml", "[simulation]\nduration = 1\n[[bodies]]\nname = \"a\"\nmass = -1\ninertia = [1, 1, 1]\n");

@@ -16,12 +16,12 @@ struct RunSettings {
   Formulation formulation = Formulation::mixed;
   std::string integrator = "rk4";
   Tolerances tolerances;         ///< for adaptive integrators (dopri45)
-  int threads = 1;               ///< threads for fixed-step integrators; ≤ 0: one per hardware thread.
+  int threads = 1;               ///< threads for fixed-step integrators; 0: one per hardware thread.
                                  ///< Results are bit-identical for any count.
 };
 
-/// Throws InvalidArgument unless duration ≥ 0, timestep > 0, output_interval ≥ 0, all finite, and the
-/// integrator and formulation exist.
+/// Throws InvalidArgument unless duration ≥ 0, timestep > 0, output_interval ≥ 0, all finite, threads in
+/// 0 … 4096, and the integrator and formulation exist.
 void validate(const RunSettings& settings);
 
 /// Called with every sample (the initial state first); return false to stop the run early (Ctrl-C).
