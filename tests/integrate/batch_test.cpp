@@ -4,6 +4,7 @@
 // columns equal the same forces written per body.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <memory>
 #include <string>
@@ -174,6 +175,36 @@ TEST(Batch, AForceOverColumnsEqualsTheSameForcePerBody) {
     const SystemCoordinates a = run_steps(columns, b.state, name, Formulation::mixed, 5);
     const SystemCoordinates c = run_steps(per_body, b.state, name, Formulation::mixed, 5);
     for (size_t i = 0; i < b.bodies.size(); ++i) EXPECT_TRUE(same_body(a, i, c, i)) << name << ", body " << i;
+  }
+}
+
+TEST(Batch, ABlockCallbackTrapOscillatesAtSqrtKOverM) {
+  // The README's example: f = −k o on every body, written over columns. Bodies of different masses
+  // released at rest oscillate as x₀ cos(√(k/m) t). RK4's phase error on an oscillator is
+  // (ωh)⁴ ωt/120 to leading order (its amplification factor matches e^{iωh} to (ωh)⁴/24 and loses
+  // (ωh)⁵/120 of phase a step); allowed twice that, plus rounding.
+  const double k = 40.0;
+  Model model;
+  SystemState s0;
+  for (int i = 0; i < 20; ++i) {
+    model.add_body(RigidBody::from_principal_moments(0.5 + 0.25 * i, Vec3(0.1, 0.2, 0.25), "b"));
+    s0.bodies.push_back(BodyState{Vec3(1.0 + i, -2.0, 0.5), Quat::Identity(), Vec3::Zero(), Vec3(0, 3, 0)});
+  }
+  model.add_force<BlockCallback>(
+      [k](const BodyBlock& b, BlockLoads& loads) {
+        for (size_t c = 0; c < 3; ++c)
+          for (size_t j = 0; j < b.count; ++j) loads.f[c][j] -= k * b.o[c][j];
+      },
+      "harmonic trap", false);
+  SystemCoordinates x = to_coordinates(Formulation::mixed, s0);
+  auto integrator = make_integrator("rk4");
+  for (int n = 0; n < 1000; ++n) integrator->step(model, Formulation::mixed, x, 1e-3);
+  for (size_t i = 0; i < 20; ++i) {
+    const double w = std::sqrt(k / model.bodies[i].mass());
+    const Vec3 expected = s0.bodies[i].o * std::cos(w * x.t);
+    const double phase_error = std::pow(w * 1e-3, 4) * w * x.t / 120;
+    EXPECT_LT((x.bodies.vec3(BodyColumns::o, i) - expected).norm(), (2 * phase_error + 1e-14) * s0.bodies[i].o.norm())
+        << "body " << i;
   }
 }
 
