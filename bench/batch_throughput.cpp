@@ -7,48 +7,21 @@
 // directions, random attitudes, g = 9.81 m/s², h = 1e-3 s, mixed formulation). Each measurement steps
 // the system directly (Integrator::step) for at least 0.3 s of wall time; repetitions are interleaved
 // (every configuration once, then again), and min and median are printed. Memory is what the
-// integrator's workspace and the state allocate, counted by a replaced operator new, per body.
+// integrator's workspace and the state allocate (tests/support/allocation_counter), per body.
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
-#include <new>
 #include <random>
 #include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
 
-#include "tumble/integrate/integrator.hpp"
+#include "../tests/support/allocation_counter.hpp"
 #include "tumble/forces/forces.hpp"
-
-namespace {
-std::atomic<long long> g_bytes{0};
-}
-
-void* operator new(std::size_t n) {
-  g_bytes += static_cast<long long>(n);
-  if (void* p = std::malloc(n ? n : 1)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t n) { return operator new(n); }
-void* operator new(std::size_t n, std::align_val_t a) {
-  g_bytes += static_cast<long long>(n);
-  const std::size_t al = static_cast<std::size_t>(a);
-  if (void* p = std::aligned_alloc(al, (n + al - 1) / al * al)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t n, std::align_val_t a) { return operator new(n, a); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
-void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+#include "tumble/integrate/integrator.hpp"
 
 using namespace tumble;
 
@@ -96,12 +69,12 @@ SystemState boxes(long n, Model& model) {
 void measure(Config& c, const Model& model, const SystemState& s0) {
   const Formulation F = Formulation::mixed;
   const double h = 1e-3;
-  const long long before = g_bytes;
+  test::CountAllocations counting;
   SystemCoordinates x = to_coordinates(F, s0);
   auto integrator = make_integrator(c.integrator);
   integrator->set_threads(c.threads);
   integrator->step(model, F, x, h);  // binds and sizes the workspace
-  c.bytes_per_body = static_cast<double>(g_bytes - before) / static_cast<double>(c.n);
+  c.bytes_per_body = static_cast<double>(counting.bytes()) / static_cast<double>(c.n);
   long steps = 0;
   const auto t0 = std::chrono::steady_clock::now();
   double elapsed = 0;

@@ -16,7 +16,7 @@ cd "$(dirname "$0")/../.."
 # and the three engines, which only this harness links.
 packages=(
   build-essential cmake pkg-config g++
-  libeigen3-dev libboost-dev libfmt-dev libassimp-dev libtomlplusplus-dev libhdf5-dev
+  libeigen3-dev libxsimd-dev libboost-dev libfmt-dev libassimp-dev libtomlplusplus-dev libhdf5-dev
   libmujoco-dev libbullet-dev libode-dev
 )
 missing=()

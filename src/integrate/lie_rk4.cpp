@@ -6,6 +6,7 @@
 // product of exact rotations, so R stays orthogonal to rounding without renormalisation.
 #include "engine.hpp"
 #include "methods.hpp"
+#include "rk4_steps.hpp"
 
 namespace tumble {
 namespace {
@@ -34,10 +35,8 @@ class LieRungeKutta4 final : public Integrator {
   int evaluations_per_step() const override { return 4; }
 
   void step(const Model& model, Formulation F, SystemCoordinates& x, double h) override {
-    static constexpr double c[4] = {0.0, 0.5, 0.5, 1.0}, b[4] = {1.0, 2.0, 2.0, 1.0};
     const bool right = F != Formulation::world;  // mixed and body integrate ^bω
     engine_.prepare(model, F, threads_, 3);
-    const size_t n = x.bodies.size(), np = x.particles.size();
     const BodyColumnsRef xr = x.bodies.ref();
     auto rotated = [right](const QuatT<Pack>& q, const Vec3T<Pack>& th) {
       const QuatT<Pack> e = quat_exp<Pack>(th);
@@ -45,8 +44,8 @@ class LieRungeKutta4 final : public Integrator {
     };
     auto stage = [&](int s, const Block& blk, const BodyColumnsRef& in) {
       const BodyColumnsRef &y = blk.work[0], &A = blk.work[1], &theta = blk.work[2];  // θ_s: 0–2, ΣF: 3–5
-      const Pack weight(b[s]);
-      const Pack step_next(s < 3 ? c[s + 1] * h : h / 6);
+      const Pack weight(rk4::b[s]);
+      const Pack step_next(s < 3 ? rk4::c[s + 1] * h : h / 6);
       for (size_t i = blk.begin; i < blk.end; i += kWidth) {
         const Coordinates<Pack> yi = in.load<Pack>(i);
         const CoordinateRates<Pack> k = engine_.rates<Pack>(blk, i, yi);
@@ -68,36 +67,7 @@ class LieRungeKutta4 final : public Integrator {
         }
       }
     };
-    if (engine_.fused()) {
-      engine_.for_each_fused_block(n, [&](engine::Engine::FusedBlock& fb) {
-        for (int s = 0; s < 4; ++s) {
-          const BodyColumnsRef in = s == 0 ? xr : fb.work(0);
-          stage(s, fb.evaluate(in, x.t + c[s] * h), in);
-        }
-      });
-    } else {
-      y_.bodies.ensure(n);
-      A_.ensure(n);
-      theta_.ensure(n);
-      y_.particles.resize(np);
-      A_particles_.resize(np);
-      for (int s = 0; s < 4; ++s) {
-        const SystemCoordinates& in = s == 0 ? x : y_;
-        const BodyColumnsRef in_ref = in.bodies.ref();
-        engine_.evaluate(in, [&](const Block& blk) { stage(s, blk, in_ref); }, {&y_.bodies, &A_, &theta_});
-        for (size_t p = 0; p < np; ++p) {
-          const ParticleState k = engine_.particle_rates(p, in.particles[p]);
-          if (s < 3) {
-            A_particles_[p] = s == 0 ? k : axpy(A_particles_[p], b[s], k);
-            y_.particles[p] = advanced(x.particles[p], c[s + 1] * h, k);
-          } else {
-            x.particles[p] = advanced(x.particles[p], h / 6, axpy(A_particles_[p], 1.0, k));
-          }
-        }
-        y_.t = x.t + (s < 3 ? c[s + 1] : 1.0) * h;
-      }
-    }
-    x.t += h;
+    rk4::step(engine_, x, h, y_, A_particles_, {&y_.bodies, &A_, &theta_}, stage);
   }
 
  private:

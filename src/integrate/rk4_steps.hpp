@@ -1,0 +1,57 @@
+#pragma once
+// The stage loop of the classic fourth-order Runge–Kutta tableau, shared by rk4 and lie_rk4, in the
+// low-storage form in which each stage finishes a body before the next body starts:
+//   stage s = 1…4:  k_s = f(t + c_s h, y_s),  A += b_s k_s,  y_{s+1} = x + c_{s+1} h k_s,
+//   x_{n+1} = x + (h/6) A,  with c = (0, ½, ½, 1), b = (1, 2, 2, 1), y_1 = x.
+// The integrator supplies stage(s, block, in): the bodies' part of stage s from the stage state `in`,
+// with its stage variables in block.work (engine.hpp). This file runs the stages fused or staged and
+// steps the particles (whose variables are all vectors: plain RK4).
+#include <initializer_list>
+#include <vector>
+
+#include "engine.hpp"
+
+namespace tumble::rk4 {
+
+inline constexpr double c[4] = {0.0, 0.5, 0.5, 1.0};
+inline constexpr double b[4] = {1.0, 2.0, 2.0, 1.0};
+
+/// One step of x by h. `y` and `A_particles` are the whole-system stage variables of staged steps
+/// (with `work`, the integrator's other whole-system columns: y.bodies first); fused steps leave them
+/// untouched.
+template <class Stage>
+void step(engine::Engine& engine, SystemCoordinates& x, double h, SystemCoordinates& y,
+          std::vector<ParticleState>& A_particles, std::initializer_list<BodyColumns*> work, Stage&& stage) {
+  const size_t n = x.bodies.size(), np = x.particles.size();
+  const BodyColumnsRef xr = x.bodies.ref();
+  if (engine.fused()) {
+    engine.for_each_fused_block(n, [&](engine::Engine::FusedBlock& fb) {
+      for (int s = 0; s < 4; ++s) {
+        const BodyColumnsRef in = s == 0 ? xr : fb.work(0);
+        stage(s, fb.evaluate(in, x.t + c[s] * h), in);
+      }
+    });
+  } else {
+    for (BodyColumns* w : work) w->ensure(n);
+    y.particles.resize(np);
+    A_particles.resize(np);
+    for (int s = 0; s < 4; ++s) {
+      const SystemCoordinates& in = s == 0 ? x : y;
+      const BodyColumnsRef in_ref = in.bodies.ref();
+      engine.evaluate(in, [&](const engine::Block& blk) { stage(s, blk, in_ref); }, work);
+      for (size_t p = 0; p < np; ++p) {
+        const ParticleState k = engine.particle_rates(p, in.particles[p]);
+        if (s < 3) {
+          A_particles[p] = s == 0 ? k : axpy(A_particles[p], b[s], k);
+          y.particles[p] = advanced(x.particles[p], c[s + 1] * h, k);
+        } else {
+          x.particles[p] = advanced(x.particles[p], h / 6, axpy(A_particles[p], 1.0, k));
+        }
+      }
+      y.t = x.t + (s < 3 ? c[s + 1] : 1.0) * h;
+    }
+  }
+  x.t += h;
+}
+
+}  // namespace tumble::rk4
