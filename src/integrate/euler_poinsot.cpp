@@ -51,7 +51,9 @@ const detail::FreeRotation& EulerPoinsot::flow() const {
                 "~EulerPoinsot() = default would not destroy detail::FreeRotation");
   return *std::launder(reinterpret_cast<const detail::FreeRotation*>(flow_));
 }
-detail::FreeRotation& EulerPoinsot::flow() { return *std::launder(reinterpret_cast<detail::FreeRotation*>(flow_)); }
+detail::FreeRotation& EulerPoinsot::flow() {
+  return *std::launder(reinterpret_cast<detail::FreeRotation*>(flow_));
+}
 
 EulerPoinsot::EulerPoinsot(const EulerPoinsot& other)
     : Lambda_(other.Lambda_), R0_(other.R0_), omega_b0_(other.omega_b0_), regime_(other.regime_) {

@@ -35,7 +35,8 @@ inline Quat quat_zxz(double phi, double theta, double psi) {
 /// ω_w = R₀ω_b fixed, so R(t) = exp(t[ω_w]×) R₀ = Rot(ω_w, |ω|t) R₀.
 class SteadyRotation {
  public:
-  SteadyRotation(const Quat& q0, const Vec3& omega_b0) : q0_(q0), omega_b0_(omega_b0), omega_w_(q0 * omega_b0) {}
+  SteadyRotation(const Quat& q0, const Vec3& omega_b0)
+      : q0_(q0), omega_b0_(omega_b0), omega_w_(q0 * omega_b0) {}
   Vec3 omega_b(double) const { return omega_b0_; }
   Quat q(double t) const { return (quat_exp<double>(t * omega_w_) * q0_).normalized(); }
   double period_omega() const { return kInf; }
@@ -120,13 +121,13 @@ class TriaxialRotation {
 
   int pole_ = 3;
   bool separatrix_ = false;
-  JacobiElliptic jacobi_{0.0, 1.0};
-  double lambda_ = 0.0, u0_ = 0.0;  // u = λt + u₀ (λ in rad/s)
-  Vec3 A_;                          // signed amplitudes σ·A (rad/s)
-  Vec3 h_;                          // shape of the transverse momentum (first two entries used)
-  double rho_ = 0.0, c_ = 0.0;      // |μ_transverse| = ρ |T|, μ₃ = c dn
+  JacobiElliptic jacobi_{1.0, 0.0};  // set in the constructor (m = 1 costs nothing to set up)
+  double lambda_ = 0.0, u0_ = 0.0;   // u = λt + u₀ (λ in rad/s)
+  Vec3 A_;                           // signed amplitudes σ·A (rad/s)
+  Vec3 h_;                           // shape of the transverse momentum (first two entries used)
+  double rho_ = 0.0, c_ = 0.0;       // |μ_transverse| = ρ |T|, μ₃ = c dn
   double N_ = 0.0, kappa_ = 0.0, rate_ = 0.0, Pi0_ = 0.0;
-  std::optional<EllipticPi> Pi_;    // Π(−N; am u | m) off the separatrix
+  std::optional<EllipticPi> Pi_;  // Π(−N; am u | m) off the separatrix
   Mat3 P_;
   Quat G_, CP_;
 };
@@ -138,7 +139,8 @@ class FreeRotation {
  public:
   /// Builds the flow of kind `Flow` in place from `args` (its constructor's arguments).
   template <class Flow, class... Args>
-  explicit FreeRotation(std::in_place_type_t<Flow> kind, Args&&... args) : flow_(kind, std::forward<Args>(args)...) {}
+  explicit FreeRotation(std::in_place_type_t<Flow> kind, Args&&... args)
+      : flow_(kind, std::forward<Args>(args)...) {}
 
   Vec3 omega_b(double t) const {
     return std::visit([t](const auto& f) { return f.omega_b(t); }, flow_);

@@ -95,8 +95,10 @@ double elliptic_Pi_incomplete(double n, double s, double c, double d) {
   // Δ² = 1 − m s² (DLMF 19.25.14), valid for |φ| ≤ π/2. With φ = am r: s = sn r, c = cn r, Δ = dn r.
   if (s == 0.0) return 0.0;
   const double c2 = c * c, d2 = d * d, s2 = s * s;
-  return s * boost::math::ellint_rf(c2, d2, 1.0) +
-         n / 3.0 * s * s2 * boost::math::ellint_rj(c2, d2, 1.0, 1.0 - n * s2);
+  const double F = s * boost::math::ellint_rf(c2, d2, 1.0);
+  // n = 0 (F itself): the R_J term is ±0 and adding it changes no bit; skip the evaluation.
+  if (n == 0.0) return F;
+  return F + n / 3.0 * s * s2 * boost::math::ellint_rj(c2, d2, 1.0, 1.0 - n * s2);
 }
 
 }  // namespace tumble
@@ -108,7 +110,8 @@ EllipticPi::EllipticPi(double n, const JacobiElliptic& f) : n_(n), m_(f.m()), m1
     throw InvalidArgument("EllipticPi: the characteristic n = " + std::to_string(n) + " must be <= 0");
   }
   if (m1_ == 0.0) throw InvalidArgument("EllipticPi: m = 1 has no complete integral; use the closed form");
-  complete_ = elliptic_Pi_complete(n, m1_);
+  // elliptic_Pi_complete(n, m₁) with its R_F(0, m₁, 1) = K taken from f (the same call: same bits).
+  complete_ = f.K() + n / 3.0 * boost::math::ellint_rj(0.0, m1_, 1.0, 1.0 - n);
   const double b = m_ - n;  // m − n ≥ 0; zero only for m = n = 0, where Π = u and no reflection term
   if (b > 0.0) {
     n_reflected_ = b / (1.0 - n);
