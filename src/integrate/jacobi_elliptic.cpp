@@ -104,6 +104,22 @@ double elliptic_Pi_incomplete(double n, double s, double c, double d) {
 }  // namespace tumble
 
 namespace tumble {
+namespace {
+
+/// elliptic_Pi_incomplete with R_F and R_J evaluated in double: Boost's default promotes double to
+/// long double (x87, and a powl per R_J call for its stopping threshold), ~7× slower for R_J. Measured
+/// against 50-digit values on 2e4 arguments like EllipticPi's (m up to 1 − 1e-12, n from −1e-2 to
+/// −1e2): ≤ 2.3ε (R_F) and ≤ 3.1ε (R_J) relative, mean 0.6ε, against 0.5ε promoted.
+double Pi_incomplete_in_double(double n, double s, double c, double d) {
+  using NoPromotion = boost::math::policies::policy<boost::math::policies::promote_double<false>>;
+  if (s == 0.0) return 0.0;
+  const double c2 = c * c, d2 = d * d, s2 = s * s;
+  const double F = s * boost::math::ellint_rf(c2, d2, 1.0, NoPromotion());
+  if (n == 0.0) return F;
+  return F + n / 3.0 * s * s2 * boost::math::ellint_rj(c2, d2, 1.0, 1.0 - n * s2, NoPromotion());
+}
+
+}  // namespace
 
 EllipticPi::EllipticPi(double n, const JacobiElliptic& f) : n_(n), m_(f.m()), m1_(f.m1()) {
   if (!(n <= 0.0)) {
@@ -124,9 +140,9 @@ EllipticPi::EllipticPi(double n, const JacobiElliptic& f) : n_(n), m_(f.m()), m1
 
 double EllipticPi::operator()(const JacobiValues& v) const {
   const double periods = 2.0 * v.j * complete_;
-  if (!v.reflected) return periods + elliptic_Pi_incomplete(n_, v.sn_r, v.cn_r, v.dn);
+  if (!v.reflected) return periods + Pi_incomplete_in_double(n_, v.sn_r, v.cn_r, v.dn);
   const double tail = c_linear_ * v.v +
-                      (c_Pi_ == 0.0 ? 0.0 : c_Pi_ * elliptic_Pi_incomplete(n_reflected_, v.sn_v, v.cn_v, v.dn_v));
+                      (c_Pi_ == 0.0 ? 0.0 : c_Pi_ * Pi_incomplete_in_double(n_reflected_, v.sn_v, v.cn_v, v.dn_v));
   return periods + std::copysign(complete_ - tail, v.r);
 }
 
