@@ -18,14 +18,15 @@ namespace tumble::detail {
 
 inline constexpr double kInf = std::numeric_limits<double>::infinity();
 
-/// Rz(φ) Rx(θ) Rz(ψ) as a unit quaternion (z-x-z Euler angles). The three factors are multiplied
-/// rather than combined into angles (φ ± ψ)/2: φ grows with t, and rounding φ + ψ would perturb the
-/// body part Rx(θ)Rz(ψ) (and so L_w) by ε|φ| — 1e-9 rad at t = 1e6 s. Kept apart, the rounding of φ
-/// only rotates about the fixed L_w.
-inline Quat quat_zxz(double phi, double theta, double psi) {
+/// Rz(φ) Rx(θ) Rz(ψ) as a unit quaternion (z-x-z Euler angles), with θ and ψ given by the cosines and
+/// sines of their halves. The three factors are multiplied rather than combined into angles (φ ± ψ)/2:
+/// φ grows with t, and rounding φ + ψ would perturb the body part Rx(θ)Rz(ψ) (and so L_w) by ε|φ| —
+/// 1e-9 rad at t = 1e6 s. Kept apart, the rounding of φ only rotates about the fixed L_w.
+inline Quat quat_zxz(double phi, double cos_half_theta, double sin_half_theta, double cos_half_psi,
+                     double sin_half_psi) {
   const Quat qz_phi(std::cos(0.5 * phi), 0.0, 0.0, std::sin(0.5 * phi));
-  const Quat qx_theta(std::cos(0.5 * theta), std::sin(0.5 * theta), 0.0, 0.0);
-  const Quat qz_psi(std::cos(0.5 * psi), 0.0, 0.0, std::sin(0.5 * psi));
+  const Quat qx_theta(cos_half_theta, sin_half_theta, 0.0, 0.0);
+  const Quat qz_psi(cos_half_psi, 0.0, 0.0, sin_half_psi);
   return qz_phi * (qx_theta * qz_psi);
 }
 
@@ -114,9 +115,26 @@ class TriaxialRotation {
     // pole 1), so ψ stays defined when ρ = 0 (spin exactly about the pole).
     const double T1 = pole_ == 3 ? h_(0) * v.cn : h_(0) * v.sn;
     const double T2 = pole_ == 3 ? h_(1) * v.sn : h_(1) * v.cn;
-    const double psi = std::atan2(T1, T2);
-    const double theta = std::atan2(rho_ * std::hypot(T1, T2), c_ * v.dn);
-    return quat_zxz(phi, theta, psi);
+    const double T = std::hypot(T1, T2);  // > 0: sn² + cn² = 1
+    // ψ = atan2(T₁, T₂) ∈ [−π, π] and θ = atan2(ρ|T|, c dn) ∈ [0, π/2) (c dn > 0), taken by their half
+    // angles without evaluating them: for an angle α with (sin α, cos α) = (y, x)/r,
+    //   cos(α/2) = √((r + x)/(2r)),  sin(α/2) = y/√(2r(r + x))                  (x ≥ 0),
+    //   sin(α/2) = ±√((r − x)/(2r)), cos(α/2) = |y|/√(2r(r − x)), ± the sign of y  (x < 0),
+    // each a sum of non-negative terms (no cancellation); cos(α/2) ≥ 0 and the sign of sin(α/2) is
+    // that of y, as with the angle from atan2 (its branch cut included).
+    double c_psi, s_psi;
+    if (T2 >= 0.0) {
+      const double w = std::sqrt(2.0 * T * (T + T2));
+      c_psi = (T + T2) / w;
+      s_psi = T1 / w;
+    } else {
+      const double w = std::sqrt(2.0 * T * (T - T2));
+      s_psi = std::copysign((T - T2) / w, T1);
+      c_psi = std::abs(T1) / w;
+    }
+    const double y = rho_ * T, x = c_ * v.dn, r = std::hypot(y, x);
+    const double w = std::sqrt(2.0 * r * (r + x));
+    return quat_zxz(phi, (r + x) / w, y / w, c_psi, s_psi);
   }
 
   int pole_ = 3;

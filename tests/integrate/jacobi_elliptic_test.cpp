@@ -147,7 +147,8 @@ TEST(JacobiElliptic, EllipticPiAgreesWithTheLongDoubleRouteToAFewUlps) {
           reference += elliptic_Pi_incomplete(n, v.sn_r, v.cn_r, v.dn);
         } else {
           const double b = m - n, n_reflected = b / (1.0 - n), c_Pi = -n * m1 / (b * (1.0 - n));
-          const double tail = m / b * v.v + c_Pi * elliptic_Pi_incomplete(n_reflected, v.sn_v, v.cn_v, v.dn_v);
+          const double Pi_v = elliptic_Pi_incomplete(n_reflected, v.sn_v, v.cn_v, v.dn_v);
+          const double tail = m / b * v.v + c_Pi * Pi_v;
           reference += std::copysign(complete - tail, v.r);
         }
         // A few ulps of the incomplete part (|·| ≤ Π(n | m)) and the rounding of the sum.
