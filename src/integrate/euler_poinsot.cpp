@@ -2,11 +2,12 @@
 // closed-form flow (euler_poinsot_symmetric.cpp, euler_poinsot_triaxial.cpp).
 #include "tumble/integrate/euler_poinsot.hpp"
 
-#include <algorithm>
 #include <array>
 #include <cmath>
-#include <numeric>
+#include <new>
 #include <sstream>
+#include <type_traits>
+#include <utility>
 
 #include "euler_poinsot_flows.hpp"
 #include "tumble/error.hpp"
@@ -26,7 +27,47 @@ std::string vec_text(const Eigen::Vector4d& v, int n) {
 /// 2^−⌊log₂ x⌋: multiplying by it is exact and brings x into [1, 2).
 double power_of_two_scale(double x) { return std::ldexp(1.0, -std::ilogb(x)); }
 
+/// The axis indices in ascending order of Lambda, equal moments kept in their given order (what
+/// std::stable_sort gives, without its temporary buffer on the heap).
+std::array<int, 3> ascending_order(const Vec3& Lambda) {
+  std::array<int, 3> order{0, 1, 2};
+  // Insertion sort: an element moves left only past strictly larger ones, which keeps it stable.
+  for (int i = 1; i < 3; ++i) {
+    for (int k = i; k > 0 && Lambda(order[k]) < Lambda(order[k - 1]); --k) std::swap(order[k], order[k - 1]);
+  }
+  return order;
+}
+
 }  // namespace
+
+const detail::FreeRotation& EulerPoinsot::flow() const {
+  // The flow lives in flow_ (no heap): it must fit, and since ~EulerPoinsot() is trivial, need no
+  // destructor.
+  static_assert(sizeof(detail::FreeRotation) <= kFlowBytes,
+                "EulerPoinsot::kFlowBytes is too small for detail::FreeRotation: raise it");
+  static_assert(alignof(detail::FreeRotation) <= alignof(Quat),
+                "EulerPoinsot::flow_ is not aligned enough for detail::FreeRotation");
+  static_assert(std::is_trivially_destructible_v<detail::FreeRotation>,
+                "~EulerPoinsot() = default would not destroy detail::FreeRotation");
+  return *std::launder(reinterpret_cast<const detail::FreeRotation*>(flow_));
+}
+detail::FreeRotation& EulerPoinsot::flow() {
+  return *std::launder(reinterpret_cast<detail::FreeRotation*>(flow_));
+}
+
+EulerPoinsot::EulerPoinsot(const EulerPoinsot& other)
+    : Lambda_(other.Lambda_), R0_(other.R0_), omega_b0_(other.omega_b0_), regime_(other.regime_) {
+  ::new (static_cast<void*>(flow_)) detail::FreeRotation(other.flow());
+}
+
+EulerPoinsot& EulerPoinsot::operator=(const EulerPoinsot& other) {
+  Lambda_ = other.Lambda_;
+  R0_ = other.R0_;
+  omega_b0_ = other.omega_b0_;
+  regime_ = other.regime_;
+  flow() = other.flow();
+  return *this;
+}
 
 EulerPoinsot::EulerPoinsot(const Vec3& Lambda, const Mat3& R0, const Vec3& omega_b0)
     : EulerPoinsot(Lambda, Quat(R0), omega_b0) {}
@@ -50,15 +91,20 @@ EulerPoinsot::EulerPoinsot(const Vec3& Lambda, const Quat& q0_in, const Vec3& om
   const Quat q0 = q0_in.normalized();
   R0_ = q0.toRotationMatrix();
 
+  // Builds the flow of kind Flow in flow_, once, as the last step of construction.
+  const auto build = [this]<class Flow>(std::in_place_type_t<Flow> kind, auto&&... args) {
+    ::new (static_cast<void*>(flow_)) detail::FreeRotation(kind, std::forward<decltype(args)>(args)...);
+  };
+  using detail::AxisymmetricRotation, detail::SteadyRotation, detail::TriaxialRotation;
+
   if (omega_b0.isZero(0.0)) {
     regime_ = Regime::rest;
-    flow_ = detail::make_steady_rotation(q0, omega_b0);
+    build(std::in_place_type<SteadyRotation>, q0, omega_b0);
     return;
   }
 
   // Sort the axes: ω_s = P ω_b with P a signed permutation of determinant +1.
-  std::array<int, 3> order{0, 1, 2};
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return Lambda(a) < Lambda(b); });
+  const std::array<int, 3> order = ascending_order(Lambda);
   detail::SortedBody body;
   body.P.setZero();
   for (int k = 0; k < 3; ++k) body.P(k, order[k]) = 1.0;
@@ -73,23 +119,24 @@ EulerPoinsot::EulerPoinsot(const Vec3& Lambda, const Quat& q0_in, const Vec3& om
   const bool low_pair = body.I(1) - body.I(0) <= tol, high_pair = body.I(2) - body.I(1) <= tol;
   if (low_pair && high_pair) {
     regime_ = Regime::sphere;
-    flow_ = detail::make_steady_rotation(q0, omega_b0);
+    build(std::in_place_type<SteadyRotation>, q0, omega_b0);
   } else if (low_pair || high_pair) {
     regime_ = Regime::axisymmetric;
-    flow_ = detail::make_axisymmetric_rotation(Lambda, low_pair ? order[2] : order[0], q0, omega_b0);
+    const int axis = low_pair ? order[2] : order[0];
+    build(std::in_place_type<AxisymmetricRotation>, Lambda, axis, q0, omega_b0);
   } else if (body.w(0) == 0.0 && body.w(2) == 0.0) {
     regime_ = Regime::separatrix;  // steady spin about the intermediate axis (unstable, but exact)
-    flow_ = detail::make_steady_rotation(q0, omega_b0);
+    build(std::in_place_type<SteadyRotation>, q0, omega_b0);
   } else {
-    flow_ = detail::make_triaxial_rotation(body, q0, regime_);
+    build(std::in_place_type<TriaxialRotation>, body, q0, regime_);  // sets regime_
   }
 }
 
-Vec3 EulerPoinsot::omega_b(double t) const { return flow_->omega_b(t); }
-Vec3 EulerPoinsot::omega_w(double t) const { return flow_->q(t) * flow_->omega_b(t); }
-Quat EulerPoinsot::q(double t) const { return flow_->q(t); }
-double EulerPoinsot::period_omega() const { return flow_->period_omega(); }
-double EulerPoinsot::flip_interval() const { return flow_->flip_interval(); }
+Vec3 EulerPoinsot::omega_b(double t) const { return flow().omega_b(t); }
+Vec3 EulerPoinsot::omega_w(double t) const { return flow().q(t) * flow().omega_b(t); }
+Quat EulerPoinsot::q(double t) const { return flow().q(t); }
+double EulerPoinsot::period_omega() const { return flow().period_omega(); }
+double EulerPoinsot::flip_interval() const { return flow().flip_interval(); }
 
 std::string regime_name(EulerPoinsot::Regime regime) {
   switch (regime) {

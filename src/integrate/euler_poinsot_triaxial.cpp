@@ -26,7 +26,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <optional>
 
 #include "euler_poinsot_flows.hpp"
 #include "tumble/integrate/jacobi_elliptic.hpp"
@@ -34,56 +33,9 @@
 namespace tumble::detail {
 namespace {
 
-using Regime = EulerPoinsot::Regime;
-
 double sign_of(double x) { return std::signbit(x) ? -1.0 : 1.0; }
 
-class TriaxialRotation final : public FreeRotation {
- public:
-  TriaxialRotation(const SortedBody& b, const Quat& q0, Regime& regime);
-  Vec3 omega_b(double t) const override { return P_.transpose() * omega_s(jacobi_(lambda_ * t + u0_)); }
-  Quat q(double t) const override;
-  double period_omega() const override { return 4.0 * jacobi_.K() / lambda_; }
-  double flip_interval() const override { return 2.0 * jacobi_.K() / lambda_; }
-
- private:
-  // ω_s from sn, cn, dn (pole 3: ω₁ ∝ cn, ω₃ ∝ dn; pole 1: ω₁ ∝ dn, ω₃ ∝ cn).
-  Vec3 omega_s(const JacobiValues& v) const {
-    return pole_ == 3 ? Vec3(A_(0) * v.cn, A_(1) * v.sn, A_(2) * v.dn)
-                      : Vec3(A_(0) * v.dn, A_(1) * v.sn, A_(2) * v.cn);
-  }
-  /// Π(−N; am u | m), continued beyond |am u| ≤ π/2 by Π(n; φ + jπ) = Π(n; φ) + 2jΠ(n).
-  double Pi(double u, const JacobiValues& v) const {
-    if (separatrix_) {
-      // m = 1: Π(−N; am u | 1) = ∫₀ᵘ du′/(1 + N tanh²u′) = (u + √N atan(√N tanh u))/(1 + N).
-      const double rN = std::sqrt(N_);
-      return (u + rN * std::atan(rN * v.sn)) / (1.0 + N_);
-    }
-    return (*Pi_)(v);
-  }
-  /// The unit quaternion of Rx(θ) Rz(ψ) Rz(φ)… for given φ: the z-x-z angles of μ.
-  Quat body_part(double phi, const JacobiValues& v) const {
-    // Transverse part of μ up to the factor ρ (it is ρ·(h₁ cn, h₂ sn) for pole 3, ρ·(h₁ sn, h₂ cn) for
-    // pole 1), so ψ stays defined when ρ = 0 (spin exactly about the pole).
-    const double T1 = pole_ == 3 ? h_(0) * v.cn : h_(0) * v.sn;
-    const double T2 = pole_ == 3 ? h_(1) * v.sn : h_(1) * v.cn;
-    const double psi = std::atan2(T1, T2);
-    const double theta = std::atan2(rho_ * std::hypot(T1, T2), c_ * v.dn);
-    return quat_zxz(phi, theta, psi);
-  }
-
-  int pole_ = 3;
-  bool separatrix_ = false;
-  JacobiElliptic jacobi_{0.0, 1.0};
-  double lambda_ = 0.0, u0_ = 0.0;  // u = λt + u₀ (λ in rad/s)
-  Vec3 A_;                          // signed amplitudes σ·A (rad/s)
-  Vec3 h_;                          // shape of the transverse momentum (first two entries used)
-  double rho_ = 0.0, c_ = 0.0;      // |μ_transverse| = ρ |T|, μ₃ = c dn
-  double N_ = 0.0, kappa_ = 0.0, rate_ = 0.0, Pi0_ = 0.0;
-  std::optional<EllipticPi> Pi_;    // Π(−N; am u | m) off the separatrix
-  Mat3 P_;
-  Quat G_, CP_;
-};
+}  // namespace
 
 TriaxialRotation::TriaxialRotation(const SortedBody& b, const Quat& q0, Regime& regime) : P_(b.P) {
   const double I1 = b.I(0), I2 = b.I(1), I3 = b.I(2);
@@ -172,13 +124,6 @@ Quat TriaxialRotation::q(double t) const {
   const JacobiValues v = jacobi_(u);
   const double phi = rate_ * t + kappa_ * (Pi(u, v) - Pi0_);
   return (G_ * body_part(phi, v) * CP_).normalized();
-}
-
-}  // namespace
-
-std::shared_ptr<const FreeRotation> make_triaxial_rotation(const SortedBody& body, const Quat& q0,
-                                                           EulerPoinsot::Regime& regime) {
-  return std::make_shared<TriaxialRotation>(body, q0, regime);
 }
 
 }  // namespace tumble::detail

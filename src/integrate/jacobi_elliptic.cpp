@@ -95,20 +95,39 @@ double elliptic_Pi_incomplete(double n, double s, double c, double d) {
   // Δ² = 1 − m s² (DLMF 19.25.14), valid for |φ| ≤ π/2. With φ = am r: s = sn r, c = cn r, Δ = dn r.
   if (s == 0.0) return 0.0;
   const double c2 = c * c, d2 = d * d, s2 = s * s;
-  return s * boost::math::ellint_rf(c2, d2, 1.0) +
-         n / 3.0 * s * s2 * boost::math::ellint_rj(c2, d2, 1.0, 1.0 - n * s2);
+  const double F = s * boost::math::ellint_rf(c2, d2, 1.0);
+  // n = 0 (F itself): the R_J term is ±0 and adding it changes no bit; skip the evaluation.
+  if (n == 0.0) return F;
+  return F + n / 3.0 * s * s2 * boost::math::ellint_rj(c2, d2, 1.0, 1.0 - n * s2);
 }
 
 }  // namespace tumble
 
 namespace tumble {
+namespace {
+
+/// elliptic_Pi_incomplete with R_F and R_J evaluated in double: Boost's default promotes double to
+/// long double (x87, and a powl per R_J call for its stopping threshold), ~7× slower for R_J. Measured
+/// against 50-digit values on 2e4 arguments like EllipticPi's (m up to 1 − 1e-12, n from −1e-2 to
+/// −1e2): ≤ 2.3ε (R_F) and ≤ 3.1ε (R_J) relative, mean 0.6ε, against 0.5ε promoted.
+double Pi_incomplete_in_double(double n, double s, double c, double d) {
+  using NoPromotion = boost::math::policies::policy<boost::math::policies::promote_double<false>>;
+  if (s == 0.0) return 0.0;
+  const double c2 = c * c, d2 = d * d, s2 = s * s;
+  const double F = s * boost::math::ellint_rf(c2, d2, 1.0, NoPromotion());
+  if (n == 0.0) return F;
+  return F + n / 3.0 * s * s2 * boost::math::ellint_rj(c2, d2, 1.0, 1.0 - n * s2, NoPromotion());
+}
+
+}  // namespace
 
 EllipticPi::EllipticPi(double n, const JacobiElliptic& f) : n_(n), m_(f.m()), m1_(f.m1()) {
   if (!(n <= 0.0)) {
     throw InvalidArgument("EllipticPi: the characteristic n = " + std::to_string(n) + " must be <= 0");
   }
   if (m1_ == 0.0) throw InvalidArgument("EllipticPi: m = 1 has no complete integral; use the closed form");
-  complete_ = elliptic_Pi_complete(n, m1_);
+  // elliptic_Pi_complete(n, m₁) with its R_F(0, m₁, 1) = K taken from f (the same call: same bits).
+  complete_ = f.K() + n / 3.0 * boost::math::ellint_rj(0.0, m1_, 1.0, 1.0 - n);
   const double b = m_ - n;  // m − n ≥ 0; zero only for m = n = 0, where Π = u and no reflection term
   if (b > 0.0) {
     n_reflected_ = b / (1.0 - n);
@@ -121,9 +140,9 @@ EllipticPi::EllipticPi(double n, const JacobiElliptic& f) : n_(n), m_(f.m()), m1
 
 double EllipticPi::operator()(const JacobiValues& v) const {
   const double periods = 2.0 * v.j * complete_;
-  if (!v.reflected) return periods + elliptic_Pi_incomplete(n_, v.sn_r, v.cn_r, v.dn);
+  if (!v.reflected) return periods + Pi_incomplete_in_double(n_, v.sn_r, v.cn_r, v.dn);
   const double tail = c_linear_ * v.v +
-                      (c_Pi_ == 0.0 ? 0.0 : c_Pi_ * elliptic_Pi_incomplete(n_reflected_, v.sn_v, v.cn_v, v.dn_v));
+                      (c_Pi_ == 0.0 ? 0.0 : c_Pi_ * Pi_incomplete_in_double(n_reflected_, v.sn_v, v.cn_v, v.dn_v));
   return periods + std::copysign(complete_ - tail, v.r);
 }
 

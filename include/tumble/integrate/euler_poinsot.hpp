@@ -23,7 +23,7 @@
 // evaluated from (k, k′) (jacobi_elliptic.hpp). Arguments are reduced modulo the period and
 // Π(n; φ + jπ | m) = Π(n; φ | m) + 2jΠ(n | m), so the cost and the relative accuracy of the phase do
 // not depend on t.
-#include <memory>
+#include <cstddef>
 #include <string>
 
 #include "tumble/math/types.hpp"
@@ -61,6 +61,10 @@ class EulerPoinsot {
   EulerPoinsot(const Vec3& Lambda, const Quat& q0, const Vec3& omega_b0);
   /// The same from a rotation matrix R0 (body → world).
   EulerPoinsot(const Vec3& Lambda, const Mat3& R0, const Vec3& omega_b0);
+  /// A value: copies are independent and, like construction and evaluation, never allocate.
+  EulerPoinsot(const EulerPoinsot& other);
+  EulerPoinsot& operator=(const EulerPoinsot& other);
+  ~EulerPoinsot() = default;  // the flow in flow_ is trivially destructible (checked where it is built)
 
   /// Body angular velocity ω_b(t) (rad/s), for any real t (negative t runs the motion backwards).
   Vec3 omega_b(double t) const;
@@ -87,11 +91,18 @@ class EulerPoinsot {
   Vec3 angular_momentum_w() const { return R0_ * Lambda_.cwiseProduct(omega_b0_); }
 
  private:
+  /// Bytes for the closed-form flow, a detail::FreeRotation (src/integrate/euler_poinsot_flows.hpp: a
+  /// std::variant of the steady, axisymmetric and triaxial flows) built in place in flow_, so that no
+  /// EulerPoinsot ever touches the heap. euler_poinsot.cpp checks that it fits.
+  static constexpr std::size_t kFlowBytes = 768;
+  const detail::FreeRotation& flow() const;
+  detail::FreeRotation& flow();
+
   Vec3 Lambda_;
   Mat3 R0_;
   Vec3 omega_b0_;
   Regime regime_;
-  std::shared_ptr<const detail::FreeRotation> flow_;  // immutable, shared by copies
+  alignas(Quat) unsigned char flow_[kFlowBytes];  // holds a detail::FreeRotation once constructed
 };
 
 /// "rest", "sphere", "axisymmetric", "about_minor_axis", "about_major_axis", "separatrix".

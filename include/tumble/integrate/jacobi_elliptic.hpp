@@ -69,7 +69,10 @@ class EllipticPi {
  public:
   /// Throws InvalidArgument unless n ≤ 0 (the free rigid body needs n = −N ≤ 0).
   EllipticPi(double n, const JacobiElliptic& f);
-  /// Π(n; am u | m) from the values f(u).
+  /// Π(n; am u | m) from the values f(u). The complete Π(n | m) (it multiplies the half-periods j) is
+  /// evaluated once, with Boost's long-double promotion as everywhere else here; the incomplete part
+  /// |Π(n; am r)| ≤ Π(n | m) evaluates R_F and R_J in double (≤ 3ε relative instead of 0.5ε, and
+  /// 3× faster): the phase of the free rigid body then moves by at most one ulp of itself.
   double operator()(const JacobiValues& v) const;
 
  private:
