@@ -1,11 +1,12 @@
 // EulerPoinsot is a value that never touches the heap: the splitting integrator builds one per body per
-// step. Proved by counting calls of the global allocation functions, replaced here for the whole test
-// binary (every form of operator new and operator delete, forwarding to malloc and free). The counter
-// is off except inside the measured region of a test, which holds no assertion (gtest allocates when it
-// reports).
+// step. Proved by counting calls of the global allocation functions, replaced for the whole test binary
+// (tests/support/allocation_counter.cpp). The counter is off except inside the measured region of a
+// test, which holds no assertion (gtest allocates when it reports).
 #include "tumble/integrate/euler_poinsot.hpp"
 
 #include <gtest/gtest.h>
+
+#include "../support/allocation_counter.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -15,76 +16,15 @@
 #include <new>
 #include <vector>
 
-namespace {
-
-std::atomic<bool> g_counting{false};
-std::atomic<long> g_allocations{0};
-
-void* allocate(std::size_t size) {
-  if (g_counting.load(std::memory_order_relaxed)) g_allocations.fetch_add(1, std::memory_order_relaxed);
-  return std::malloc(size == 0 ? 1 : size);
-}
-
-void* allocate_aligned(std::size_t size, std::align_val_t align) {
-  if (g_counting.load(std::memory_order_relaxed)) g_allocations.fetch_add(1, std::memory_order_relaxed);
-  void* p = nullptr;
-  const std::size_t a = std::max(static_cast<std::size_t>(align), sizeof(void*));
-  return posix_memalign(&p, a, size == 0 ? 1 : size) == 0 ? p : nullptr;
-}
-
-void release(void* p) noexcept { std::free(p); }
-
-}  // namespace
-
-void* operator new(std::size_t n) {
-  if (void* p = allocate(n)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t n) {
-  if (void* p = allocate(n)) return p;
-  throw std::bad_alloc();
-}
-void* operator new(std::size_t n, const std::nothrow_t&) noexcept { return allocate(n); }
-void* operator new[](std::size_t n, const std::nothrow_t&) noexcept { return allocate(n); }
-void* operator new(std::size_t n, std::align_val_t a) {
-  if (void* p = allocate_aligned(n, a)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t n, std::align_val_t a) {
-  if (void* p = allocate_aligned(n, a)) return p;
-  throw std::bad_alloc();
-}
-void* operator new(std::size_t n, std::align_val_t a, const std::nothrow_t&) noexcept {
-  return allocate_aligned(n, a);
-}
-void* operator new[](std::size_t n, std::align_val_t a, const std::nothrow_t&) noexcept {
-  return allocate_aligned(n, a);
-}
-
-void operator delete(void* p) noexcept { release(p); }
-void operator delete[](void* p) noexcept { release(p); }
-void operator delete(void* p, std::size_t) noexcept { release(p); }
-void operator delete[](void* p, std::size_t) noexcept { release(p); }
-void operator delete(void* p, const std::nothrow_t&) noexcept { release(p); }
-void operator delete[](void* p, const std::nothrow_t&) noexcept { release(p); }
-void operator delete(void* p, std::align_val_t) noexcept { release(p); }
-void operator delete[](void* p, std::align_val_t) noexcept { release(p); }
-void operator delete(void* p, std::size_t, std::align_val_t) noexcept { release(p); }
-void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { release(p); }
-void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept { release(p); }
-void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcept { release(p); }
-
 namespace tumble {
 namespace {
 
 /// The number of allocations made by f() (the counter is on only while f runs).
 template <class F>
 long allocations_in(F&& f) {
-  g_allocations.store(0);
-  g_counting.store(true);
+  const test::CountAllocations counting;
   f();
-  g_counting.store(false);
-  return g_allocations.load();
+  return counting.count();
 }
 
 using Regime = EulerPoinsot::Regime;
@@ -118,10 +58,10 @@ TEST(EulerPoinsotAllocations, TheCounterSeesAHeapAllocation) {
   EXPECT_GE(allocations_in([&] { v.resize(1000); }), 1);
   EXPECT_EQ(v.size() + static_cast<std::size_t>(*kept), 1001u);
   // ... and only there: the allocations above were made with the counter on, these are not counted.
-  g_allocations.store(0);
+  const long before = test::allocations_counted();
   v.resize(5000);
   kept = std::make_shared<double>(2.0);
-  EXPECT_EQ(g_allocations.load(), 0);
+  EXPECT_EQ(test::allocations_counted(), before);
 }
 
 TEST(EulerPoinsotAllocations, ConstructionCopyAndEvaluationAllocateNothingInAnyRegime) {
