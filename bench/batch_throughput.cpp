@@ -94,12 +94,15 @@ int main(int argc, char** argv) {
   const std::vector<std::string> integrators =
       split(argc > 4 ? argv[4] : "rk4,semi_implicit_euler,euler,lie_rk4,midpoint,implicit_gyro,splitting");
   std::vector<int> thread_counts;
-  for (const std::string& t : split(argc > 5 ? argv[5] : "1,2")) thread_counts.push_back(std::atoi(t.c_str()));
+  for (const std::string& t : split(argc > 5 ? argv[5] : "1,2"))
+    thread_counts.push_back(std::atoi(t.c_str()));
 
-  std::printf("batched engine throughput: free boxes under gravity, h = 1e-3 s, mixed formulation, %d interleaved "
-              "repetitions of >= 0.3 s\nmachine: %s, %u hardware threads; engine built for %s (%d doubles per pack)\n\n",
-              repetitions, cpu_model().c_str(), std::thread::hardware_concurrency(),
-              engine_info().instruction_set.c_str(), engine_info().lanes);
+  std::printf(
+      "batched engine throughput: free boxes under gravity, h = 1e-3 s, mixed formulation, %d interleaved "
+      "repetitions of >= 0.3 s\nmachine: %s, %u hardware threads; engine built for %s (%d doubles per "
+      "pack)\n\n",
+      repetitions, cpu_model().c_str(), std::thread::hardware_concurrency(),
+      engine_info().instruction_set.c_str(), engine_info().lanes);
   std::vector<long> sizes;
   for (long n : {1L, 100L, 10000L, 100000L, 1000000L}) {
     if (n <= max_n) sizes.push_back(n);
@@ -121,14 +124,15 @@ int main(int argc, char** argv) {
   }
   std::ofstream csv(csv_path);
   csv << "integrator,N,threads,repetitions,rate_min,rate_median,bytes_per_body\n";
-  std::printf("%-20s %8s %7s %14s %14s %10s\n", "integrator", "N", "threads", "min /s", "median /s", "B/body");
+  std::printf("%-20s %8s %7s %14s %14s %10s\n", "integrator", "N", "threads", "min /s", "median /s",
+              "B/body");
   for (Config& c : configs) {
     std::sort(c.rates.begin(), c.rates.end());
     const double med = c.rates[c.rates.size() / 2];
-    std::printf("%-20s %8ld %7d %14.4g %14.4g %10.0f\n", c.integrator.c_str(), c.n, c.threads, c.rates.front(), med,
-                c.bytes_per_body);
-    csv << c.integrator << ',' << c.n << ',' << c.threads << ',' << repetitions << ',' << c.rates.front() << ','
-        << med << ',' << c.bytes_per_body << '\n';
+    std::printf("%-20s %8ld %7d %14.4g %14.4g %10.0f\n", c.integrator.c_str(), c.n, c.threads,
+                c.rates.front(), med, c.bytes_per_body);
+    csv << c.integrator << ',' << c.n << ',' << c.threads << ',' << repetitions << ',' << c.rates.front()
+        << ',' << med << ',' << c.bytes_per_body << '\n';
   }
   std::printf("\nCSV: %s\n", csv_path.c_str());
 }

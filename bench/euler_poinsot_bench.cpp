@@ -8,9 +8,9 @@
 namespace {
 
 const tumble::EulerPoinsot& generic_body() {
-  static const tumble::EulerPoinsot ep(tumble::Vec3(1.5, 2.5, 4.0),
-                                       tumble::Quat(Eigen::AngleAxisd(0.7, tumble::Vec3(1, 2, 3).normalized())),
-                                       tumble::Vec3(1.0, 12.0, 2.0));
+  static const tumble::EulerPoinsot ep(
+      tumble::Vec3(1.5, 2.5, 4.0), tumble::Quat(Eigen::AngleAxisd(0.7, tumble::Vec3(1, 2, 3).normalized())),
+      tumble::Vec3(1.0, 12.0, 2.0));
   return ep;
 }
 
@@ -36,7 +36,8 @@ BENCHMARK(BM_Quaternion)->Arg(1)->Arg(1000000);
 
 void BM_Construct(benchmark::State& state) {
   for (auto _ : state) {
-    tumble::EulerPoinsot ep(tumble::Vec3(1.5, 2.5, 4.0), tumble::Quat::Identity(), tumble::Vec3(1.0, 12.0, 2.0));
+    tumble::EulerPoinsot ep(tumble::Vec3(1.5, 2.5, 4.0), tumble::Quat::Identity(),
+                            tumble::Vec3(1.0, 12.0, 2.0));
     benchmark::DoNotOptimize(ep);
   }
 }

@@ -49,7 +49,15 @@ struct NumTraits<F> : GenericNumTraits<double> {
   using NonInteger = F;
   using Literal = F;
   using Nested = F;
-  enum { IsComplex = 0, IsInteger = 0, IsSigned = 1, RequireInitialization = 1, ReadCost = 1, AddCost = 1, MulCost = 1 };
+  enum {
+    IsComplex = 0,
+    IsInteger = 0,
+    IsSigned = 1,
+    RequireInitialization = 1,
+    ReadCost = 1,
+    AddCost = 1,
+    MulCost = 1
+  };
 };
 }  // namespace Eigen
 
@@ -65,7 +73,8 @@ Coordinates<F> x0() {
 CoordinateRates<F> rates(Formulation formulation, const Coordinates<F>& y) {
   const F m(6), g_z(-9.81);
   const Vec3T<F> f(m * F(0), m * F(0), m * g_z);
-  return newton_euler<F>(formulation, m, Vec3T<F>(F(0.025), F(0.05), F(0.065)), y, f, Vec3T<F>(F(0), F(0), F(0)));
+  return newton_euler<F>(formulation, m, Vec3T<F>(F(0.025), F(0.05), F(0.065)), y, f,
+                         Vec3T<F>(F(0), F(0), F(0)));
 }
 
 Counts rk4(Formulation formulation) {
@@ -132,20 +141,23 @@ Counts semi_implicit_euler(Formulation formulation) {
 }  // namespace
 
 int main() {
-  std::printf("%-20s %-6s %6s %6s %6s %6s %6s %6s\n", "integrator", "frame", "add", "mul", "div", "sqrt", "trig",
-              "total");
+  std::printf("%-20s %-6s %6s %6s %6s %6s %6s %6s\n", "integrator", "frame", "add", "mul", "div", "sqrt",
+              "trig", "total");
   for (const Formulation formulation : {Formulation::world, Formulation::mixed, Formulation::body}) {
-    const char* frame = formulation == Formulation::world ? "world" : formulation == Formulation::mixed ? "mixed" : "body";
+    const char* frame = formulation == Formulation::world   ? "world"
+                        : formulation == Formulation::mixed ? "mixed"
+                                                            : "body";
     const std::pair<const char*, Counts> rows[] = {{"euler", euler(formulation)},
                                                    {"semi_implicit_euler", semi_implicit_euler(formulation)},
                                                    {"rk4", rk4(formulation)},
                                                    {"lie_rk4", lie_rk4(formulation)}};
     for (const auto& [name, c] : rows) {
-      std::printf("%-20s %-6s %6ld %6ld %6ld %6ld %6ld %6ld\n", name, frame, c.add, c.mul, c.div, c.sqrt, c.trig,
-                  c.total());
+      std::printf("%-20s %-6s %6ld %6ld %6ld %6ld %6ld %6ld\n", name, frame, c.add, c.mul, c.div, c.sqrt,
+                  c.trig, c.total());
     }
   }
-  std::printf("\nbytes per body-step, fused steps: state read and written (2 x 13 doubles) + constants m, Lambda "
-              "(4 doubles) = %d\n",
-              (2 * 13 + 4) * 8);
+  std::printf(
+      "\nbytes per body-step, fused steps: state read and written (2 x 13 doubles) + constants m, Lambda "
+      "(4 doubles) = %d\n",
+      (2 * 13 + 4) * 8);
 }

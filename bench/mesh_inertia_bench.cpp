@@ -11,8 +11,8 @@
 #include <fstream>
 #include <string>
 #include <thread>
-#include <vector>
 #include <unistd.h>
+#include <vector>
 
 #include "tumble/mass/mesh_io.hpp"
 #include "tumble/mass/mesh_mass.hpp"

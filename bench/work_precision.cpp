@@ -50,10 +50,13 @@ int main(int argc, char** argv) {
   model.add_body(RigidBody::from_principal_moments(0.1, Lambda, "t_handle"));
   const SystemState s0{0.0, {BodyState{Vec3::Zero(), Quat::Identity(), Vec3::Zero(), omega_b0}}, {}};
 
-  std::printf("work-precision: torque-free T-handle, Lambda = (%g, %g, %g) kg m^2, omega_b(0) = (%g, %g, %g) rad/s,\n",
-              Lambda(0), Lambda(1), Lambda(2), omega_b0(0), omega_b0(1), omega_b0(2));
-  std::printf("T = %g s (%.0f flips), mixed formulation, %d repetitions; machine: %s, %u hardware threads\n\n", T,
-              T / exact.flip_interval(), repetitions, cpu_model().c_str(), std::thread::hardware_concurrency());
+  std::printf(
+      "work-precision: torque-free T-handle, Lambda = (%g, %g, %g) kg m^2, omega_b(0) = (%g, %g, %g) "
+      "rad/s,\n",
+      Lambda(0), Lambda(1), Lambda(2), omega_b0(0), omega_b0(1), omega_b0(2));
+  std::printf(
+      "T = %g s (%.0f flips), mixed formulation, %d repetitions; machine: %s, %u hardware threads\n\n", T,
+      T / exact.flip_interval(), repetitions, cpu_model().c_str(), std::thread::hardware_concurrency());
 
   std::vector<Row> rows;
   auto measure = [&](const std::string& method, const std::string& setting, RunSettings rs) {
@@ -75,14 +78,15 @@ int main(int argc, char** argv) {
                     (b.omega_b() - exact.omega_b(T)).norm() / omega_b0.norm(), stats.evaluations, stats.steps,
                     times.front(), times[times.size() / 2]});
     const Row& row = rows.back();
-    std::printf("%-20s %-12s attitude %-9.2e omega %-9.2e evals %-9ld steps %-9ld wall min %.4f s median %.4f s\n",
-                row.method.c_str(), row.setting.c_str(), row.attitude_error, row.omega_error, row.evaluations,
-                row.steps, row.t_min, row.t_median);
+    std::printf(
+        "%-20s %-12s attitude %-9.2e omega %-9.2e evals %-9ld steps %-9ld wall min %.4f s median %.4f s\n",
+        row.method.c_str(), row.setting.c_str(), row.attitude_error, row.omega_error, row.evaluations,
+        row.steps, row.t_min, row.t_median);
     std::fflush(stdout);
   };
 
-  for (const std::string method :
-       {"splitting", "splitting4", "midpoint", "rk4", "lie_rk4", "implicit_gyro", "semi_implicit_euler", "euler"}) {
+  for (const std::string method : {"splitting", "splitting4", "midpoint", "rk4", "lie_rk4", "implicit_gyro",
+                                   "semi_implicit_euler", "euler"}) {
     for (double h : {0.1, 0.03, 0.01, 3e-3, 1e-3, 3e-4}) {
       RunSettings rs;
       rs.timestep = h;
@@ -120,8 +124,8 @@ int main(int argc, char** argv) {
   std::ofstream csv(csv_path);
   csv << "method,setting,attitude_error_rad,omega_rel_error,evaluations,steps,wall_min_s,wall_median_s\n";
   for (const Row& r : rows) {
-    csv << r.method << ',' << r.setting << ',' << r.attitude_error << ',' << r.omega_error << ',' << r.evaluations
-        << ',' << r.steps << ',' << r.t_min << ',' << r.t_median << '\n';
+    csv << r.method << ',' << r.setting << ',' << r.attitude_error << ',' << r.omega_error << ','
+        << r.evaluations << ',' << r.steps << ',' << r.t_min << ',' << r.t_median << '\n';
   }
   std::printf("\nwrote %s\n", csv_path.c_str());
   return 0;

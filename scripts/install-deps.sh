@@ -2,7 +2,7 @@
 # Installs the Debian 12 packages tumble needs to build, test and benchmark. Safe to run again.
 set -euo pipefail
 packages=(
-  build-essential cmake ninja-build pkg-config g++ clang-14 libclang-rt-14-dev
+  build-essential cmake ninja-build pkg-config g++ clang-14 libclang-rt-14-dev clang-format-14
   libeigen3-dev libxsimd-dev libomp-14-dev libboost-dev libfmt-dev libcli11-dev libassimp-dev libtomlplusplus-dev libhdf5-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-numpy python3-h5py

@@ -93,12 +93,12 @@ Report measure(const InertiaOptions& o) {
     r.surface_area = surface_area(shape);
   } else {
     const TriangleMesh mesh = load_mesh(o.file, MeshLoadOptions{o.scale});
-    const MeshMassResult result = o.shell
-                                      ? shell_mass_properties(mesh, shell_thickness(o), spec, o.file)
-                                      : solid_mass_properties(mesh, spec, o.file);
+    const MeshMassResult result = o.shell ? shell_mass_properties(mesh, shell_thickness(o), spec, o.file)
+                                          : solid_mass_properties(mesh, spec, o.file);
     r.source = fmt::format("{} ({}, {} vertices, {} triangles{})", o.file,
                            o.shell ? "thin shell" : "closed mesh", mesh.vertices.size(),
-                           mesh.triangles.size(), o.scale != 1.0 ? fmt::format(", scaled by {}", o.scale) : "");
+                           mesh.triangles.size(),
+                           o.scale != 1.0 ? fmt::format(", scaled by {}", o.scale) : "");
     r.mp = result.properties;
     r.surface_area = result.surface_area;
     r.warnings = result.warnings;
@@ -109,8 +109,7 @@ Report measure(const InertiaOptions& o) {
 
 std::string json_vector(const Vec3& v) { return fmt::format("[{}, {}, {}]", v(0), v(1), v(2)); }
 std::string json_rows(const Mat3& M) {
-  return fmt::format("[{}, {}, {}]", json_vector(M.row(0)), json_vector(M.row(1)),
-                     json_vector(M.row(2)));
+  return fmt::format("[{}, {}, {}]", json_vector(M.row(0)), json_vector(M.row(1)), json_vector(M.row(2)));
 }
 std::string json_string(const std::string& s) {
   std::string out = "\"";
@@ -134,8 +133,8 @@ void print_json(const Report& r, const PrincipalAxes& pa) {
       "  \"inertia\": {},\n  \"principal_moments\": {},\n  \"principal_axes\": {},\n"
       "  \"warnings\": [{}]\n}}\n",
       r.mp.mass, r.mp.volume, r.surface_area ? fmt::format("{}", *r.surface_area) : "null",
-      json_vector(r.mp.center_of_mass), json_rows(r.mp.inertia), json_vector(pa.Lambda),
-      json_rows(pa.U), fmt::join(warnings, ", "));
+      json_vector(r.mp.center_of_mass), json_rows(r.mp.inertia), json_vector(pa.Lambda), json_rows(pa.U),
+      fmt::join(warnings, ", "));
 }
 
 void print_human(const Report& r, const PrincipalAxes& pa) {
@@ -191,8 +190,7 @@ Runner add_inertia_command(CLI::App& app) {
   auto* shell = cmd->add_flag("--shell", o->shell,
                               "thin-walled part: mass on the surface (surface density = density x "
                               "thickness); open meshes are allowed");
-  cmd->add_option("--thickness", o->thickness, "wall thickness (m) for --shell with --density")
-      ->needs(shell);
+  cmd->add_option("--thickness", o->thickness, "wall thickness (m) for --shell with --density")->needs(shell);
   cmd->add_flag("--json", o->json,
                 "print JSON: mass, volume, surface_area, center_of_mass, inertia (3x3 rows), "
                 "principal_moments, principal_axes (3x3 rows; columns are the axes), warnings");

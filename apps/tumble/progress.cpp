@@ -53,14 +53,16 @@ void Progress::draw(double t) {
   constexpr int width = 30;
   const int filled = static_cast<int>(fraction * width);
   const std::string remaining =
-      fraction > 0 && fraction < 1 ? fmt::format("  ~{} left", duration_text(elapsed * (1 - fraction) / fraction))
-                                   : std::string();
+      fraction > 0 && fraction < 1
+          ? fmt::format("  ~{} left", duration_text(elapsed * (1 - fraction) / fraction))
+          : std::string();
   // "\r" and the clear-to-end-of-line code redraw in place on a terminal; when forced onto a file or
   // pipe the updates are separate lines instead.
   const char* begin = terminal_ ? "\r\x1b[K" : "";
   const char* end = terminal_ ? "" : "\n";
-  fmt::print(stderr, "{}[{}{}] {:3.0f}%  t = {:.4g} / {:.4g} s  elapsed {}{}{}", begin, std::string(filled, '#'),
-             std::string(width - filled, '.'), 100 * fraction, t, t_end_, duration_text(elapsed), remaining, end);
+  fmt::print(stderr, "{}[{}{}] {:3.0f}%  t = {:.4g} / {:.4g} s  elapsed {}{}{}", begin,
+             std::string(filled, '#'), std::string(width - filled, '.'), 100 * fraction, t, t_end_,
+             duration_text(elapsed), remaining, end);
   std::fflush(stderr);
   shown_ = true;
 }

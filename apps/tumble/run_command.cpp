@@ -5,9 +5,9 @@
 #include <cmath>
 #include <optional>
 
-#include "plural.hpp"
 #include "commands.hpp"
 #include "interrupt.hpp"
+#include "plural.hpp"
 #include "progress.hpp"
 #include "scene_summary.hpp"
 #include "tumble/integrate/integrator.hpp"
@@ -72,9 +72,10 @@ int run(const RunOptions& o) {
   const RunSettings settings = settings_for(scene, o);
   const double threshold = o.drift_threshold.value_or(scene.drift_threshold);
   if (!(std::isfinite(threshold) && threshold >= 0)) {
-    throw InvalidArgument(fmt::format("--drift-threshold {} is invalid: give a number >= 0 (0 turns the "
-                                      "warning off)",
-                                      threshold));
+    throw InvalidArgument(
+        fmt::format("--drift-threshold {} is invalid: give a number >= 0 (0 turns the "
+                    "warning off)",
+                    threshold));
   }
   print_scene_warnings(scene);
 
@@ -85,36 +86,44 @@ int run(const RunOptions& o) {
     out += hdf5 ? ".h5" : ".csv";
   }
   if (std::filesystem::is_directory(out)) {
-    throw InvalidArgument(fmt::format("-o {} is a directory: give a file name, e.g. {}", out.string(),
-                                      (out / std::filesystem::path(o.scene).stem()).string() + (hdf5 ? ".h5" : ".csv")));
+    throw InvalidArgument(
+        fmt::format("-o {} is a directory: give a file name, e.g. {}", out.string(),
+                    (out / std::filesystem::path(o.scene).stem()).string() + (hdf5 ? ".h5" : ".csv")));
   }
   if (hdf5 && !o.diagnostics.empty()) {
-    throw InvalidArgument("--diagnostics names a CSV file; HDF5 output keeps the diagnostics in its "
-                          "'diagnostics' group: drop --diagnostics or use --format csv");
+    throw InvalidArgument(
+        "--diagnostics names a CSV file; HDF5 output keeps the diagnostics in its "
+        "'diagnostics' group: drop --diagnostics or use --format csv");
   }
   const TrajectoryInfo info{scene.text, o.scene, TUMBLE_VERSION, settings};
   const std::unique_ptr<TrajectoryWriter> writer =
       hdf5 ? make_hdf5_writer(out, scene.model, info)
-           : make_csv_writer(out, o.diagnostics.empty() ? diagnostics_path(out) : std::filesystem::path(o.diagnostics),
-                             scene.model, info);
+           : make_csv_writer(
+                 out, o.diagnostics.empty() ? diagnostics_path(out) : std::filesystem::path(o.diagnostics),
+                 scene.model, info);
 
   DriftMonitor monitor(scene.model, scene.initial, scene.conserved, threshold, settings);
   DriftExtremes extremes;
-  Progress progress(o.quiet ? ProgressMode::never : o.progress ? ProgressMode::always : ProgressMode::automatic,
+  Progress progress(o.quiet      ? ProgressMode::never
+                    : o.progress ? ProgressMode::always
+                                 : ProgressMode::automatic,
                     scene.initial.t, scene.initial.t + settings.duration);
   const InterruptGuard interrupt;
   bool interrupted = false;
   double t_reached = scene.initial.t;
-  simulate(scene.model, scene.initial, settings, [&](const SystemState& state) {
-    const DriftSample d = monitor.observe(state);
-    writer->write(scene.model, state, d);
-    extremes.add(d);
-    t_reached = state.t;
-    if (auto warning = monitor.take_warning()) progress.message("tumble: warning: " + *warning);
-    progress.update(state.t);
-    interrupted = interrupt.requested();
-    return !interrupted;  // stop at this sample: everything written so far stays valid
-  }, nullptr, [&] { return interrupt.requested(); });  // asked every step: Ctrl-C needs no wait for a sample
+  simulate(
+      scene.model, scene.initial, settings,
+      [&](const SystemState& state) {
+        const DriftSample d = monitor.observe(state);
+        writer->write(scene.model, state, d);
+        extremes.add(d);
+        t_reached = state.t;
+        if (auto warning = monitor.take_warning()) progress.message("tumble: warning: " + *warning);
+        progress.update(state.t);
+        interrupted = interrupt.requested();
+        return !interrupted;  // stop at this sample: everything written so far stays valid
+      },
+      nullptr, [&] { return interrupt.requested(); });  // asked every step: Ctrl-C needs no wait for a sample
   progress.finish();
   writer->commit(!interrupted);
 
@@ -126,15 +135,18 @@ int run(const RunOptions& o) {
   }
   if (!o.quiet) {
     std::string what = count(scene.model.bodies.size(), "body", "bodies");
-    if (!scene.model.particles.empty()) what += " and " + count(scene.model.particles.size(), "particle", "particles");
+    if (!scene.model.particles.empty())
+      what += " and " + count(scene.model.particles.size(), "particle", "particles");
     fmt::print("ran {} for {:g} s ({}, {} formulation): {} samples of {}\n", o.scene, settings.duration,
                settings.integrator, formulation_name(settings.formulation), writer->samples(), what);
     std::vector<std::string> drift;
-    if (scene.conserved.energy && extremes.energy) drift.push_back(fmt::format("energy {:.2g}", *extremes.energy));
+    if (scene.conserved.energy && extremes.energy)
+      drift.push_back(fmt::format("energy {:.2g}", *extremes.energy));
     if (scene.conserved.angular_momentum && extremes.angular_momentum) {
       drift.push_back(fmt::format("angular momentum {:.2g}", *extremes.angular_momentum));
     }
-    if (!drift.empty()) fmt::print("largest relative drift of conserved quantities: {}\n", fmt::join(drift, ", "));
+    if (!drift.empty())
+      fmt::print("largest relative drift of conserved quantities: {}\n", fmt::join(drift, ", "));
     if (hdf5) {
       fmt::print("trajectory and diagnostics: {}\n", files.front().string());
     } else {
@@ -168,7 +180,8 @@ Runner add_run_command(CLI::App& app) {
                   "CSV file for energy, momenta and drifts (default: OUTPUT with .diagnostics.csv)");
   cmd->add_option("--integrator", o->integrator,
                   fmt::format("time integrator, one of: {}", fmt::join(integrator_names(), ", ")));
-  cmd->add_option("--formulation", o->formulation, "frame of the integrated velocities: world, mixed or body");
+  cmd->add_option("--formulation", o->formulation,
+                  "frame of the integrated velocities: world, mixed or body");
   cmd->add_option("--timestep", o->timestep, "step h (s); for adaptive integrators the first trial step");
   cmd->add_option("--duration", o->duration, "simulated time (s)");
   cmd->add_option("--output-interval", o->output_interval, "time between samples (s); 0 = every step");
@@ -180,7 +193,8 @@ Runner add_run_command(CLI::App& app) {
   cmd->add_option("--drift-threshold", o->drift_threshold,
                   "warn when a conserved energy or angular momentum drifts by more than this, relative "
                   "to t = 0 (0 = never)");
-  auto* quiet = cmd->add_flag("--quiet,-q", o->quiet, "no progress bar and no summary; errors and warnings only");
+  auto* quiet =
+      cmd->add_flag("--quiet,-q", o->quiet, "no progress bar and no summary; errors and warnings only");
   cmd->add_flag("--progress", o->progress,
                 "show the progress bar even when stderr is not a terminal or the run is short")
       ->excludes(quiet);

@@ -1,5 +1,5 @@
-#include "plural.hpp"
 #include "scene_summary.hpp"
+#include "plural.hpp"
 
 #include <fmt/format.h>
 
@@ -33,7 +33,8 @@ void print_scene_summary(std::FILE* out, const Scene& scene) {
                  : fmt::format("timestep {:g} s", s.timestep),
              s.output_interval > 0 ? fmt::format("{:g} s", s.output_interval) : std::string("step"));
   fmt::print(out, "  contents     {}, {}, {}\n", count(m.bodies.size(), "body", "bodies"),
-             count(m.particles.size(), "particle", "particles"), count(m.forces.size(), "force model", "force models"));
+             count(m.particles.size(), "particle", "particles"),
+             count(m.forces.size(), "force model", "force models"));
   for (size_t i = 0; i < m.bodies.size(); ++i) {
     const RigidBody& b = m.bodies[i];
     fmt::print(out, "  body '{}': {}\n", b.name(), scene.body_info[i].source);
@@ -47,14 +48,16 @@ void print_scene_summary(std::FILE* out, const Scene& scene) {
   const Invariants inv = invariants(m, scene.initial);
   fmt::print(out, "  initial      kinetic energy {:.10g} J", inv.kinetic_energy);
   if (inv.potential_energy) {
-    fmt::print(out, ", potential energy {:.10g} J, total {:.10g} J", *inv.potential_energy, *inv.total_energy());
+    fmt::print(out, ", potential energy {:.10g} J, total {:.10g} J", *inv.potential_energy,
+               *inv.total_energy());
   }
   fmt::print(out, "\n               linear momentum {} kg*m/s (world)\n", vec(inv.linear_momentum));
   fmt::print(out, "               angular momentum {} kg*m^2/s (world, about the origin)\n",
              vec(inv.angular_momentum));
   fmt::print(out, "  conserved    {}{}\n", conserved_list(scene.conserved),
-             scene.drift_threshold > 0 ? fmt::format(" (warns past a relative drift of {:g})", scene.drift_threshold)
-                                       : std::string(" (drift warning off)"));
+             scene.drift_threshold > 0
+                 ? fmt::format(" (warns past a relative drift of {:g})", scene.drift_threshold)
+                 : std::string(" (drift warning off)"));
 }
 
 void print_scene_warnings(const Scene& scene) {

@@ -30,8 +30,8 @@ class BulletRunner final : public Runner {
   std::string engine() const override { return "bullet"; }
   std::string variant() const override { return "default_gyro"; }
   std::string describe() const override {
-    return "Bullet " + std::to_string(btGetVersion() / 100) + "." + std::to_string(btGetVersion() % 100) + " (" +
-           PEERS_BULLET_PKG + ", btScalar " + (sizeof(btScalar) == 8 ? "double" : "float") +
+    return "Bullet " + std::to_string(btGetVersion() / 100) + "." + std::to_string(btGetVersion() % 100) +
+           " (" + PEERS_BULLET_PKG + ", btScalar " + (sizeof(btScalar) == 8 ? "double" : "float") +
            "), btEmptyShape, collision mask 0, deactivation off, damping 0, "
            "BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY, stepSimulation(h, 0)";
   }

@@ -51,8 +51,8 @@ struct Options {
   std::string csv;
   int reps = 3;
   std::vector<std::size_t> sizes{1, 100, 10'000, 100'000, 1'000'000};
-  double target = 0.7;   // s per timed run
-  double budget = 60.0;  // s: skip a size whose set-up or single step is predicted to take longer
+  double target = 0.7;               // s per timed run
+  double budget = 60.0;              // s: skip a size whose set-up or single step is predicted to take longer
   std::vector<std::string> engines;  // filters ("mujoco" or "mujoco/rk4"); empty = all
   bool accuracy = true;
   bool tag_only = false;
@@ -104,7 +104,8 @@ std::string machine_tag() {
   std::string model = cpuinfo("model name");
   if (const std::size_t at = model.find('@'); at != std::string::npos) model.resize(at);
   for (const char* mark : {"(R)", "(r)", "(TM)", "(tm)"}) {
-    for (std::size_t at; (at = model.find(mark)) != std::string::npos;) model.erase(at, std::string(mark).size());
+    for (std::size_t at; (at = model.find(mark)) != std::string::npos;)
+      model.erase(at, std::string(mark).size());
   }
   for (char& c : model) {
     const auto u = static_cast<unsigned char>(c);
@@ -209,7 +210,9 @@ bool selected(const Options& o, const Runner& r) {
 // Accuracy
 
 tumble::Vec3 vec(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
-tumble::Quat quat(const std::array<double, 4>& q) { return tumble::Quat(q[0], q[1], q[2], q[3]).normalized(); }
+tumble::Quat quat(const std::array<double, 4>& q) {
+  return tumble::Quat(q[0], q[1], q[2], q[3]).normalized();
+}
 
 Accuracy measure_accuracy(Runner& runner, const std::vector<BoxState>& boxes,
                           const std::vector<tumble::Mat3>& exact_R, long steps) {
@@ -227,8 +230,10 @@ Accuracy measure_accuracy(Runner& runner, const std::vector<BoxState>& boxes,
         const double t = static_cast<double>(step) * kTimestep;
         double e = 0;
         for (std::size_t i = 0; i < k; ++i) {
-          const double angle = tumble::rotation_angle_between(exact_R[sample * k + i], quat(now[i].q).toRotationMatrix());
-          const tumble::Vec3 p_exact = vec(boxes[i].position) + vec(boxes[i].velocity) * t + 0.5 * vec(kGravity) * t * t;
+          const double angle =
+              tumble::rotation_angle_between(exact_R[sample * k + i], quat(now[i].q).toRotationMatrix());
+          const tumble::Vec3 p_exact = vec(boxes[i].position) + vec(boxes[i].velocity) * t +
+                                       0.5 * vec(kGravity) * t * t;
           const double dp = (vec(now[i].position) - p_exact).norm();
           finite = finite && std::isfinite(angle) && std::isfinite(dp);
           worst_angle = std::max(worst_angle, angle);
@@ -272,14 +277,18 @@ void run_accuracy(std::vector<Entry>& entries) {
       exact_R[static_cast<std::size_t>(s) * boxes.size() + i] = flow.R(t);
     }
   }
-  std::printf("== Accuracy: %zu boxes (the first of the scenario), %.0f s = %ld steps of h = %g s, compared every %ld "
-              "steps\n",
-              boxes.size(), kAccuracyDuration, steps, kTimestep, kAccuracySampleEvery);
-  std::printf("   attitude: worst angle of R_exact^T R_engine over boxes and samples (exact: tumble::EulerPoinsot);\n"
-              "   energy: rotational kinetic energy summed over the boxes, (E(T) - E(0)) / E(0) and the worst |dE|/E;\n"
-              "   position: worst distance of a centre from p0 + v0 t + g t^2/2 (first-order methods: O(h)).\n\n");
-  std::printf("%-28s %12s %12s %12s %12s %9s\n", "engine/variant", "attitude_rad", "energy_drift", "worst_|dE|/E",
-              "position_m", "wall_s");
+  std::printf(
+      "== Accuracy: %zu boxes (the first of the scenario), %.0f s = %ld steps of h = %g s, compared every "
+      "%ld "
+      "steps\n",
+      boxes.size(), kAccuracyDuration, steps, kTimestep, kAccuracySampleEvery);
+  std::printf(
+      "   attitude: worst angle of R_exact^T R_engine over boxes and samples (exact: tumble::EulerPoinsot);\n"
+      "   energy: rotational kinetic energy summed over the boxes, (E(T) - E(0)) / E(0) and the worst "
+      "|dE|/E;\n"
+      "   position: worst distance of a centre from p0 + v0 t + g t^2/2 (first-order methods: O(h)).\n\n");
+  std::printf("%-28s %12s %12s %12s %12s %9s\n", "engine/variant", "attitude_rad", "energy_drift",
+              "worst_|dE|/E", "position_m", "wall_s");
   for (Entry& e : entries) {
     e.accuracy = measure_accuracy(*e.runner, boxes, exact_R, steps);
     const Accuracy& a = e.accuracy;
@@ -340,8 +349,8 @@ std::string skip_reason(const Entry& e, std::size_t n, double budget) {
   const double step = median(last.seconds) / static_cast<double>(last.steps) * ratio;
   char buf[400];
   if (setup > budget) {
-    std::snprintf(buf, sizeof buf, "set-up predicted %.0f s (> %.0f s): %.3g s at N = %s, growing as N^%.2f", setup,
-                  budget, last.setup, size_name(last.n).c_str(), exponent);
+    std::snprintf(buf, sizeof buf, "set-up predicted %.0f s (> %.0f s): %.3g s at N = %s, growing as N^%.2f",
+                  setup, budget, last.setup, size_name(last.n).c_str(), exponent);
     std::string reason = buf;
     if (!e.runner->setup_note().empty() && exponent > 1.5) reason += " (" + e.runner->setup_note() + ")";
     return reason;
@@ -423,8 +432,8 @@ void run_size(std::vector<Entry>& entries, std::size_t n, const Options& o) {
   for (const Entry& e : entries) {
     if (e.name() == "mujoco/rk4") reference = e.cases.back().rate_median;
   }
-  std::printf("%-28s %10s %5s %11s %11s %9s %9s %s\n", "engine/variant", "steps", "reps", "rate_min", "rate_median",
-              "setup_s", "run_s", "x mujoco/rk4");
+  std::printf("%-28s %10s %5s %11s %11s %9s %9s %s\n", "engine/variant", "steps", "reps", "rate_min",
+              "rate_median", "setup_s", "run_s", "x mujoco/rk4");
   for (const Entry& e : entries) {
     const Case& c = e.cases.back();
     if (!c.note.empty()) {
@@ -444,14 +453,17 @@ void write_csv(const std::vector<Entry>& entries, const std::string& path) {
   if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
   std::ofstream csv(path);
   csv << "engine,variant,N,threads,steps,reps,rate_min,rate_median,attitude_error,energy_drift\n";
-  auto num = [](double x, char style, int precision) { return std::isnan(x) ? std::string() : show(x, style, precision); };
+  auto num = [](double x, char style, int precision) {
+    return std::isnan(x) ? std::string() : show(x, style, precision);
+  };
   for (const Entry& e : entries) {
     for (const Case& c : e.cases) {
       // A skipped or failed size keeps its row, with 0 steps and empty rates.
       const bool ran = c.note.empty();
-      csv << e.runner->engine() << ',' << e.runner->variant() << ',' << c.n << ",1," << (ran ? c.steps : 0) << ','
-          << (ran ? c.seconds.size() : 0) << ',' << num(c.rate_min, 'g', 4) << ',' << num(c.rate_median, 'g', 4) << ','
-          << num(e.accuracy.attitude, 'e', 3) << ',' << num(e.accuracy.energy_drift, 'e', 3) << '\n';
+      csv << e.runner->engine() << ',' << e.runner->variant() << ',' << c.n << ",1," << (ran ? c.steps : 0)
+          << ',' << (ran ? c.seconds.size() : 0) << ',' << num(c.rate_min, 'g', 4) << ','
+          << num(c.rate_median, 'g', 4) << ',' << num(e.accuracy.attitude, 'e', 3) << ','
+          << num(e.accuracy.energy_drift, 'e', 3) << '\n';
     }
   }
 }
@@ -487,18 +499,27 @@ Options parse(int argc, char** argv) {
       if (i + 1 >= argc) usage(2);
       return argv[++i];
     };
-    if (a == "--help" || a == "-h") usage(0);
-    else if (a == "--reps") o.reps = std::max(1, std::atoi(value().c_str()));
+    if (a == "--help" || a == "-h")
+      usage(0);
+    else if (a == "--reps")
+      o.reps = std::max(1, std::atoi(value().c_str()));
     else if (a == "--sizes") {
       o.sizes.clear();
       for (const std::string& s : split(value())) o.sizes.push_back(static_cast<std::size_t>(std::stod(s)));
-    } else if (a == "--target") o.target = std::stod(value());
-    else if (a == "--budget") o.budget = std::stod(value());
-    else if (a == "--engines") o.engines = split(value());
-    else if (a == "--no-accuracy") o.accuracy = false;
-    else if (a == "--tag") o.tag_only = true;
-    else if (!a.empty() && a[0] == '-') usage(2);
-    else o.csv = a;
+    } else if (a == "--target")
+      o.target = std::stod(value());
+    else if (a == "--budget")
+      o.budget = std::stod(value());
+    else if (a == "--engines")
+      o.engines = split(value());
+    else if (a == "--no-accuracy")
+      o.accuracy = false;
+    else if (a == "--tag")
+      o.tag_only = true;
+    else if (!a.empty() && a[0] == '-')
+      usage(2);
+    else
+      o.csv = a;
   }
   if (o.csv.empty()) o.csv = "bench/results/" + machine_tag() + "/peers.csv";
   return o;
@@ -520,22 +541,27 @@ int main(int argc, char** argv) {
     }
   }
 
-  std::printf("peers: N free boxes %g x %g x %g m, density %g (m = %g kg, I = (%g, %g, %g) kg m^2), random\n"
-              "orientations, random directions of omega with |omega| = %g rad/s (seed %llu), gravity (%g, %g, %g),\n"
-              "h = %g s, no contacts or collision; one thread\n\n",
-              kBoxSize[0], kBoxSize[1], kBoxSize[2], kDensity, kMass, kMoments[0], kMoments[1], kMoments[2], kOmegaNorm,
-              static_cast<unsigned long long>(kSeed), kGravity[0], kGravity[1], kGravity[2], kTimestep);
+  std::printf(
+      "peers: N free boxes %g x %g x %g m, density %g (m = %g kg, I = (%g, %g, %g) kg m^2), random\n"
+      "orientations, random directions of omega with |omega| = %g rad/s (seed %llu), gravity (%g, %g, %g),\n"
+      "h = %g s, no contacts or collision; one thread\n\n",
+      kBoxSize[0], kBoxSize[1], kBoxSize[2], kDensity, kMass, kMoments[0], kMoments[1], kMoments[2],
+      kOmegaNorm, static_cast<unsigned long long>(kSeed), kGravity[0], kGravity[1], kGravity[2], kTimestep);
   std::printf("machine:  %s (AVX-512: %s), %u logical CPUs, %s RAM; tag %s\n", cpuinfo("model name").c_str(),
               has_avx512() ? "yes" : "no", std::thread::hardware_concurrency(), memory_total().c_str(),
               machine_tag().c_str());
-  std::printf("compiler: %s, build %s, flags \"%s\"\n", compiler().c_str(), PEERS_BUILD_TYPE, PEERS_CXX_FLAGS);
-  std::printf("tumble:   %s%s%s\n", PEERS_TUMBLE_VERSION, *PEERS_GIT_COMMIT ? ", commit " : "", PEERS_GIT_COMMIT);
-  std::printf("settings: %d interleaved repetitions (engine order rotated per round), ~%g s of stepping per timed\n"
-              "          run, in segments of at most %ld steps (%g s simulated) each from the initial states after a\n"
-              "          fresh set-up and one untimed warm-up step; sizes skipped when set-up or one step is\n"
-              "          predicted > %g s; process niceness %d\n",
-              o.reps, o.target, kMaxSegmentSteps, static_cast<double>(kMaxSegmentSteps) * kTimestep, o.budget,
-              getpriority(PRIO_PROCESS, 0));
+  std::printf("compiler: %s, build %s, flags \"%s\"\n", compiler().c_str(), PEERS_BUILD_TYPE,
+              PEERS_CXX_FLAGS);
+  std::printf("tumble:   %s%s%s\n", PEERS_TUMBLE_VERSION, *PEERS_GIT_COMMIT ? ", commit " : "",
+              PEERS_GIT_COMMIT);
+  std::printf(
+      "settings: %d interleaved repetitions (engine order rotated per round), ~%g s of stepping per timed\n"
+      "          run, in segments of at most %ld steps (%g s simulated) each from the initial states after "
+      "a\n"
+      "          fresh set-up and one untimed warm-up step; sizes skipped when set-up or one step is\n"
+      "          predicted > %g s; process niceness %d\n",
+      o.reps, o.target, kMaxSegmentSteps, static_cast<double>(kMaxSegmentSteps) * kTimestep, o.budget,
+      getpriority(PRIO_PROCESS, 0));
   std::printf("engines:\n");
   for (const Entry& e : entries) std::printf("  %-26s %s\n", e.name().c_str(), e.runner->describe().c_str());
   std::printf("\n");
@@ -548,7 +574,8 @@ int main(int argc, char** argv) {
   }
 
   // Summary: median body-steps per second by engine and size.
-  std::printf("== Summary: median body-steps per second (x MuJoCo RK4 at the same N)\n%-28s", "engine/variant");
+  std::printf("== Summary: median body-steps per second (x MuJoCo RK4 at the same N)\n%-28s",
+              "engine/variant");
   for (std::size_t n : o.sizes) std::printf(" %18s", ("N = " + size_name(n)).c_str());
   std::printf("\n");
   std::map<std::size_t, double> reference;
@@ -569,7 +596,8 @@ int main(int argc, char** argv) {
   }
   std::printf("\n");
   for (const Entry& e : entries) {
-    if (!e.runner->notes().empty()) std::printf("note: %s: %s\n", e.name().c_str(), e.runner->notes().c_str());
+    if (!e.runner->notes().empty())
+      std::printf("note: %s: %s\n", e.name().c_str(), e.runner->notes().c_str());
   }
   std::printf("threads in this process at the end: %d\nwrote %s\n", process_threads(), o.csv.c_str());
   return 0;

@@ -69,8 +69,8 @@ class ModelCache {
       << "  <worldbody>\n";
     for (std::size_t i = 0; i < n; ++i) {
       // The pose is written into qpos at set-up; the body starts at the origin here.
-      s << "    <body><freejoint/><inertial pos=\"0 0 0\" mass=\"" << kMass << "\" diaginertia=\"" << kMoments[0]
-        << ' ' << kMoments[1] << ' ' << kMoments[2] << "\"/></body>\n";
+      s << "    <body><freejoint/><inertial pos=\"0 0 0\" mass=\"" << kMass << "\" diaginertia=\""
+        << kMoments[0] << ' ' << kMoments[1] << ' ' << kMoments[2] << "\"/></body>\n";
     }
     s << "  </worldbody>\n</mujoco>\n";
     return s.str();
@@ -110,9 +110,10 @@ class MujocoRunner final : public Runner {
   std::string engine() const override { return "mujoco"; }
   std::string variant() const override { return name_; }
   std::string describe() const override {
-    return std::string("MuJoCo ") + mj_versionString() + " (mjtNum " + (sizeof(mjtNum) == 8 ? "double" : "float") +
-           "), free joints, no geoms, contact disabled, integrator " + (integrator_ == mjINT_RK4 ? "RK4" : "Euler") +
-           ", mj_step";
+    return std::string("MuJoCo ") + mj_versionString() + " (mjtNum " +
+           (sizeof(mjtNum) == 8 ? "double" : "float") +
+           "), free joints, no geoms, contact disabled, integrator " +
+           (integrator_ == mjINT_RK4 ? "RK4" : "Euler") + ", mj_step";
   }
   std::string setup_note() const override {
     return "MuJoCo 2.2.2 compiles a model of N free bodies in O(N^2) time";
@@ -133,16 +134,18 @@ class MujocoRunner final : public Runner {
     if (last != done.begin()) {
       const auto prev = std::prev(last);
       if (prev->second >= 1.0 && last->second > prev->second) {
-        exponent = std::max(1.0, std::log(last->second / prev->second) /
-                                     std::log(static_cast<double>(last->first) / static_cast<double>(prev->first)));
+        exponent =
+            std::max(1.0, std::log(last->second / prev->second) /
+                              std::log(static_cast<double>(last->first) / static_cast<double>(prev->first)));
         measured = true;
       }
     }
-    const double predicted =
-        last->second * std::pow(static_cast<double>(n) / static_cast<double>(last->first), exponent);
+    const double predicted = last->second *
+                             std::pow(static_cast<double>(n) / static_cast<double>(last->first), exponent);
     if (predicted <= budget) return {};
     char buf[300];
-    std::snprintf(buf, sizeof buf, "compile predicted %.0f s (> %.0f s): %.3g s at N = %zu, times (N ratio)^%.2f%s (%s)",
+    std::snprintf(buf, sizeof buf,
+                  "compile predicted %.0f s (> %.0f s): %.3g s at N = %zu, times (N ratio)^%.2f%s (%s)",
                   predicted, budget, last->second, last->first, exponent, measured ? "" : " assumed",
                   setup_note().c_str());
     return buf;
@@ -154,8 +157,8 @@ class MujocoRunner final : public Runner {
     for (const auto& [n, seconds] : make_data_seconds_) {
       const auto compiled = cache_->compile_seconds.find(n);
       s += " N = " + std::to_string(n) + ": " +
-           (compiled == cache_->compile_seconds.end() ? std::string("-") : seconds_text(compiled->second)) + " / " +
-           seconds_text(seconds) + ";";
+           (compiled == cache_->compile_seconds.end() ? std::string("-") : seconds_text(compiled->second)) +
+           " / " + seconds_text(seconds) + ";";
     }
     return s;
   }
@@ -173,7 +176,7 @@ class MujocoRunner final : public Runner {
       mjtNum* qpos = d_->qpos + 7 * i;
       mjtNum* qvel = d_->qvel + 6 * i;
       for (int k = 0; k < 3; ++k) qpos[k] = b.position[static_cast<std::size_t>(k)];
-      for (int k = 0; k < 4; ++k) qpos[3 + k] = b.q[static_cast<std::size_t>(k)];  // w, x, y, z as MuJoCo
+      for (int k = 0; k < 4; ++k) qpos[3 + k] = b.q[static_cast<std::size_t>(k)];     // w, x, y, z as MuJoCo
       for (int k = 0; k < 3; ++k) qvel[k] = b.velocity[static_cast<std::size_t>(k)];  // world axes
       // Angular velocity in the body's axes: ω_b = Rᵀ ω.
       mju_rotVecQuat(qvel + 3, b.omega.data(), conjugate(b.q).data());
@@ -187,7 +190,8 @@ class MujocoRunner final : public Runner {
     // MuJoCo does not stop on a non-finite state: it warns and resets the data to the model's initial
     // state, which would hide a blow-up. Treat it as a failure.
     for (const int w : {mjWARN_BADQPOS, mjWARN_BADQVEL, mjWARN_BADQACC}) {
-      if (d_->warning[w].number > 0) throw std::runtime_error("MuJoCo reset the simulation after a non-finite state");
+      if (d_->warning[w].number > 0)
+        throw std::runtime_error("MuJoCo reset the simulation after a non-finite state");
     }
     return steps;
   }
@@ -218,7 +222,9 @@ class MujocoRunner final : public Runner {
     std::snprintf(buf, sizeof buf, "%.3g s", s);
     return buf;
   }
-  static std::array<double, 4> conjugate(const std::array<double, 4>& q) { return {q[0], -q[1], -q[2], -q[3]}; }
+  static std::array<double, 4> conjugate(const std::array<double, 4>& q) {
+    return {q[0], -q[1], -q[2], -q[3]};
+  }
 
   std::shared_ptr<ModelCache> cache_;
   int integrator_;

@@ -29,16 +29,16 @@ inline constexpr std::array<double, 3> kMoments{kMass / 12 * (0.2 * 0.2 + 0.3 * 
                                                 kMass / 12 * (0.1 * 0.1 + 0.3 * 0.3),
                                                 kMass / 12 * (0.1 * 0.1 + 0.2 * 0.2)};
 inline constexpr std::array<double, 3> kGravity{0.0, 0.0, -9.81};  // m/s²
-inline constexpr double kTimestep = 1e-3;                         // s, every engine
-inline constexpr double kOmegaNorm = 10.0;                        // |ω| (rad/s) of every box at t = 0
-inline constexpr std::uint64_t kSeed = 20261126;                  // the initial states' random seed
+inline constexpr double kTimestep = 1e-3;                          // s, every engine
+inline constexpr double kOmegaNorm = 10.0;                         // |ω| (rad/s) of every box at t = 0
+inline constexpr std::uint64_t kSeed = 20261126;                   // the initial states' random seed
 
 /// The state of one box in the engine-neutral form the harness hands out and reads back.
 struct BoxState {
-  std::array<double, 3> position{};           ///< centre of mass, world (m)
+  std::array<double, 3> position{};             ///< centre of mass, world (m)
   std::array<double, 4> q{1.0, 0.0, 0.0, 0.0};  ///< box → world, (w, x, y, z), unit
-  std::array<double, 3> velocity{};           ///< of the centre of mass, world (m/s)
-  std::array<double, 3> omega{};              ///< angular velocity, world (rad/s)
+  std::array<double, 3> velocity{};             ///< of the centre of mass, world (m/s)
+  std::array<double, 3> omega{};                ///< angular velocity, world (rad/s)
 };
 
 /// The first n boxes of the scenario (the same for any n: box i does not depend on n): uniformly

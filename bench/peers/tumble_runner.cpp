@@ -30,9 +30,9 @@ class TumbleRunner final : public Runner {
 
   std::string notes() const override {
     if (runs_with_extra_ == 0) return {};
-    return "simulate() took a different number of steps than duration / h in " + std::to_string(runs_with_extra_) +
-           " of " + std::to_string(runs_) + " calls (e.g. " + extra_example_ +
-           "); rates count the steps taken";
+    return "simulate() took a different number of steps than duration / h in " +
+           std::to_string(runs_with_extra_) + " of " + std::to_string(runs_) + " calls (e.g. " +
+           extra_example_ + "); rates count the steps taken";
   }
 
   void setup(const std::vector<BoxState>& boxes) override {
@@ -50,9 +50,9 @@ class TumbleRunner final : public Runner {
       const BoxState& b = boxes[i];
       // state_from_reference: the pose of the box frame (which tumble calls the reference frame) and
       // ω in world axes; tumble places its own principal frame from it.
-      state_.bodies.push_back(tumble::state_from_reference(model_.bodies[i], vec(b.position),
-                                                           Quat(b.q[0], b.q[1], b.q[2], b.q[3]),
-                                                           vec(b.velocity), vec(b.omega), tumble::Frame::world));
+      state_.bodies.push_back(tumble::state_from_reference(
+          model_.bodies[i], vec(b.position), Quat(b.q[0], b.q[1], b.q[2], b.q[3]), vec(b.velocity),
+          vec(b.omega), tumble::Frame::world));
     }
   }
 

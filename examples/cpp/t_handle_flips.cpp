@@ -11,8 +11,8 @@ int main() {
   // Aluminium: a bar 80 mm × 16 mm × 16 mm with a 40 mm stem screwed into its middle.
   const MassSpec aluminium = MassSpec::density(2700.0);
   const MassProperties bar = solid_mass_properties(Box{Vec3(0.08, 0.016, 0.016)}, aluminium);
-  const MassProperties stem =
-      solid_mass_properties(Cylinder{0.006, 0.04}, aluminium).transformed(Mat3::Identity(), Vec3(0, 0, 0.028));
+  const MassProperties stem = solid_mass_properties(Cylinder{0.006, 0.04}, aluminium)
+                                  .transformed(Mat3::Identity(), Vec3(0, 0, 0.028));
   Model model;
   model.add_body(RigidBody::from_mass_properties(bar + stem, "t_handle"));
   const RigidBody& handle = model.bodies[0];

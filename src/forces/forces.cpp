@@ -13,7 +13,8 @@ const char* frame_name(Frame f) { return f == Frame::world ? "world" : "body"; }
 
 void check_body(size_t i, size_t n_bodies, const char* model) {
   if (i != all_bodies && i >= n_bodies) {
-    throw InvalidArgument(fmt::format("{} refers to body #{}, but the model has {} bodies", model, i, n_bodies));
+    throw InvalidArgument(
+        fmt::format("{} refers to body #{}, but the model has {} bodies", model, i, n_bodies));
   }
 }
 
@@ -115,7 +116,8 @@ std::string UniformGravity::describe() const { return "uniform gravity " + vec(g
 std::optional<double> UniformGravity::potential_energy(const SystemView& view) const {
   double V = 0;
   for (size_t i = 0; i < view.bodies.size(); ++i) V -= view.bodies[i].mass() * g_.dot(view.body_states[i].o);
-  for (size_t i = 0; i < view.particles.size(); ++i) V -= view.particles[i].mass * g_.dot(view.particle_states[i].x);
+  for (size_t i = 0; i < view.particles.size(); ++i)
+    V -= view.particles[i].mass * g_.dot(view.particle_states[i].x);
   return V;
 }
 
@@ -140,8 +142,9 @@ std::string PointForce::describe() const {
 void PureTorque::accumulate_block(const BodyBlock& block, BlockLoads& loads) const {
   if (!block.contains(body_)) return;
   const size_t j = body_ - block.begin;
-  const Vec3 tau =
-      frame_ == Frame::world ? torque_ : Vec3(reference_state(block.bodies[j], block.state(j)).orientation * torque_);
+  const Vec3 tau = frame_ == Frame::world
+                       ? torque_
+                       : Vec3(reference_state(block.bodies[j], block.state(j)).orientation * torque_);
   loads.add(j, Vec3::Zero(), tau);
 }
 void PureTorque::check(size_t n_bodies, size_t) const { check_body(body_, n_bodies, "torque"); }
@@ -217,8 +220,8 @@ void Spring::accumulate(const SystemView& view, Loads& loads) const {
 void Spring::check(size_t n_bodies, size_t n_particles) const {
   for (const End& e : {a_, b_}) {
     if (e.particle != all_bodies && e.particle >= n_particles) {
-      throw InvalidArgument(
-          fmt::format("spring refers to particle #{}, but the model has {} particles", e.particle, n_particles));
+      throw InvalidArgument(fmt::format("spring refers to particle #{}, but the model has {} particles",
+                                        e.particle, n_particles));
     }
     if (e.particle == all_bodies) check_body(e.body, n_bodies, "spring");
   }
@@ -253,7 +256,8 @@ void GravityGradient::accumulate_block(const BodyBlock& block, BlockLoads& loads
     // f = −∇V with V = −μm/r + μ/2 (3 rᵀIr/r⁵ − tr I/r³): the point-mass pull plus the small
     // correction of the same expansion, which makes the model exactly conservative with the torque.
     const double r5 = r2 * r2 * r1, r7 = r5 * r2;
-    const Vec3 grad_V2 = 0.5 * mu_ * (3.0 * (2.0 * Ir / r5 - 5.0 * r.dot(Ir) * r / r7) + 3.0 * I.trace() * r / r5);
+    const Vec3 grad_V2 = 0.5 * mu_ *
+                         (3.0 * (2.0 * Ir / r5 - 5.0 * r.dot(Ir) * r / r7) + 3.0 * I.trace() * r / r5);
     loads.add(j, -(mu_ * block.m[j] / (r2 * r1) * r + grad_V2), tau);
   }
 }
@@ -282,8 +286,8 @@ void BodyCallback::accumulate_block(const BodyBlock& block, BlockLoads& loads) c
   const size_t j = body_ - block.begin;
   const Wrench w = f_(block.t, block.bodies[j], block.state(j));
   if (!w.force.allFinite() || !w.torque.allFinite()) {
-    throw InvalidArgument(fmt::format("{} returned a non-finite wrench at t = {} s for body '{}'", label_, block.t,
-                                      block.bodies[j].name()));
+    throw InvalidArgument(fmt::format("{} returned a non-finite wrench at t = {} s for body '{}'", label_,
+                                      block.t, block.bodies[j].name()));
   }
   loads.add(j, w.force, w.torque);
 }

@@ -47,7 +47,8 @@ void unpack(const Packed& p, double t, SystemCoordinates& x) {
 class DormandPrince45 final : public AdaptiveIntegrator {
  public:
   explicit DormandPrince45(const Tolerances& tol)
-      : stepper_(odeint::make_dense_output(tol.absolute, tol.relative, odeint::runge_kutta_dopri5<Packed>())) {}
+      : stepper_(
+            odeint::make_dense_output(tol.absolute, tol.relative, odeint::runge_kutta_dopri5<Packed>())) {}
 
   std::string name() const override { return "dopri45"; }
 
@@ -71,7 +72,8 @@ class DormandPrince45 final : public AdaptiveIntegrator {
           rates_.store(i, engine_.rates<engine::Pack>(blk, i, y_.bodies.load<engine::Pack>(i)));
         }
       });
-      for (size_t i = 0; i < y_.particles.size(); ++i) particle_rates_[i] = engine_.particle_rates(i, y_.particles[i]);
+      for (size_t i = 0; i < y_.particles.size(); ++i)
+        particle_rates_[i] = engine_.particle_rates(i, y_.particles[i]);
       pack(rates_, particle_rates_, dpdt);
     };
     stepper_.do_step(rhs);
@@ -79,7 +81,9 @@ class DormandPrince45 final : public AdaptiveIntegrator {
     return stepper_.current_time();
   }
 
-  double previous_time() const override { return stats_.steps == 0 ? stepper_.current_time() : stepper_.previous_time(); }
+  double previous_time() const override {
+    return stats_.steps == 0 ? stepper_.current_time() : stepper_.previous_time();
+  }
   double current_time() const override { return stepper_.current_time(); }
 
   SystemCoordinates interpolate(double t) const override {

@@ -35,8 +35,8 @@ namespace tumble::engine {
 void Engine::prepare(const Model& model, Formulation formulation, int threads, int work_sets) {
   const int wanted = threads > 0 ? threads : max_threads();
   if (model_ == &model && bodies_data_ == model.bodies.data() && n_bodies_ == model.bodies.size() &&
-      n_particles_ == model.particles.size() && n_forces_ == model.forces.size() && formulation_ == formulation &&
-      threads_ == wanted && work_sets_ >= work_sets) {
+      n_particles_ == model.particles.size() && n_forces_ == model.forces.size() &&
+      formulation_ == formulation && threads_ == wanted && work_sets_ >= work_sets) {
     return;
   }
   work_sets_ = work_sets;
@@ -52,7 +52,8 @@ void Engine::prepare(const Model& model, Formulation formulation, int threads, i
   for (size_t k = 0; k < 4; ++k) std::fill(constants_[k], constants_[k] + constants_.stride(), 1.0);
   for (size_t i = 0; i < n_bodies_; ++i) {
     constants_[0][i] = model.bodies[i].mass();
-    for (size_t k = 0; k < 3; ++k) constants_[1 + k][i] = model.bodies[i].Lambda()(static_cast<Eigen::Index>(k));
+    for (size_t k = 0; k < 3; ++k)
+      constants_[1 + k][i] = model.bodies[i].Lambda()(static_cast<Eigen::Index>(k));
   }
 
   local_.clear();
@@ -88,7 +89,8 @@ void Engine::system_part(const SystemCoordinates& y) {
   }
 }
 
-Block Engine::local_loads(const BodyColumnsRef& y, double t, size_t begin, size_t count, size_t n, Scratch& s) const {
+Block Engine::local_loads(const BodyColumnsRef& y, double t, size_t begin, size_t count, size_t n,
+                          Scratch& s) const {
   zero(s.loads);
   BodyBlock view;
   view.t = t;

@@ -51,7 +51,8 @@ struct Block {
 
   template <class T>
   TUMBLE_INLINE Vec3T<T> force(size_t i) const {
-    return {Lanes<T>::load(f[0] + (i - begin)), Lanes<T>::load(f[1] + (i - begin)), Lanes<T>::load(f[2] + (i - begin))};
+    return {Lanes<T>::load(f[0] + (i - begin)), Lanes<T>::load(f[1] + (i - begin)),
+            Lanes<T>::load(f[2] + (i - begin))};
   }
   template <class T>
   TUMBLE_INLINE Vec3T<T> torque(size_t i) const {
@@ -104,7 +105,8 @@ class Engine {
   }
   template <class T>
   TUMBLE_INLINE Vec3T<T> Lambda(size_t i) const {
-    return {Lanes<T>::load(constants_[1] + i), Lanes<T>::load(constants_[2] + i), Lanes<T>::load(constants_[3] + i)};
+    return {Lanes<T>::load(constants_[1] + i), Lanes<T>::load(constants_[2] + i),
+            Lanes<T>::load(constants_[3] + i)};
   }
 
  private:
@@ -118,7 +120,8 @@ class Engine {
   void system_part(const SystemCoordinates& y);
   /// The loads of the local models on bodies [begin, begin + count) at the state y (time t) into
   /// s.loads; returns the block with its loads.
-  Block local_loads(const BodyColumnsRef& y, double t, size_t begin, size_t count, size_t n, Scratch& s) const;
+  Block local_loads(const BodyColumnsRef& y, double t, size_t begin, size_t count, size_t n,
+                    Scratch& s) const;
   template <class F>
   void parallel_blocks(size_t n, F&& f);
   /// Pack stores (GCC turns a fill with 0.0 into memset, which costs 15 % of a step in `rep stosb`).

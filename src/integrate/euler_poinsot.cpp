@@ -85,8 +85,8 @@ EulerPoinsot::EulerPoinsot(const Vec3& Lambda, const Quat& q0_in, const Vec3& om
                           " must be a finite, non-zero quaternion");
   }
   if (!omega_b0.allFinite()) {
-    throw InvalidArgument("EulerPoinsot: the initial angular velocity " + vec_text(omega_b0.homogeneous(), 3) +
-                          " must be finite (rad/s)");
+    throw InvalidArgument("EulerPoinsot: the initial angular velocity " +
+                          vec_text(omega_b0.homogeneous(), 3) + " must be finite (rad/s)");
   }
   const Quat q0 = q0_in.normalized();
   R0_ = q0.toRotationMatrix();

@@ -46,7 +46,9 @@ TriaxialRotation::TriaxialRotation(const SortedBody& b, const Quat& q0, Regime& 
   const double d2 = t1 - t3;
   separatrix_ = std::abs(d2) <= EulerPoinsot::kSeparatrixTolerance * (t1 + t3);
   pole_ = d2 >= 0.0 ? 1 : 3;
-  regime = separatrix_ ? Regime::separatrix : pole_ == 1 ? Regime::about_minor_axis : Regime::about_major_axis;
+  regime = separatrix_  ? Regime::separatrix
+           : pole_ == 1 ? Regime::about_minor_axis
+                        : Regime::about_major_axis;
 
   const Vec3 L_s = b.I.cwiseProduct(b.w);
   const double L = L_s.norm();  // |L| in scaled units
@@ -57,7 +59,8 @@ TriaxialRotation::TriaxialRotation(const SortedBody& b, const Quat& q0, Regime& 
     lambda = std::sqrt((I3 - I2) * d1 / (I1 * I2 * I3));
     m = (I2 - I1) * d3 / ((I3 - I2) * d1);
     m1 = (I3 - I1) * (-d2) / ((I3 - I2) * d1);
-    A = Vec3(std::sqrt(d3 / (I1 * (I3 - I1))), std::sqrt(d3 / (I2 * (I3 - I2))), std::sqrt(d1 / (I3 * (I3 - I1))));
+    A = Vec3(std::sqrt(d3 / (I1 * (I3 - I1))), std::sqrt(d3 / (I2 * (I3 - I2))),
+             std::sqrt(d1 / (I3 * (I3 - I1))));
     s1 = separatrix_ ? sign_of(w1) : 1.0;
     s3 = sign_of(w3);
     N_ = I3 * (I2 - I1) / (I1 * (I3 - I2));
@@ -71,7 +74,8 @@ TriaxialRotation::TriaxialRotation(const SortedBody& b, const Quat& q0, Regime& 
     lambda = std::sqrt((I2 - I1) * d3 / (I1 * I2 * I3));
     m = (I3 - I2) * d1 / ((I2 - I1) * d3);
     m1 = (I3 - I1) * d2 / ((I2 - I1) * d3);
-    A = Vec3(std::sqrt(d3 / (I1 * (I3 - I1))), std::sqrt(d1 / (I2 * (I2 - I1))), std::sqrt(d1 / (I3 * (I3 - I1))));
+    A = Vec3(std::sqrt(d3 / (I1 * (I3 - I1))), std::sqrt(d1 / (I2 * (I2 - I1))),
+             std::sqrt(d1 / (I3 * (I3 - I1))));
     s1 = sign_of(w1);
     s3 = separatrix_ ? sign_of(w3) : 1.0;
     N_ = I1 * (I3 - I2) / (I3 * (I2 - I1));

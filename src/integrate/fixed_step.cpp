@@ -80,23 +80,25 @@ class RungeKutta4 final : public Integrator {
   void step(const Model& model, Formulation F, SystemCoordinates& x, double h) override {
     engine_.prepare(model, F, threads_, 2);
     const BodyColumnsRef xr = x.bodies.ref();
-    rk4::step(engine_, x, h, y_, A_particles_, {&y_.bodies, &A_}, [&](int s, const Block& blk, const BodyColumnsRef& in) {
-      const BodyColumnsRef &y = blk.work[0], &A = blk.work[1];
-      if (s < 3) {
-        const Pack step_next(rk4::c[s + 1] * h), weight(rk4::b[s]);
-        for (size_t i = blk.begin; i < blk.end; i += kWidth) {
-          const CoordinateRates<Pack> k = engine_.rates<Pack>(blk, i, in.load<Pack>(i));
-          A.store(i, s == 0 ? k : axpy<Pack>(A.load_rates<Pack>(i), weight, k));
-          y.store(i, advanced<Pack>(xr.load<Pack>(i), step_next, k));
-        }
-      } else {
-        const Pack h6(h / 6), one(1.0);
-        for (size_t i = blk.begin; i < blk.end; i += kWidth) {
-          const CoordinateRates<Pack> k = engine_.rates<Pack>(blk, i, in.load<Pack>(i));
-          xr.store(i, advanced<Pack>(xr.load<Pack>(i), h6, axpy<Pack>(A.load_rates<Pack>(i), one, k)));
-        }
-      }
-    });
+    rk4::step(engine_, x, h, y_, A_particles_, {&y_.bodies, &A_},
+              [&](int s, const Block& blk, const BodyColumnsRef& in) {
+                const BodyColumnsRef &y = blk.work[0], &A = blk.work[1];
+                if (s < 3) {
+                  const Pack step_next(rk4::c[s + 1] * h), weight(rk4::b[s]);
+                  for (size_t i = blk.begin; i < blk.end; i += kWidth) {
+                    const CoordinateRates<Pack> k = engine_.rates<Pack>(blk, i, in.load<Pack>(i));
+                    A.store(i, s == 0 ? k : axpy<Pack>(A.load_rates<Pack>(i), weight, k));
+                    y.store(i, advanced<Pack>(xr.load<Pack>(i), step_next, k));
+                  }
+                } else {
+                  const Pack h6(h / 6), one(1.0);
+                  for (size_t i = blk.begin; i < blk.end; i += kWidth) {
+                    const CoordinateRates<Pack> k = engine_.rates<Pack>(blk, i, in.load<Pack>(i));
+                    xr.store(i,
+                             advanced<Pack>(xr.load<Pack>(i), h6, axpy<Pack>(A.load_rates<Pack>(i), one, k)));
+                  }
+                }
+              });
   }
 
  private:

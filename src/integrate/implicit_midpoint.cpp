@@ -59,7 +59,8 @@ class ImplicitMidpoint final : public Integrator {
         if (converged_[i]) continue;
         const Coordinates<double> s = start_.load(i), e = end_.load(i);
         const Vec3 w_m = 0.5 * (s.omega + e.omega);
-        mid_.bodies.store(i, Coordinates<double>{0.5 * (s.o + e.o), s.q * cayley(0.5 * h * w_m), 0.5 * (s.v + e.v), w_m});
+        mid_.bodies.store(i, Coordinates<double>{0.5 * (s.o + e.o), s.q * cayley(0.5 * h * w_m),
+                                                 0.5 * (s.v + e.v), w_m});
       }
       for (size_t i = 0; i < np; ++i) {
         mid_.particles[i] = {0.5 * (x.particles[i].x + p_end_[i].x), 0.5 * (x.particles[i].v + p_end_[i].v)};
@@ -73,10 +74,12 @@ class ImplicitMidpoint final : public Integrator {
           const Vec3 Lambda = engine_.Lambda<double>(i);
           const Vec3 w_m = 0.5 * (s.omega + e.omega);
           const Quat cay = cayley(h * w_m);
-          const Vec3 m_next = cay.conjugate() * (Lambda.cwiseProduct(s.omega) + h * (s.q.conjugate() * blk.torque<double>(i)));
+          const Vec3 m_next = cay.conjugate() *
+                              (Lambda.cwiseProduct(s.omega) + h * (s.q.conjugate() * blk.torque<double>(i)));
           const Vec3 w_next = m_next.cwiseQuotient(Lambda);
           const Vec3 v_next = s.v + h * blk.force<double>(i) / engine_.m<double>(i);
-          const double change = std::max((w_next - e.omega).cwiseAbs().maxCoeff(), (v_next - e.v).cwiseAbs().maxCoeff());
+          const double change =
+              std::max((w_next - e.omega).cwiseAbs().maxCoeff(), (v_next - e.v).cwiseAbs().maxCoeff());
           const double scale = std::max(w_next.cwiseAbs().maxCoeff(), v_next.cwiseAbs().maxCoeff());
           // Renormalised: the rotation ω_w ↔ ^bω of the world and body formulations scales vectors by
           // |q|², and an unnormalised product of unit quaternions random-walks away from 1 (measured: a
@@ -97,7 +100,9 @@ class ImplicitMidpoint final : public Integrator {
         }
         particles_converged = change <= kConverged * std::max(scale, 1e-300);
       }
-      if (particles_converged && std::all_of(converged_.begin(), converged_.end(), [](char c) { return c != 0; })) break;
+      if (particles_converged &&
+          std::all_of(converged_.begin(), converged_.end(), [](char c) { return c != 0; }))
+        break;
       if (iteration == kMaxIterations) {
         throw Error(fmt::format(
             "the implicit midpoint step from t = {} s did not converge in {} iterations (h = {} s): the "
@@ -108,8 +113,9 @@ class ImplicitMidpoint final : public Integrator {
 
     for (size_t i = 0; i < nb; ++i) {
       const Coordinates<double> e = end_.load(i);
-      x.bodies.store(i, Coordinates<double>{e.o, e.q, F == Formulation::body ? Vec3(e.q.conjugate() * e.v) : e.v,
-                                            F == Formulation::world ? Vec3(e.q * e.omega) : e.omega});
+      x.bodies.store(i,
+                     Coordinates<double>{e.o, e.q, F == Formulation::body ? Vec3(e.q.conjugate() * e.v) : e.v,
+                                         F == Formulation::world ? Vec3(e.q * e.omega) : e.omega});
     }
     x.particles = p_end_;
     x.t += h;

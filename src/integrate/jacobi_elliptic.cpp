@@ -15,8 +15,8 @@ namespace tumble {
 
 JacobiElliptic::JacobiElliptic(double m, double m1) : m_(m), m1_(m1) {
   if (!(m >= 0.0 && m <= 1.0 && m1 >= 0.0 && m1 <= 1.0 && std::abs(m + m1 - 1.0) <= 1e-12)) {
-    throw InvalidArgument("JacobiElliptic: the parameter m = " + std::to_string(m) + " and m1 = 1 - m = " +
-                          std::to_string(m1) + " must lie in [0, 1] and add up to 1");
+    throw InvalidArgument("JacobiElliptic: the parameter m = " + std::to_string(m) +
+                          " and m1 = 1 - m = " + std::to_string(m1) + " must lie in [0, 1] and add up to 1");
   }
   if (m1 == 0.0) {  // m = 1: sn = tanh, cn = dn = sech, no period
     K_ = std::numeric_limits<double>::infinity();
@@ -28,7 +28,8 @@ JacobiElliptic::JacobiElliptic(double m, double m1) : m_(m), m1_(m1) {
   double a = 1.0, b = std::sqrt(m1), c = std::sqrt(m);
   const double eps = std::numeric_limits<double>::epsilon();
   while (c > eps * a) {
-    if (steps_ == kMaxSteps) throw Error("JacobiElliptic: the AGM did not converge (m = " + std::to_string(m) + ")");
+    if (steps_ == kMaxSteps)
+      throw Error("JacobiElliptic: the AGM did not converge (m = " + std::to_string(m) + ")");
     const double a_next = 0.5 * (a + b);
     c = c * c / (4.0 * a_next);
     b = std::sqrt(a * b);
@@ -141,8 +142,9 @@ EllipticPi::EllipticPi(double n, const JacobiElliptic& f) : n_(n), m_(f.m()), m1
 double EllipticPi::operator()(const JacobiValues& v) const {
   const double periods = 2.0 * v.j * complete_;
   if (!v.reflected) return periods + Pi_incomplete_in_double(n_, v.sn_r, v.cn_r, v.dn);
-  const double tail = c_linear_ * v.v +
-                      (c_Pi_ == 0.0 ? 0.0 : c_Pi_ * Pi_incomplete_in_double(n_reflected_, v.sn_v, v.cn_v, v.dn_v));
+  const double tail =
+      c_linear_ * v.v +
+      (c_Pi_ == 0.0 ? 0.0 : c_Pi_ * Pi_incomplete_in_double(n_reflected_, v.sn_v, v.cn_v, v.dn_v));
   return periods + std::copysign(complete_ - tail, v.r);
 }
 

@@ -61,7 +61,8 @@ class LieRungeKutta4 final : public Integrator {
           next.q = rotated(xi.q, th_next);
           y.store(i, next);
         } else {
-          Coordinates<Pack> next = advanced<Pack>(xi, step_next, axpy<Pack>(A.load_rates<Pack>(i), Pack(1.0), k));
+          Coordinates<Pack> next =
+              advanced<Pack>(xi, step_next, axpy<Pack>(A.load_rates<Pack>(i), Pack(1.0), k));
           next.q = rotated(xi.q, Vec3T<Pack>(step_next * (theta.vec3<Pack>(3, i) + Fs)));
           xr.store(i, next);
         }

@@ -25,10 +25,12 @@ const std::map<std::string, std::function<std::unique_ptr<Integrator>()>>& fixed
   return r;
 }
 
-const std::map<std::string, std::function<std::unique_ptr<AdaptiveIntegrator>(const Tolerances&)>>& adaptive() {
-  static const std::map<std::string, std::function<std::unique_ptr<AdaptiveIntegrator>(const Tolerances&)>> r = {
-      {"dopri45", methods::dopri45},
-  };
+const std::map<std::string, std::function<std::unique_ptr<AdaptiveIntegrator>(const Tolerances&)>>&
+adaptive() {
+  static const std::map<std::string, std::function<std::unique_ptr<AdaptiveIntegrator>(const Tolerances&)>>
+      r = {
+          {"dopri45", methods::dopri45},
+      };
   return r;
 }
 
@@ -52,7 +54,8 @@ std::unique_ptr<Integrator> make_integrator(const std::string& name) {
   const auto it = fixed_step().find(name);
   if (it != fixed_step().end()) return it->second();
   if (is_adaptive(name)) {
-    throw InvalidArgument(fmt::format("integrator '{}' is adaptive: it takes tolerances, not a fixed step", name));
+    throw InvalidArgument(
+        fmt::format("integrator '{}' is adaptive: it takes tolerances, not a fixed step", name));
   }
   throw InvalidArgument(unknown(name));
 }

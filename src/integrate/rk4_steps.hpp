@@ -38,7 +38,8 @@ void step(engine::Engine& engine, SystemCoordinates& x, double h, SystemCoordina
     for (int s = 0; s < 4; ++s) {
       const SystemCoordinates& in = s == 0 ? x : y;
       const BodyColumnsRef in_ref = in.bodies.ref();
-      engine.evaluate(in, [&](const engine::Block& blk) { stage(s, blk, in_ref); }, work);
+      engine.evaluate(
+          in, [&](const engine::Block& blk) { stage(s, blk, in_ref); }, work);
       for (size_t p = 0; p < np; ++p) {
         const ParticleState k = engine.particle_rates(p, in.particles[p]);
         if (s < 3) {

@@ -38,7 +38,8 @@ class Strang {
     auto kick_drift = [&](const engine::Block& blk, bool fresh) {
       for (size_t i = blk.begin; i < std::min(blk.end, n); ++i) {
         Coordinates<double> c = x.bodies.load(i);
-        const Vec3 f = fresh ? blk.force<double>(i) : cached(0, i), tau = fresh ? blk.torque<double>(i) : cached(3, i);
+        const Vec3 f = fresh ? blk.force<double>(i) : cached(0, i),
+                   tau = fresh ? blk.torque<double>(i) : cached(3, i);
         kick(F, c, 0.5 * h, f, tau, engine_.m<double>(i), engine_.Lambda<double>(i));
         drift(F, c, h, engine_.Lambda<double>(i));
         x.bodies.store(i, c);
@@ -46,10 +47,12 @@ class Strang {
     };
     if (reuse) {
       engine_.for_each_block(n, [&](const engine::Block& blk) { kick_drift(blk, false); });
-      for (size_t p = 0; p < x.particles.size(); ++p) x.particles[p].v += 0.5 * h * particle_loads_[p] / model.particles[p].mass;
+      for (size_t p = 0; p < x.particles.size(); ++p)
+        x.particles[p].v += 0.5 * h * particle_loads_[p] / model.particles[p].mass;
     } else {
       engine_.evaluate(x, [&](const engine::Block& blk) { kick_drift(blk, true); });
-      for (size_t p = 0; p < x.particles.size(); ++p) x.particles[p].v += 0.5 * h * engine_.particle_rates(p, x.particles[p]).v;
+      for (size_t p = 0; p < x.particles.size(); ++p)
+        x.particles[p].v += 0.5 * h * engine_.particle_rates(p, x.particles[p]).v;
     }
     for (auto& p : x.particles) p.x += h * p.v;
     x.t += h;
@@ -67,12 +70,15 @@ class Strang {
       }
     });
     particle_loads_.assign(engine_.particle_forces().begin(), engine_.particle_forces().end());
-    for (size_t p = 0; p < x.particles.size(); ++p) x.particles[p].v += 0.5 * h * particle_loads_[p] / model.particles[p].mass;
+    for (size_t p = 0; p < x.particles.size(); ++p)
+      x.particles[p].v += 0.5 * h * particle_loads_[p] / model.particles[p].mass;
     remember(x);
   }
 
  private:
-  Vec3 cached(size_t first, size_t i) const { return {loads_[first][i], loads_[first + 1][i], loads_[first + 2][i]}; }
+  Vec3 cached(size_t first, size_t i) const {
+    return {loads_[first][i], loads_[first + 1][i], loads_[first + 2][i]};
+  }
 
   void remember(const SystemCoordinates& x) {
     state_ = x.bodies;  // same shape from the second step on: a copy, no allocation
@@ -81,7 +87,8 @@ class Strang {
     cached_ = true;
   }
   bool same(const SystemCoordinates& x) const {
-    if (x.t != t_ || x.bodies.size() != state_.size() || x.particles.size() != particles_.size()) return false;
+    if (x.t != t_ || x.bodies.size() != state_.size() || x.particles.size() != particles_.size())
+      return false;
     for (size_t k = 0; k < BodyColumns::kCount; ++k) {
       if (std::memcmp(x.bodies[k], state_[k], x.bodies.size() * sizeof(double)) != 0) return false;
     }
@@ -92,8 +99,8 @@ class Strang {
   }
 
   /// K(τ): v += τ f/m and L_w += τ τ_w with the pose frozen, in the formulation's variables.
-  static void kick(Formulation F, Coordinates<double>& c, double tau, const Vec3& f_w, const Vec3& tau_w, double m,
-                   const Vec3& Lambda) {
+  static void kick(Formulation F, Coordinates<double>& c, double tau, const Vec3& f_w, const Vec3& tau_w,
+                   double m, const Vec3& Lambda) {
     const Quat q_inv = c.q.conjugate();
     const Vec3 dv_w = tau * f_w / m;
     const Vec3 dw_b = tau * (q_inv * tau_w).cwiseQuotient(Lambda);  // Λ⁻¹ Rᵀ Δl

@@ -10,7 +10,8 @@ SystemCoordinates to_coordinates(Formulation formulation, const SystemState& sta
   SystemCoordinates x;
   x.t = state.t;
   x.bodies.resize(state.bodies.size());
-  for (size_t i = 0; i < state.bodies.size(); ++i) x.bodies.store(i, to_coordinates(formulation, state.bodies[i]));
+  for (size_t i = 0; i < state.bodies.size(); ++i)
+    x.bodies.store(i, to_coordinates(formulation, state.bodies[i]));
   x.particles = state.particles;
   return x;
 }

@@ -27,7 +27,8 @@ class CsvFile {
   CsvFile(const std::filesystem::path& path, const std::string& header) : staged_(path) {
     file_ = std::fopen(staged_.temporary().c_str(), "wb");
     if (!file_) {
-      throw FileError(fmt::format("cannot create {}: {}", staged_.temporary().string(), std::strerror(errno)));
+      throw FileError(
+          fmt::format("cannot create {}: {}", staged_.temporary().string(), std::strerror(errno)));
     }
     write(header + "\n");
   }
@@ -66,7 +67,8 @@ void optional_field(fmt::memory_buffer& out, const std::optional<double>& x) {
 
 class CsvWriter final : public TrajectoryWriter {
  public:
-  CsvWriter(const std::filesystem::path& trajectory, const std::filesystem::path& diagnostics, const Model& model)
+  CsvWriter(const std::filesystem::path& trajectory, const std::filesystem::path& diagnostics,
+            const Model& model)
       : names_(io::row_names(model)),
         trajectory_(trajectory, "t,body,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz"),
         diagnostics_(diagnostics,
@@ -97,7 +99,8 @@ class CsvWriter final : public TrajectoryWriter {
     optional_field(buffer_, inv.total_energy());
     const Vec3& p = inv.linear_momentum;
     const Vec3& L = inv.angular_momentum;
-    fmt::format_to(out, ",{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},", p.x(), p.y(), p.z(), L.x(), L.y(), L.z());
+    fmt::format_to(out, ",{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},", p.x(), p.y(), p.z(), L.x(),
+                   L.y(), L.z());
     optional_field(buffer_, d.energy_drift);
     fmt::format_to(out, ",");
     optional_field(buffer_, d.linear_momentum_drift);
@@ -116,7 +119,9 @@ class CsvWriter final : public TrajectoryWriter {
     diagnostics_.rename();
   }
 
-  std::vector<std::filesystem::path> outputs() const override { return {trajectory_.path(), diagnostics_.path()}; }
+  std::vector<std::filesystem::path> outputs() const override {
+    return {trajectory_.path(), diagnostics_.path()};
+  }
   long samples() const override { return samples_; }
 
  private:
@@ -137,11 +142,11 @@ std::filesystem::path diagnostics_path(const std::filesystem::path& trajectory) 
 }
 
 std::unique_ptr<TrajectoryWriter> make_csv_writer(const std::filesystem::path& trajectory,
-                                                  const std::filesystem::path& diagnostics, const Model& model,
-                                                  const TrajectoryInfo&) {
+                                                  const std::filesystem::path& diagnostics,
+                                                  const Model& model, const TrajectoryInfo&) {
   if (std::filesystem::absolute(trajectory) == std::filesystem::absolute(diagnostics)) {
-    throw InvalidArgument(fmt::format("the trajectory and the diagnostics would both be {}: give different files",
-                                      trajectory.string()));
+    throw InvalidArgument(fmt::format(
+        "the trajectory and the diagnostics would both be {}: give different files", trajectory.string()));
   }
   return std::make_unique<CsvWriter>(trajectory, diagnostics, model);
 }

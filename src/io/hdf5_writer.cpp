@@ -86,7 +86,8 @@ void string_attribute(hid_t loc, const char* name, const std::string& value, con
 template <class T>
 void number_attribute(hid_t loc, const char* name, T value, hid_t type, const Checker& check) {
   const Handle space(check(H5Screate(H5S_SCALAR), "create a dataspace"), H5Sclose);
-  const Handle attr(check(H5Acreate2(loc, name, type, space.get(), H5P_DEFAULT, H5P_DEFAULT), name), H5Aclose);
+  const Handle attr(check(H5Acreate2(loc, name, type, space.get(), H5P_DEFAULT, H5P_DEFAULT), name),
+                    H5Aclose);
   check(H5Awrite(attr.get(), type, &value), name);
 }
 
@@ -109,10 +110,10 @@ class Series {
                        H5Sclose);
     const Handle props(check(H5Pcreate(H5P_DATASET_CREATE), name), H5Pclose);
     check(H5Pset_chunk(props.get(), static_cast<int>(chunk.size()), chunk.data()), name);
-    dataset_ = Handle(check(H5Dcreate2(loc, name, H5T_NATIVE_DOUBLE, space.get(), H5P_DEFAULT, props.get(),
-                                       H5P_DEFAULT),
-                            name),
-                      H5Dclose);
+    dataset_ = Handle(
+        check(H5Dcreate2(loc, name, H5T_NATIVE_DOUBLE, space.get(), H5P_DEFAULT, props.get(), H5P_DEFAULT),
+              name),
+        H5Dclose);
   }
 
   /// Appends one row of row_size values.
@@ -133,7 +134,8 @@ class Series {
     }
     check_(H5Dset_extent(dataset_.get(), new_dims.data()), name_.c_str());
     const Handle file_space(check_(H5Dget_space(dataset_.get()), name_.c_str()), H5Sclose);
-    check_(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr),
+    check_(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(),
+                               nullptr),
            name_.c_str());
     const Handle memory_space(check_(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr),
                                      name_.c_str()),
@@ -201,7 +203,8 @@ class Hdf5Writer final : public TrajectoryWriter {
     std::vector<double> p, q, v, w;
     for (const ReferenceFrameState& r : rows_) {
       p.insert(p.end(), r.position.data(), r.position.data() + 3);
-      const std::array<double, 4> wxyz{r.orientation.w(), r.orientation.x(), r.orientation.y(), r.orientation.z()};
+      const std::array<double, 4> wxyz{r.orientation.w(), r.orientation.x(), r.orientation.y(),
+                                       r.orientation.z()};
       q.insert(q.end(), wxyz.begin(), wxyz.end());
       v.insert(v.end(), r.velocity.data(), r.velocity.data() + 3);
       w.insert(w.end(), r.omega_w.data(), r.omega_w.data() + 3);
@@ -249,8 +252,8 @@ class Hdf5Writer final : public TrajectoryWriter {
     const Handle type = string_type();
     const hsize_t n = names_.size();
     const Handle space(check_(H5Screate_simple(1, &n, nullptr), "create a dataspace"), H5Sclose);
-    const Handle set(check_(H5Dcreate2(file_.get(), "names", type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT,
-                                       H5P_DEFAULT),
+    const Handle set(check_(H5Dcreate2(file_.get(), "names", type.get(), space.get(), H5P_DEFAULT,
+                                       H5P_DEFAULT, H5P_DEFAULT),
                             "create dataset names"),
                      H5Dclose);
     std::vector<const char*> p;
@@ -276,8 +279,8 @@ class Hdf5Writer final : public TrajectoryWriter {
 
   std::vector<Series*> all_series() {
     std::vector<Series*> out;
-    for (auto* s : {&t_, &position_, &orientation_, &velocity_, &angular_velocity_, &kinetic_, &potential_, &total_,
-                    &linear_, &angular_, &energy_drift_, &linear_drift_, &angular_drift_}) {
+    for (auto* s : {&t_, &position_, &orientation_, &velocity_, &angular_velocity_, &kinetic_, &potential_,
+                    &total_, &linear_, &angular_, &energy_drift_, &linear_drift_, &angular_drift_}) {
       if (*s) out.push_back(&**s);
     }
     return out;
@@ -289,7 +292,8 @@ class Hdf5Writer final : public TrajectoryWriter {
   Handle file_;
   Handle diagnostics_;
   std::optional<Series> t_, position_, orientation_, velocity_, angular_velocity_;
-  std::optional<Series> kinetic_, potential_, total_, linear_, angular_, energy_drift_, linear_drift_, angular_drift_;
+  std::optional<Series> kinetic_, potential_, total_, linear_, angular_, energy_drift_, linear_drift_,
+      angular_drift_;
   std::vector<ReferenceFrameState> rows_;
   double t_end_ = 0.0;
   long samples_ = 0;

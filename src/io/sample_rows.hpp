@@ -17,9 +17,11 @@ inline std::vector<std::string> row_names(const Model& model) {
   return names;
 }
 
-inline void sample_rows(const Model& model, const SystemState& state, std::vector<ReferenceFrameState>& rows) {
+inline void sample_rows(const Model& model, const SystemState& state,
+                        std::vector<ReferenceFrameState>& rows) {
   rows.clear();
-  for (size_t i = 0; i < model.bodies.size(); ++i) rows.push_back(reference_state(model.bodies[i], state.bodies[i]));
+  for (size_t i = 0; i < model.bodies.size(); ++i)
+    rows.push_back(reference_state(model.bodies[i], state.bodies[i]));
   for (const ParticleState& p : state.particles) {
     rows.push_back(ReferenceFrameState{p.x, Quat::Identity(), p.v, Vec3::Zero()});
   }

@@ -75,9 +75,9 @@ Scene parse_scene(const std::string& text, const std::filesystem::path& path) {
 Scene load_scene(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) {
-    throw FileError(fmt::format("cannot read scene file {}: {}", path.string(),
-                                std::filesystem::exists(path) ? "permission denied or not a file"
-                                                              : "no such file"));
+    throw FileError(
+        fmt::format("cannot read scene file {}: {}", path.string(),
+                    std::filesystem::exists(path) ? "permission denied or not a file" : "no such file"));
   }
   std::ostringstream text;
   text << in.rdbuf();

@@ -26,8 +26,8 @@ void register_name(const TableReader& table, const std::string& name, NameTable&
            c == '-' || c == '.';
   });
   if (!ok) {
-    table.fail_at("name", fmt::format("name \"{}\" is not allowed: use letters, digits, '_', '-' and '.' only",
-                                      name));
+    table.fail_at(
+        "name", fmt::format("name \"{}\" is not allowed: use letters, digits, '_', '-' and '.' only", name));
   }
   const toml::source_region& where = table.where("name");
   const auto [it, inserted] =
@@ -43,14 +43,28 @@ void read_bodies(const TableReader& root, const std::filesystem::path& directory
                  Scene& scene) {
   const auto bodies = root.tables("bodies");
   for (size_t i = 0; i < bodies.size(); ++i) {
-    const std::vector<std::string> keys = {"name", "shape", "mesh", "scale", "thickness", "parts", "inertia",
-                                           "center_of_mass", "density", "mass", "position", "orientation",
-                                           "velocity", "angular_velocity", "angular_velocity_frame"};
+    const std::vector<std::string> keys = {"name",
+                                           "shape",
+                                           "mesh",
+                                           "scale",
+                                           "thickness",
+                                           "parts",
+                                           "inertia",
+                                           "center_of_mass",
+                                           "density",
+                                           "mass",
+                                           "position",
+                                           "orientation",
+                                           "velocity",
+                                           "angular_velocity",
+                                           "angular_velocity_frame"};
     // The name first (any keys allowed), so that every other message can name the body.
-    const TableReader untitled(*bodies[i], fmt::format("[[bodies]] #{}", i + 1), root.file(), keys_of(*bodies[i]));
+    const TableReader untitled(*bodies[i], fmt::format("[[bodies]] #{}", i + 1), root.file(),
+                               keys_of(*bodies[i]));
     const std::string name = untitled.required_string("name", "the body a name, e.g. name = \"handle\"");
     register_name(untitled, name, names);
-    const TableReader named(*bodies[i], fmt::format("body '{}'", name), root.file(), keys);  // messages name it
+    const TableReader named(*bodies[i], fmt::format("body '{}'", name), root.file(),
+                            keys);  // messages name it
     const BodyMass mass = read_body_mass(named, directory, scene);
     RigidBody rigid = [&] {
       try {
@@ -64,7 +78,8 @@ void read_bodies(const TableReader& root, const std::filesystem::path& directory
     const Vec3 velocity = named.vec3("velocity", Vec3::Zero(), "m/s");
     const Vec3 omega = named.vec3("angular_velocity", Vec3::Zero(), "rad/s");
     const Frame omega_frame = named.frame("angular_velocity_frame", Frame::world);
-    scene.initial.bodies.push_back(state_from_reference(rigid, position, orientation, velocity, omega, omega_frame));
+    scene.initial.bodies.push_back(
+        state_from_reference(rigid, position, orientation, velocity, omega, omega_frame));
     scene.model.add_body(std::move(rigid));
     scene.body_info.push_back({mass.source, mass.properties});
   }

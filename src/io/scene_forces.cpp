@@ -22,9 +22,9 @@ size_t body_index(const TableReader& t, const std::string& key, const Scene& sce
   }
   const auto s = closest(name, names);
   t.fail_at(key, fmt::format("no body named \"{}\"; {}", name,
-                             s ? fmt::format("did you mean \"{}\"?", *s)
-                               : names.empty() ? std::string("the scene has no [[bodies]]")
-                                               : fmt::format("the bodies are: {}", fmt::join(names, ", "))));
+                             s               ? fmt::format("did you mean \"{}\"?", *s)
+                             : names.empty() ? std::string("the scene has no [[bodies]]")
+                                             : fmt::format("the bodies are: {}", fmt::join(names, ", "))));
 }
 
 size_t required_body(const TableReader& t, const Scene& scene) {
@@ -38,12 +38,15 @@ Vec3 required_vec3(const TableReader& t, const std::string& key, const char* uni
   return *v;
 }
 
-Spring::End spring_end(const TableReader& spring, const std::string& key, const Scene& scene, bool& anchored) {
-  const auto end = spring.table(key, spring.context() + " end " + key, {"body", "point", "anchor", "particle"});
+Spring::End spring_end(const TableReader& spring, const std::string& key, const Scene& scene,
+                       bool& anchored) {
+  const auto end =
+      spring.table(key, spring.context() + " end " + key, {"body", "point", "anchor", "particle"});
   if (!end) {
-    spring.fail_here(fmt::format("missing '{}': give {} = {{ body = \"NAME\", point = [x, y, z] }}, "
-                                 "{} = {{ particle = \"NAME\" }} or {} = {{ anchor = [x, y, z] }}",
-                                 key, key, key, key));
+    spring.fail_here(
+        fmt::format("missing '{}': give {} = {{ body = \"NAME\", point = [x, y, z] }}, "
+                    "{} = {{ particle = \"NAME\" }} or {} = {{ anchor = [x, y, z] }}",
+                    key, key, key, key));
   }
   end->at_most_one_of({"body", "anchor", "particle"});
   if (end->has("particle")) {
@@ -55,13 +58,15 @@ Spring::End spring_end(const TableReader& spring, const std::string& key, const 
       names.push_back(scene.model.particles[i].name);
     }
     const auto s = closest(name, names);
-    end->fail_at("particle", fmt::format("no particle named \"{}\"; {}", name,
-                                         s ? fmt::format("did you mean \"{}\"?", *s)
-                                           : names.empty() ? std::string("the scene has no [[particles]]")
-                                                           : fmt::format("the particles are: {}", fmt::join(names, ", "))));
+    end->fail_at("particle",
+                 fmt::format("no particle named \"{}\"; {}", name,
+                             s               ? fmt::format("did you mean \"{}\"?", *s)
+                             : names.empty() ? std::string("the scene has no [[particles]]")
+                                             : fmt::format("the particles are: {}", fmt::join(names, ", "))));
   }
   if (end->has("anchor")) {
-    if (end->has("point")) end->fail_at("point", "point goes with body; an anchor is a world point by itself");
+    if (end->has("point"))
+      end->fail_at("point", "point goes with body; an anchor is a world point by itself");
     anchored = true;
     return Spring::End{all_bodies, *end->vec3("anchor", "m")};
   }
@@ -97,8 +102,8 @@ void read_forces(const TableReader& root, Scene& scene) {
                           {"type", "body", "force", "frame", "point", "point_frame", "torque", "linear",
                            "angular", "a", "b", "stiffness", "rest_length", "damping", "mu", "center",
                            "torque_only"});
-    const std::string type = any.required_string("type", fmt::format("the kind: type = \"{}\"",
-                                                                      fmt::join(types, "\" | \"")).c_str());
+    const std::string type = any.required_string(
+        "type", fmt::format("the kind: type = \"{}\"", fmt::join(types, "\" | \"")).c_str());
     auto reader = [&](std::vector<std::string> keys) {
       keys.push_back("type");
       return TableReader(*forces[i], fmt::format("[[forces]] #{} ({})", i + 1, type), root.file(), keys);
@@ -138,8 +143,11 @@ void read_forces(const TableReader& root, Scene& scene) {
       bool anchored = false;
       const Spring::End a = spring_end(t, "a", scene, anchored);
       const Spring::End b = spring_end(t, "b", scene, anchored);
-      const auto is_anchor = [](const Spring::End& e) { return e.body == all_bodies && e.particle == all_bodies; };
-      if (is_anchor(a) && is_anchor(b)) t.fail_here("both ends are anchors: attach one to a body or a particle");
+      const auto is_anchor = [](const Spring::End& e) {
+        return e.body == all_bodies && e.particle == all_bodies;
+      };
+      if (is_anchor(a) && is_anchor(b))
+        t.fail_here("both ends are anchors: attach one to a body or a particle");
       const double k = t.required_number("stiffness", "N/m", Domain::positive);
       const double rest = t.number("rest_length", 0.0, "m", Domain::non_negative);
       const double damping = t.number("damping", 0.0, "N*s/m", Domain::non_negative);

@@ -25,7 +25,8 @@ struct Polynomial {
 
   double operator()(const Vec3& x) const {
     double rho = 0.0;
-    for (const Term& t : terms) rho += t.c * std::pow(x.x(), t.i) * std::pow(x.y(), t.j) * std::pow(x.z(), t.k);
+    for (const Term& t : terms)
+      rho += t.c * std::pow(x.x(), t.i) * std::pow(x.y(), t.j) * std::pow(x.z(), t.k);
     return rho;
   }
 };
@@ -130,7 +131,8 @@ Shape read_shape(const TableReader& owner) {
                                        type_name(*n)));
   }
   const toml::table& table = *n->as_table();
-  const std::vector<std::string> types = {"box", "sphere", "ellipsoid", "cylinder", "capsule", "cone", "torus"};
+  const std::vector<std::string> types = {"box",     "sphere", "ellipsoid", "cylinder",
+                                          "capsule", "cone",   "torus"};
   const toml::node* type_node = table.get("type");
   const std::string context = owner.context() + " shape";
   if (!type_node || !type_node->is_string()) {
@@ -184,14 +186,19 @@ Shape read_shape(const TableReader& owner) {
 }
 
 std::string describe_shape(const Shape& s) {
-  if (const auto* b = std::get_if<Box>(&s)) return fmt::format("box {:g} x {:g} x {:g} m", b->size.x(), b->size.y(), b->size.z());
+  if (const auto* b = std::get_if<Box>(&s))
+    return fmt::format("box {:g} x {:g} x {:g} m", b->size.x(), b->size.y(), b->size.z());
   if (const auto* p = std::get_if<Sphere>(&s)) return fmt::format("sphere r = {:g} m", p->radius);
   if (const auto* e = std::get_if<Ellipsoid>(&s)) {
-    return fmt::format("ellipsoid {:g} x {:g} x {:g} m", e->semi_axes.x(), e->semi_axes.y(), e->semi_axes.z());
+    return fmt::format("ellipsoid {:g} x {:g} x {:g} m", e->semi_axes.x(), e->semi_axes.y(),
+                       e->semi_axes.z());
   }
-  if (const auto* c = std::get_if<Cylinder>(&s)) return fmt::format("cylinder r = {:g} m, length {:g} m", c->radius, c->length);
-  if (const auto* c = std::get_if<Capsule>(&s)) return fmt::format("capsule r = {:g} m, length {:g} m", c->radius, c->length);
-  if (const auto* c = std::get_if<Cone>(&s)) return fmt::format("cone r = {:g} m, height {:g} m", c->radius, c->height);
+  if (const auto* c = std::get_if<Cylinder>(&s))
+    return fmt::format("cylinder r = {:g} m, length {:g} m", c->radius, c->length);
+  if (const auto* c = std::get_if<Capsule>(&s))
+    return fmt::format("capsule r = {:g} m, length {:g} m", c->radius, c->length);
+  if (const auto* c = std::get_if<Cone>(&s))
+    return fmt::format("cone r = {:g} m, height {:g} m", c->radius, c->height);
   const auto& t = std::get<Torus>(s);
   return fmt::format("torus R = {:g} m, r = {:g} m", t.major_radius, t.minor_radius);
 }
@@ -209,25 +216,28 @@ MassProperties solid(const TableReader& t, const Material& mat, const Pose& pose
   const DensityField rho_part = [&mat, pose](const Vec3& x) { return mat.polynomial(pose.R * x + pose.t); };
   // The rule of degree d is exact for ρ of degree d − 2 (density.hpp).
   const int degree = std::max(kMinDensityDegree, mat.polynomial.degree + 2);
-  const MassSpec spec = mat.kind == Material::Kind::mass ? MassSpec::mass(mat.value)
+  const MassSpec spec = mat.kind == Material::Kind::mass      ? MassSpec::mass(mat.value)
                         : mat.kind == Material::Kind::density ? MassSpec::density(mat.value)
                                                               : MassSpec::density(1.0);
   // A thickness makes the shape or mesh a thin shell: surface density ρ·t, open meshes allowed.
   const bool is_shell = t.has("thickness");
   const double thickness = is_shell ? t.number("thickness", 0.0, "m", Domain::positive) : 0.0;
   if (is_shell && mat.kind == Material::Kind::polynomial) {
-    t.fail_at("thickness", "a thin shell takes a uniform density or a mass; a polynomial density applies to "
-                           "solids only: remove thickness or give density = RHO");
+    t.fail_at("thickness",
+              "a thin shell takes a uniform density or a mass; a polynomial density applies to "
+              "solids only: remove thickness or give density = RHO");
   }
   const std::string shell = is_shell ? fmt::format(", thin shell {:g} m thick", thickness) : "";
   try {
     if (t.has("shape")) {
       t.at_most_one_of({"shape", "mesh"});
-      if (t.has("scale")) t.fail_at("scale", "scale applies to a mesh only: remove it or give mesh = \"...\"");
+      if (t.has("scale"))
+        t.fail_at("scale", "scale applies to a mesh only: remove it or give mesh = \"...\"");
       const Shape shape = read_shape(t);
       source = describe_shape(shape) + shell + ", " + mat.describe();
       if (is_shell) return shell_mass_properties(shape, thickness, spec);
-      if (mat.kind == Material::Kind::polynomial) return integrate_density(shape, rho_part, degree).properties;
+      if (mat.kind == Material::Kind::polynomial)
+        return integrate_density(shape, rho_part, degree).properties;
       return solid_mass_properties(shape, spec);
     }
     const std::string file = *t.string("mesh");
@@ -259,7 +269,8 @@ MassProperties solid(const TableReader& t, const Material& mat, const Pose& pose
   } catch (const SceneError&) {
     throw;
   } catch (const Error& e) {
-    t.fail_at(t.has("mesh") ? "mesh" : (mat.kind == Material::Kind::polynomial ? mat.key : "shape"), e.what());
+    t.fail_at(t.has("mesh") ? "mesh" : (mat.kind == Material::Kind::polynomial ? mat.key : "shape"),
+              e.what());
   }
 }
 
@@ -273,16 +284,16 @@ MassProperties explicit_inertia(const TableReader& t, const Material& mat) {
   Mat3 I = Mat3::Zero();
   if (a && a->size() == 3 && (*a)[0].is_number()) {
     for (size_t i = 0; i < 3; ++i) {
-      I(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)) = number_value(
-          t, "inertia", *a->get(i), fmt::format("inertia[{}]", i), "kg*m^2", Domain::positive);
+      I(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)) =
+          number_value(t, "inertia", *a->get(i), fmt::format("inertia[{}]", i), "kg*m^2", Domain::positive);
     }
   } else if (a && a->size() == 3) {
     for (size_t i = 0; i < 3; ++i) {
       const toml::array* row = (*a)[i].as_array();
       if (!row || row->size() != 3) {
         fail(t.file(), (*a)[i].source(),
-             fmt::format("{}: inertia row {} must be an array of 3 numbers (kg*m^2), found {}", t.context(), i,
-                         type_name((*a)[i])));
+             fmt::format("{}: inertia row {} must be an array of 3 numbers (kg*m^2), found {}", t.context(),
+                         i, type_name((*a)[i])));
       }
       for (size_t j = 0; j < 3; ++j) {
         I(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = number_value(
@@ -290,15 +301,18 @@ MassProperties explicit_inertia(const TableReader& t, const Material& mat) {
       }
     }
     if (!I.isApprox(I.transpose(), 1e-12)) {  // entries are typed in; a mismatch is a typo
-      t.fail_at("inertia", "inertia must be symmetric (inertia[i][j] = inertia[j][i]): check the products of inertia");
+      t.fail_at("inertia",
+                "inertia must be symmetric (inertia[i][j] = inertia[j][i]): check the products of inertia");
     }
     I = 0.5 * (I + I.transpose());
   } else {
-    t.fail_at("inertia", fmt::format("inertia must be [Ixx, Iyy, Izz] or a 3x3 array [[Ixx, Ixy, Ixz], [...], "
-                                     "[...]] (kg*m^2, about the centre of mass), found {}",
-                                     type_name(n)));
+    t.fail_at("inertia",
+              fmt::format("inertia must be [Ixx, Iyy, Izz] or a 3x3 array [[Ixx, Ixy, Ixz], [...], "
+                          "[...]] (kg*m^2, about the centre of mass), found {}",
+                          type_name(n)));
   }
-  const MassProperties mp = MassProperties::from_inertia(mat.value, t.vec3("center_of_mass", Vec3::Zero(), "m"), I);
+  const MassProperties mp =
+      MassProperties::from_inertia(mat.value, t.vec3("center_of_mass", Vec3::Zero(), "m"), I);
   try {
     mp.validate();
   } catch (const InvalidMassProperties& e) {
@@ -339,13 +353,14 @@ BodyMass read_body_mass(const TableReader& body, const std::filesystem::path& di
   int holes = 0;
   for (size_t i = 0; i < parts.size(); ++i) {
     const TableReader part(*parts[i], fmt::format("{} part {}", body.context(), i + 1), body.file(),
-                           {"shape", "mesh", "scale", "thickness", "inertia", "center_of_mass", "density", "mass",
-                            "position", "orientation", "hole"});
+                           {"shape", "mesh", "scale", "thickness", "inertia", "center_of_mass", "density",
+                            "mass", "position", "orientation", "hole"});
     part.require_one_of({"shape", "mesh", "inertia"});
     Material m = read_material(part);
     if (m.kind != Material::Kind::none && material.kind == Material::Kind::mass) {
-      part.fail_at(m.key, "the body gives its total mass, so its parts cannot have their own density or "
-                          "mass: remove one of them");
+      part.fail_at(m.key,
+                   "the body gives its total mass, so its parts cannot have their own density or "
+                   "mass: remove one of them");
     }
     if (m.kind == Material::Kind::none && material.kind != Material::Kind::mass) {
       if (material.kind == Material::Kind::none && !part.has("inertia")) {
@@ -366,9 +381,10 @@ BodyMass read_body_mass(const TableReader& body, const std::filesystem::path& di
     }
   }
   if (!(total.mass > 0)) {
-    body.fail_here(fmt::format("the parts minus the holes leave a mass of {:g} kg: holes must be smaller "
-                               "than the parts they cut",
-                               total.mass));
+    body.fail_here(
+        fmt::format("the parts minus the holes leave a mass of {:g} kg: holes must be smaller "
+                    "than the parts they cut",
+                    total.mass));
   }
   if (material.kind == Material::Kind::mass) {
     // Parts were integrated with unit density; scaling m and I by M/m keeps the centre of mass.
@@ -376,8 +392,9 @@ BodyMass read_body_mass(const TableReader& body, const std::filesystem::path& di
     total.mass *= f;
     total.inertia *= f;
   }
-  return {total, fmt::format("{} parts{}, {}", parts.size(), holes ? fmt::format(" ({} holes)", holes) : "",
-                             material.kind == Material::Kind::none ? "materials per part" : material.describe())};
+  return {total,
+          fmt::format("{} parts{}, {}", parts.size(), holes ? fmt::format(" ({} holes)", holes) : "",
+                      material.kind == Material::Kind::none ? "materials per part" : material.describe())};
 }
 
 }  // namespace tumble::scene

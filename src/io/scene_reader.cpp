@@ -174,7 +174,8 @@ double TableReader::number(const std::string& key, double fallback, const char* 
 
 double TableReader::required_number(const std::string& key, const char* unit, Domain domain) const {
   const auto x = number(key, unit, domain);
-  if (!x) fail_here(fmt::format("missing '{}': give a {} number{}", key, domain_text(domain), with_unit(unit)));
+  if (!x)
+    fail_here(fmt::format("missing '{}': give a {} number{}", key, domain_text(domain), with_unit(unit)));
   return *x;
 }
 
@@ -205,7 +206,8 @@ std::optional<Vec3> TableReader::vec3(const std::string& key, const char* unit, 
   if (!n) return std::nullopt;
   const toml::array* a = n->as_array();
   if (!a || a->size() != 3) {
-    fail_at(key, fmt::format("{} must be an array of 3 numbers{}, found {}", key, with_unit(unit), type_name(*n)));
+    fail_at(key,
+            fmt::format("{} must be an array of 3 numbers{}, found {}", key, with_unit(unit), type_name(*n)));
   }
   Vec3 v;
   for (size_t i = 0; i < 3; ++i) {
@@ -233,10 +235,10 @@ std::optional<Quat> TableReader::quaternion(const std::string& key) const {
   }
   const double norm = wxyz.norm();
   if (!(std::abs(norm - 1.0) <= kQuaternionNormSlack)) {
-    const std::string hint =
-        norm > 0 ? fmt::format("; normalised it would be [{:.6g}, {:.6g}, {:.6g}, {:.6g}]", wxyz(0) / norm,
-                               wxyz(1) / norm, wxyz(2) / norm, wxyz(3) / norm)
-                 : "";
+    const std::string hint = norm > 0
+                                 ? fmt::format("; normalised it would be [{:.6g}, {:.6g}, {:.6g}, {:.6g}]",
+                                               wxyz(0) / norm, wxyz(1) / norm, wxyz(2) / norm, wxyz(3) / norm)
+                                 : "";
     fail_at(key, fmt::format("{} has norm {:.6g}, more than {:g} from 1: give a unit quaternion "
                              "[w, x, y, z] (w first){}",
                              key, norm, kQuaternionNormSlack, hint));
@@ -266,7 +268,8 @@ std::vector<const toml::table*> TableReader::tables(const std::string& key) cons
   const toml::node* n = node(key);
   if (!n) return out;
   const toml::array* a = n->as_array();
-  if (!a) fail_at(key, fmt::format("{} must be an array of tables ([[{}]]), found {}", key, key, type_name(*n)));
+  if (!a)
+    fail_at(key, fmt::format("{} must be an array of tables ([[{}]]), found {}", key, key, type_name(*n)));
   for (const toml::node& element : *a) {
     if (!element.is_table()) {
       fail(file_, element.source(),

@@ -53,8 +53,10 @@ class TableReader {
   void require_one_of(const std::vector<std::string>& keys) const;
   void at_most_one_of(const std::vector<std::string>& keys) const;
 
-  std::optional<double> number(const std::string& key, const char* unit, Domain domain = Domain::finite) const;
-  double number(const std::string& key, double fallback, const char* unit, Domain domain = Domain::finite) const;
+  std::optional<double> number(const std::string& key, const char* unit,
+                               Domain domain = Domain::finite) const;
+  double number(const std::string& key, double fallback, const char* unit,
+                Domain domain = Domain::finite) const;
   double required_number(const std::string& key, const char* unit, Domain domain = Domain::finite) const;
   std::optional<std::string> string(const std::string& key) const;
   std::string required_string(const std::string& key, const char* what) const;

@@ -13,7 +13,8 @@ StagedFile::StagedFile(std::filesystem::path final_path) : final_(std::move(fina
   const std::filesystem::path dir = final_.parent_path();
   std::error_code ec;
   if (!dir.empty()) std::filesystem::create_directories(dir, ec);
-  if (ec) throw FileError(fmt::format("cannot create the output directory {}: {}", dir.string(), ec.message()));
+  if (ec)
+    throw FileError(fmt::format("cannot create the output directory {}: {}", dir.string(), ec.message()));
 }
 
 StagedFile::~StagedFile() { abandon(); }
@@ -23,7 +24,8 @@ void StagedFile::commit() {
   std::filesystem::rename(temporary_, final_, ec);
   if (ec) {
     abandon();
-    throw FileError(fmt::format("cannot move {} to {}: {}", temporary_.string(), final_.string(), ec.message()));
+    throw FileError(
+        fmt::format("cannot move {} to {}: {}", temporary_.string(), final_.string(), ec.message()));
   }
   done_ = true;
 }

@@ -33,7 +33,7 @@ DensityResult integrate_density(const TriangleMesh& mesh, const DensityField& rh
       const Vec3 b = mesh.vertices[checked.flipped ? tri[2] : tri[1]] - apex;
       const Vec3 c = mesh.vertices[checked.flipped ? tri[1] : tri[2]] - apex;
       const double volume = a.dot(b.cross(c)) / 6.0;  // signed: negative where the fan folds back
-      if (volume == 0.0) continue;                      // apex in the triangle's plane: no volume
+      if (volume == 0.0) continue;                    // apex in the triangle's plane: no volume
       sum.set_element("the fan tetrahedron of triangle", t);
       for (std::size_t k = 0; k < rule.weights.size(); ++k) {
         const Eigen::Vector4d& l = rule.barycentric[k];

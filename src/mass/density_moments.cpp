@@ -13,8 +13,8 @@ MomentAccumulator::MomentAccumulator(const DensityField& rho, const Vec3& origin
     : rho_(rho), origin_(origin), where_(std::move(where)) {}
 
 void MomentAccumulator::bad_density(const Vec3& x, double rho) const {
-  const std::string element =
-      element_kind_ == nullptr ? std::string() : fmt::format(", in {} {}", element_kind_, element_);
+  const std::string element = element_kind_ == nullptr ? std::string()
+                                                       : fmt::format(", in {} {}", element_kind_, element_);
   throw InvalidArgument(fmt::format(
       "{}: the density function returned {} kg/m^3 at the quadrature point x = ({:.17g}, {:.17g}, "
       "{:.17g}) m{}; it must return a finite number at every point of the body (for a non-convex "
@@ -27,10 +27,10 @@ MassProperties MomentAccumulator::finish() {
   const Terms t = sum_.total();
   const double volume = t[0], m0 = t[1];
   if (!(m0 > 0.0)) {
-    throw InvalidArgument(fmt::format(
-        "{}: the density integrates to a total mass of {} kg, which is not positive; the density "
-        "must be non-negative and positive somewhere in the body",
-        where_, m0));
+    throw InvalidArgument(
+        fmt::format("{}: the density integrates to a total mass of {} kg, which is not positive; the density "
+                    "must be non-negative and positive somewhere in the body",
+                    where_, m0));
   }
   const Vec3 m1(t[2], t[3], t[4]);
   Mat3 m2;
@@ -47,15 +47,15 @@ MassProperties MomentAccumulator::finish() {
 
 int density_rule_degree(int degree, const DensityField& rho, const std::string& where) {
   if (degree < kMinDensityDegree || degree > kMaxDensityDegree) {
-    throw InvalidArgument(fmt::format(
-        "{}: quadrature degree {} is out of the supported range [{}, {}]; degree d integrates "
-        "densities that are polynomials of degree d - 2 exactly (d = 2 for uniform density) — "
-        "choose a degree in that range",
-        where, degree, kMinDensityDegree, kMaxDensityDegree));
+    throw InvalidArgument(
+        fmt::format("{}: quadrature degree {} is out of the supported range [{}, {}]; degree d integrates "
+                    "densities that are polynomials of degree d - 2 exactly (d = 2 for uniform density) — "
+                    "choose a degree in that range",
+                    where, degree, kMinDensityDegree, kMaxDensityDegree));
   }
   if (!rho) {
-    throw InvalidArgument(fmt::format(
-        "{}: the density function is empty; pass a callable returning kg/m^3 at a point", where));
+    throw InvalidArgument(
+        fmt::format("{}: the density function is empty; pass a callable returning kg/m^3 at a point", where));
   }
   return degree % 2 == 0 ? degree + 1 : degree;  // rules come in odd degrees
 }

@@ -46,8 +46,7 @@ void box(MomentAccumulator& sum, const Box& s, int d) {
   for (std::size_t i = 0; i < gx.nodes.size(); ++i) {
     for (std::size_t j = 0; j < gy.nodes.size(); ++j) {
       for (std::size_t k = 0; k < gz.nodes.size(); ++k) {
-        sum.add(Vec3(gx.nodes[i], gy.nodes[j], gz.nodes[k]),
-                gx.weights[i] * gy.weights[j] * gz.weights[k]);
+        sum.add(Vec3(gx.nodes[i], gy.nodes[j], gz.nodes[k]), gx.weights[i] * gy.weights[j] * gz.weights[k]);
       }
       sum.end_block();
     }
@@ -159,28 +158,25 @@ DensityResult integrate_density(const Shape& shape, const DensityField& rho, int
 
   auto integrate = [&](int rule_degree) {
     MomentAccumulator sum(rho, origin, where);
-    std::visit(Overloaded{
-                   [&](const Box& s) { box(sum, s, rule_degree); },
-                   [&](const Sphere& s) {
-                     ball(sum, Vec3::Constant(s.radius), Vec3::Zero(), -1.0, 1.0, rule_degree);
-                   },
-                   [&](const Ellipsoid& s) {
-                     ball(sum, s.semi_axes, Vec3::Zero(), -1.0, 1.0, rule_degree);
-                   },
-                   [&](const Cylinder& s) {
-                     cylinder(sum, s.radius, -0.5 * s.length, 0.5 * s.length, rule_degree);
-                   },
-                   [&](const Capsule& s) {
-                     const double h = 0.5 * s.length;
-                     const Vec3 semi = Vec3::Constant(s.radius);
-                     cylinder(sum, s.radius, -h, h, rule_degree);
-                     ball(sum, semi, Vec3(0, 0, h), 0.0, 1.0, rule_degree);    // top hemisphere
-                     ball(sum, semi, Vec3(0, 0, -h), -1.0, 0.0, rule_degree);  // bottom hemisphere
-                   },
-                   [&](const Cone& s) { cone(sum, s, rule_degree); },
-                   [&](const Torus& s) { torus(sum, s, rule_degree); },
-               },
-               shape);
+    std::visit(
+        Overloaded{
+            [&](const Box& s) { box(sum, s, rule_degree); },
+            [&](const Sphere& s) {
+              ball(sum, Vec3::Constant(s.radius), Vec3::Zero(), -1.0, 1.0, rule_degree);
+            },
+            [&](const Ellipsoid& s) { ball(sum, s.semi_axes, Vec3::Zero(), -1.0, 1.0, rule_degree); },
+            [&](const Cylinder& s) { cylinder(sum, s.radius, -0.5 * s.length, 0.5 * s.length, rule_degree); },
+            [&](const Capsule& s) {
+              const double h = 0.5 * s.length;
+              const Vec3 semi = Vec3::Constant(s.radius);
+              cylinder(sum, s.radius, -h, h, rule_degree);
+              ball(sum, semi, Vec3(0, 0, h), 0.0, 1.0, rule_degree);    // top hemisphere
+              ball(sum, semi, Vec3(0, 0, -h), -1.0, 0.0, rule_degree);  // bottom hemisphere
+            },
+            [&](const Cone& s) { cone(sum, s, rule_degree); },
+            [&](const Torus& s) { torus(sum, s, rule_degree); },
+        },
+        shape);
     return sum.finish();
   };
   return detail::integrate_with_estimate(d, integrate);

@@ -11,17 +11,16 @@ Mat3 parallel_axis_term(double m, const Vec3& b) {
   return m * (b.squaredNorm() * Mat3::Identity() - b * b.transpose());
 }
 
-MassProperties MassProperties::from_inertia(double mass, const Vec3& center_of_mass,
-                                            const Mat3& inertia, double volume) {
+MassProperties MassProperties::from_inertia(double mass, const Vec3& center_of_mass, const Mat3& inertia,
+                                            double volume) {
   return MassProperties{mass, center_of_mass, inertia, volume};
 }
 
 MassProperties MassProperties::from_inertia_about(double mass, const Vec3& center_of_mass,
-                                                  const Mat3& inertia_about_point,
-                                                  const Vec3& point, double volume) {
+                                                  const Mat3& inertia_about_point, const Vec3& point,
+                                                  double volume) {
   return MassProperties{mass, center_of_mass,
-                        inertia_about_point - parallel_axis_term(mass, point - center_of_mass),
-                        volume};
+                        inertia_about_point - parallel_axis_term(mass, point - center_of_mass), volume};
 }
 
 Mat3 MassProperties::inertia_about(const Vec3& point) const {
@@ -41,9 +40,9 @@ namespace {
 Vec3 unit_axis(const Vec3& axis) {
   const double n = axis.norm();
   if (!(n > 0.0) || !std::isfinite(n)) {
-    throw InvalidArgument(fmt::format(
-        "axis direction ({}, {}, {}) has no direction: give a non-zero, finite vector", axis.x(),
-        axis.y(), axis.z()));
+    throw InvalidArgument(
+        fmt::format("axis direction ({}, {}, {}) has no direction: give a non-zero, finite vector", axis.x(),
+                    axis.y(), axis.z()));
   }
   return axis / n;
 }
@@ -84,8 +83,7 @@ void MassProperties::validate(const ValidityOptions& options, const std::string&
         "inertia tensor is not symmetric: |I - I^T| reaches {:.6g} (I_xy={:.10g} vs I_yx={:.10g}, "
         "I_xz={:.10g} vs I_zx={:.10g}, I_yz={:.10g} vs I_zy={:.10g}); products of inertia must "
         "appear twice with the same value",
-        asymmetry, inertia(0, 1), inertia(1, 0), inertia(0, 2), inertia(2, 0), inertia(1, 2),
-        inertia(2, 1)));
+        asymmetry, inertia(0, 1), inertia(1, 0), inertia(0, 2), inertia(2, 0), inertia(1, 2), inertia(2, 1)));
   }
   const Vec3 L = tumble::principal_axes(0.5 * (inertia + inertia.transpose())).Lambda;
   if (!(L(0) > tol)) {
@@ -119,10 +117,10 @@ MassProperties& MassProperties::operator+=(const MassProperties& part) {
 
 MassProperties& MassProperties::operator-=(const MassProperties& part) {
   if (!(part.mass < mass)) {
-    throw InvalidArgument(fmt::format(
-        "cannot remove a part of mass {} kg from a body of mass {} kg: a hole must be lighter "
-        "than the body it is cut from",
-        part.mass, mass));
+    throw InvalidArgument(
+        fmt::format("cannot remove a part of mass {} kg from a body of mass {} kg: a hole must be lighter "
+                    "than the body it is cut from",
+                    part.mass, mass));
   }
   MassProperties negative = part;
   negative.mass = -part.mass;

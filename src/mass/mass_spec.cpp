@@ -23,11 +23,10 @@ MassSpec MassSpec::mass(double m) {
 
 MassProperties MassSpec::apply(const MassProperties& unit, double mass_per_measure_unit) const {
   if (!(unit.mass > 0.0)) {
-    throw InvalidArgument(fmt::format(
-        "the shape has no extent (measure {}), so it cannot carry mass", unit.mass));
+    throw InvalidArgument(
+        fmt::format("the shape has no extent (measure {}), so it cannot carry mass", unit.mass));
   }
-  const double factor =
-      kind_ == Kind::density ? value_ * mass_per_measure_unit : value_ / unit.mass;
+  const double factor = kind_ == Kind::density ? value_ * mass_per_measure_unit : value_ / unit.mass;
   return MassProperties{unit.mass * factor, unit.center_of_mass, unit.inertia * factor, unit.volume};
 }
 

@@ -108,8 +108,8 @@ void check_edges(const TriangleMesh& mesh, MeshReport& r) {
   const std::size_t nv = mesh.vertices.size();
   const std::size_t nt = mesh.triangles.size();
   if (nt >= (std::size_t{1} << 31)) {
-    throw MeshError(fmt::format(
-        "the mesh has {} triangles; the edge check handles fewer than 2^31: split the mesh", nt));
+    throw MeshError(
+        fmt::format("the mesh has {} triangles; the edge check handles fewer than 2^31: split the mesh", nt));
   }
   // Entry: hi << 32 | triangle << 1 | (1 if the triangle runs hi → lo). Sorting a bucket by it orders
   // by the other vertex, then by triangle.
@@ -152,8 +152,7 @@ void check_edges(const TriangleMesh& mesh, MeshReport& r) {
       const auto uses = g_end - g;
       if (uses == 1) {
         ++r.boundary_edge_count;
-        const EdgeUse e = reversed(*g) ? EdgeUse{hi, v0, triangle_of(*g)}
-                                       : EdgeUse{v0, hi, triangle_of(*g)};
+        const EdgeUse e = reversed(*g) ? EdgeUse{hi, v0, triangle_of(*g)} : EdgeUse{v0, hi, triangle_of(*g)};
         boundary.offer({e.triangle, e.from}, e);
       } else if (uses == 2) {
         if (reversed(g[0]) == reversed(g[1])) {
@@ -183,8 +182,8 @@ std::string plural(std::size_t n, const char* one, const char* many) {
 std::string triangle_list(const std::vector<TriangleRef>& list, std::size_t count) {
   std::string s;
   for (const TriangleRef& t : list) {
-    s += fmt::format("{}triangle {} (vertices {}, {}, {})", s.empty() ? "" : ", ", t.triangle,
-                     t.vertices[0], t.vertices[1], t.vertices[2]);
+    s += fmt::format("{}triangle {} (vertices {}, {}, {})", s.empty() ? "" : ", ", t.triangle, t.vertices[0],
+                     t.vertices[1], t.vertices[2]);
   }
   return s + more(count);
 }
@@ -219,14 +218,14 @@ std::string describe_solid_defects(const MeshReport& r) {
   if (r.non_finite_vertex_count > 0) {
     std::string list;
     for (const VertexRef& v : r.non_finite_vertices) {
-      list += fmt::format("{}vertex {} ({}, {}, {})", list.empty() ? "" : ", ", v.vertex,
-                          v.position.x(), v.position.y(), v.position.z());
+      list += fmt::format("{}vertex {} ({}, {}, {})", list.empty() ? "" : ", ", v.vertex, v.position.x(),
+                          v.position.y(), v.position.z());
     }
-    out.push_back(fmt::format(
-        "{} non-finite coordinates (NaN or infinity), first: {}{}; fix or remove them in the "
-        "source data",
-        plural(r.non_finite_vertex_count, "vertex has", "vertices have"), list,
-        more(r.non_finite_vertex_count)));
+    out.push_back(
+        fmt::format("{} non-finite coordinates (NaN or infinity), first: {}{}; fix or remove them in the "
+                    "source data",
+                    plural(r.non_finite_vertex_count, "vertex has", "vertices have"), list,
+                    more(r.non_finite_vertex_count)));
   }
   if (r.out_of_range_count > 0) {
     out.push_back(fmt::format(
@@ -237,29 +236,28 @@ std::string describe_solid_defects(const MeshReport& r) {
         triangle_list(r.out_of_range_triangles, r.out_of_range_count)));
   }
   if (r.degenerate_count > 0) {
-    out.push_back(fmt::format(
-        "the mesh has {} (a repeated vertex or zero area), first: {}; remove them (e.g. MeshLab: "
-        "Remove Duplicate Faces / Remove Zero Area Faces) or re-export the mesh",
-        plural(r.degenerate_count, "degenerate triangle", "degenerate triangles"),
-        triangle_list(r.degenerate_triangles, r.degenerate_count)));
+    out.push_back(
+        fmt::format("the mesh has {} (a repeated vertex or zero area), first: {}; remove them (e.g. MeshLab: "
+                    "Remove Duplicate Faces / Remove Zero Area Faces) or re-export the mesh",
+                    plural(r.degenerate_count, "degenerate triangle", "degenerate triangles"),
+                    triangle_list(r.degenerate_triangles, r.degenerate_count)));
   }
   if (r.boundary_edge_count > 0) {
     std::string list;
     for (const EdgeUse& e : r.boundary_edges) {
-      list += fmt::format("{}edge ({},{}) of triangle {}", list.empty() ? "" : ", ", e.from, e.to,
-                          e.triangle);
+      list +=
+          fmt::format("{}edge ({},{}) of triangle {}", list.empty() ? "" : ", ", e.from, e.to, e.triangle);
     }
     out.push_back(fmt::format(
         "the mesh has {} (an open surface), first: {}{}; close the holes in a mesh editor, or "
         "treat it as a thin-walled part (shell mass properties, --shell)",
-        plural(r.boundary_edge_count, "boundary edge", "boundary edges"), list,
-        more(r.boundary_edge_count)));
+        plural(r.boundary_edge_count, "boundary edge", "boundary edges"), list, more(r.boundary_edge_count)));
   }
   if (r.non_manifold_edge_count > 0) {
     std::string list;
     for (const NonManifoldEdge& e : r.non_manifold_edges) {
-      list += fmt::format("{}edge ({},{}) of triangles {{{}}}", list.empty() ? "" : ", ", e.v0,
-                          e.v1, fmt::join(e.triangles, ", "));
+      list += fmt::format("{}edge ({},{}) of triangles {{{}}}", list.empty() ? "" : ", ", e.v0, e.v1,
+                          fmt::join(e.triangles, ", "));
     }
     out.push_back(fmt::format(
         "the mesh has {} (shared by more than two triangles), first: {}{}; separate the bodies "
@@ -270,15 +268,14 @@ std::string describe_solid_defects(const MeshReport& r) {
   if (r.misoriented_edge_count > 0) {
     std::string list;
     for (const MisorientedEdge& e : r.misoriented_edges) {
-      list += fmt::format("{}edge ({},{}) in triangles {} and {}", list.empty() ? "" : ", ",
-                          e.from, e.to, e.first, e.second);
+      list += fmt::format("{}edge ({},{}) in triangles {} and {}", list.empty() ? "" : ", ", e.from, e.to,
+                          e.first, e.second);
     }
     out.push_back(fmt::format(
         "the mesh is inconsistently oriented: {} traversed in the same direction by both of "
         "their triangles, first: {}{}; flip one triangle of each pair so that all wind "
         "counter-clockwise seen from outside (e.g. MeshLab: Re-Orient all faces coherently)",
-        plural(r.misoriented_edge_count, "edge is", "edges are"), list,
-        more(r.misoriented_edge_count)));
+        plural(r.misoriented_edge_count, "edge is", "edges are"), list, more(r.misoriented_edge_count)));
   }
   std::string joined;
   for (const std::string& s : out) joined += (joined.empty() ? "" : "; ") + s;

@@ -8,9 +8,9 @@ namespace tumble::detail {
 /// ∫1, ∫r and ∫r rᵀ over a region, r = x − ref, about a reference point near the mesh.
 struct RegionMoments {
   Vec3 ref = Vec3::Zero();
-  double measure = 0.0;          ///< volume (signed, for solids) or area
-  Vec3 first = Vec3::Zero();     ///< ∫ r
-  Mat3 second = Mat3::Zero();    ///< C_ref = ∫ r rᵀ
+  double measure = 0.0;        ///< volume (signed, for solids) or area
+  Vec3 first = Vec3::Zero();   ///< ∫ r
+  Mat3 second = Mat3::Zero();  ///< C_ref = ∫ r rᵀ
 };
 
 /// Centre of the axis-aligned bounding box of the vertices (the origin of an empty mesh).

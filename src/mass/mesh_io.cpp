@@ -19,19 +19,17 @@ void require_readable_file(const std::filesystem::path& path) {
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);
   if (!std::filesystem::exists(status)) {
-    throw FileError(fmt::format("{}: no such file; check the path and the working directory",
-                                path.string()));
+    throw FileError(fmt::format("{}: no such file; check the path and the working directory", path.string()));
   }
   if (!std::filesystem::is_regular_file(status)) {
-    throw FileError(fmt::format("{}: not a regular file (a directory?); give a mesh file",
-                                path.string()));
+    throw FileError(fmt::format("{}: not a regular file (a directory?); give a mesh file", path.string()));
   }
 }
 
 /// Names the bad vertex by the first face that uses it: assimp renumbers vertices (OBJ corners are
 /// split per face), but faces keep the file's order, so "face 12 of mesh 0" is findable in the file.
-[[noreturn]] void throw_non_finite(const std::filesystem::path& path, const aiMesh& part,
-                                   unsigned mesh_index, unsigned vertex, double scale) {
+[[noreturn]] void throw_non_finite(const std::filesystem::path& path, const aiMesh& part, unsigned mesh_index,
+                                   unsigned vertex, double scale) {
   const aiVector3D& p = part.mVertices[vertex];
   std::string where = fmt::format("vertex {} of mesh {}", vertex, mesh_index);
   for (unsigned f = 0; f < part.mNumFaces; ++f) {
@@ -44,18 +42,18 @@ void require_readable_file(const std::filesystem::path& path) {
       }
     }
   }
-  throw FileError(fmt::format(
-      "{}: {} has non-finite coordinates ({}, {}, {}){}; fix the file", path.string(), where,
-      p.x, p.y, p.z, scale == 1.0 ? "" : fmt::format(" after scaling by {}", scale)));
+  throw FileError(fmt::format("{}: {} has non-finite coordinates ({}, {}, {}){}; fix the file", path.string(),
+                              where, p.x, p.y, p.z,
+                              scale == 1.0 ? "" : fmt::format(" after scaling by {}", scale)));
 }
 
 }  // namespace
 
 TriangleMesh load_mesh(const std::filesystem::path& path, const MeshLoadOptions& options) {
   if (!std::isfinite(options.scale) || !(options.scale > 0.0)) {
-    throw InvalidArgument(fmt::format(
-        "{}: mesh scale {} is invalid: give a positive factor (e.g. 0.001 for millimetres)",
-        path.string(), options.scale));
+    throw InvalidArgument(
+        fmt::format("{}: mesh scale {} is invalid: give a positive factor (e.g. 0.001 for millimetres)",
+                    path.string(), options.scale));
   }
   require_readable_file(path);
 
@@ -65,8 +63,7 @@ TriangleMesh load_mesh(const std::filesystem::path& path, const MeshLoadOptions&
   const aiScene* scene = importer.ReadFile(
       path.string(), aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_SortByPType);
   if (scene == nullptr) {
-    throw FileError(fmt::format("{}: cannot read the mesh: {}", path.string(),
-                                importer.GetErrorString()));
+    throw FileError(fmt::format("{}: cannot read the mesh: {}", path.string(), importer.GetErrorString()));
   }
 
   TriangleMesh mesh;
@@ -75,23 +72,22 @@ TriangleMesh load_mesh(const std::filesystem::path& path, const MeshLoadOptions&
     const auto base = static_cast<std::uint32_t>(mesh.vertices.size());
     for (unsigned i = 0; i < part->mNumVertices; ++i) {
       const aiVector3D& p = part->mVertices[i];
-      const Vec3 v = options.scale * Vec3(static_cast<double>(p.x), static_cast<double>(p.y),
-                                          static_cast<double>(p.z));
+      const Vec3 v = options.scale *
+                     Vec3(static_cast<double>(p.x), static_cast<double>(p.y), static_cast<double>(p.z));
       if (!v.allFinite()) throw_non_finite(path, *part, m, i, options.scale);
       mesh.vertices.push_back(v);
     }
     for (unsigned f = 0; f < part->mNumFaces; ++f) {
       const aiFace& face = part->mFaces[f];
       if (face.mNumIndices != 3) continue;  // points and lines left over in a mixed mesh
-      mesh.triangles.push_back(
-          {base + face.mIndices[0], base + face.mIndices[1], base + face.mIndices[2]});
+      mesh.triangles.push_back({base + face.mIndices[0], base + face.mIndices[1], base + face.mIndices[2]});
     }
   }
   if (mesh.triangles.empty()) {
-    throw FileError(fmt::format(
-        "{}: the file holds no triangles ({} meshes, only points or lines, or empty); export the "
-        "surface as triangles or polygons",
-        path.string(), scene->mNumMeshes));
+    throw FileError(
+        fmt::format("{}: the file holds no triangles ({} meshes, only points or lines, or empty); export the "
+                    "surface as triangles or polygons",
+                    path.string(), scene->mNumMeshes));
   }
   return weld_identical_vertices(mesh);
 }

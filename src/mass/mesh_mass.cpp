@@ -17,8 +17,8 @@ MeshMassResult solid_mass_properties(const TriangleMesh& mesh, const MassSpec& s
   }
   const MeshReport report = check_mesh(mesh);
   if (!report.solid()) {
-    throw MeshError(fmt::format("{}: cannot compute solid mass properties: {}", name,
-                                describe_solid_defects(report)));
+    throw MeshError(
+        fmt::format("{}: cannot compute solid mass properties: {}", name, describe_solid_defects(report)));
   }
   MeshMassResult result;
   result.surface_area = report.surface_area;
@@ -50,12 +50,11 @@ MeshMassResult solid_mass_properties(const TriangleMesh& mesh, const MassSpec& s
   return result;
 }
 
-MeshMassResult shell_mass_properties(const TriangleMesh& mesh, double thickness,
-                                     const MassSpec& spec, const std::string& name) {
+MeshMassResult shell_mass_properties(const TriangleMesh& mesh, double thickness, const MassSpec& spec,
+                                     const std::string& name) {
   if (!std::isfinite(thickness) || !(thickness > 0.0)) {
     throw InvalidArgument(fmt::format(
-        "{}: shell thickness {} m is invalid: give a positive, finite wall thickness", name,
-        thickness));
+        "{}: shell thickness {} m is invalid: give a positive, finite wall thickness", name, thickness));
   }
   if (mesh.triangles.empty()) {
     throw MeshError(fmt::format("{}: the mesh has no triangles, so it has no surface", name));
@@ -63,15 +62,14 @@ MeshMassResult shell_mass_properties(const TriangleMesh& mesh, double thickness,
   // Open meshes, shared edges and any winding are fine for a shell; only the data must be valid.
   const MeshReport report = check_mesh_indices(mesh);
   if (!report.usable()) {
-    throw MeshError(fmt::format("{}: cannot compute shell mass properties: {}", name,
-                                describe_solid_defects(report)));
+    throw MeshError(
+        fmt::format("{}: cannot compute shell mass properties: {}", name, describe_solid_defects(report)));
   }
   MeshMassResult result;
   MassProperties unit = detail::unit_properties(detail::surface_moments(mesh));
   if (!(unit.mass > 0.0)) {
     throw MeshError(fmt::format(
-        "{}: the surface has zero area (every triangle is degenerate), so it cannot carry mass",
-        name));
+        "{}: the surface has zero area (every triangle is degenerate), so it cannot carry mass", name));
   }
   result.surface_area = unit.mass;
   unit.volume = unit.mass * thickness;  // thin-wall limit: material volume = area · t

@@ -62,8 +62,7 @@ PrincipalAxes principal_axes(const Mat3& I, const PrincipalAxesOptions& options)
   // Moments as Rayleigh quotients λᵢ = uᵢᵀ I uᵢ of the chosen axes; a repeated group gets its mean
   // so that equal moments compare equal downstream (axisymmetric and spherical code paths).
   const Mat3 sym = 0.5 * (I + I.transpose());
-  Vec3 Lambda(U.col(0).dot(sym * U.col(0)), U.col(1).dot(sym * U.col(1)),
-              U.col(2).dot(sym * U.col(2)));
+  Vec3 Lambda(U.col(0).dot(sym * U.col(0)), U.col(1).dot(sym * U.col(1)), U.col(2).dot(sym * U.col(2)));
   if (low_pair && high_pair) {
     Lambda.setConstant(Lambda.mean());
   } else if (low_pair) {

@@ -27,8 +27,7 @@ template <class... Ts>
 Overloaded(Ts...) -> Overloaded<Ts...>;  // Clang 14 does not deduce aggregate bases without it
 
 /// Unit-density body with principal moments `k` (per unit mass) about its centre, placed at c.
-MassProperties unit_body(double measure, const Vec3& k, const Vec3& c = Vec3::Zero(),
-                         double volume = 0.0) {
+MassProperties unit_body(double measure, const Vec3& k, const Vec3& c = Vec3::Zero(), double volume = 0.0) {
   return MassProperties{measure, c, Mat3(measure * k.asDiagonal()), volume};
 }
 
@@ -57,8 +56,7 @@ MassProperties solid_unit(const Shape& shape) {
           [](const Box& s) {
             const double V = s.size.prod();
             const Vec3 q = s.size.cwiseProduct(s.size);  // I_xx = m(b² + c²)/12
-            return unit_body(V, Vec3(q.y() + q.z(), q.x() + q.z(), q.x() + q.y()) / 12.0,
-                             Vec3::Zero(), V);
+            return unit_body(V, Vec3(q.y() + q.z(), q.x() + q.z(), q.x() + q.y()) / 12.0, Vec3::Zero(), V);
           },
           [](const Sphere& s) {
             const double V = 4.0 / 3.0 * pi * std::pow(s.radius, 3);
@@ -67,8 +65,7 @@ MassProperties solid_unit(const Shape& shape) {
           [](const Ellipsoid& s) {
             const double V = 4.0 / 3.0 * pi * s.semi_axes.prod();
             const Vec3 q = s.semi_axes.cwiseProduct(s.semi_axes);  // I_xx = m(b² + c²)/5
-            return unit_body(V, Vec3(q.y() + q.z(), q.x() + q.z(), q.x() + q.y()) / 5.0,
-                             Vec3::Zero(), V);
+            return unit_body(V, Vec3(q.y() + q.z(), q.x() + q.z(), q.x() + q.y()) / 5.0, Vec3::Zero(), V);
           },
           [](const Cylinder& s) { return solid_cylinder(s.radius, s.length); },
           [](const Capsule& s) {
@@ -181,8 +178,8 @@ MassProperties shell_unit(const Shape& shape) {
 
 void require_positive(const Shape& shape, const char* what, double value) {
   if (!std::isfinite(value) || !(value > 0.0)) {
-    throw InvalidArgument(fmt::format("{} {} is {} m: give a positive, finite length",
-                                      shape_name(shape), what, value));
+    throw InvalidArgument(
+        fmt::format("{} {} is {} m: give a positive, finite length", shape_name(shape), what, value));
   }
 }
 
@@ -223,10 +220,10 @@ void validate_shape(const Shape& shape) {
                    require_positive(shape, "major radius", s.major_radius);
                    require_positive(shape, "minor radius", s.minor_radius);
                    if (s.minor_radius > s.major_radius) {
-                     throw InvalidArgument(fmt::format(
-                         "torus minor radius {} m exceeds major radius {} m: the tube would "
-                         "overlap itself; give minor radius <= major radius",
-                         s.minor_radius, s.major_radius));
+                     throw InvalidArgument(
+                         fmt::format("torus minor radius {} m exceeds major radius {} m: the tube would "
+                                     "overlap itself; give minor radius <= major radius",
+                                     s.minor_radius, s.major_radius));
                    }
                  },
              },

@@ -33,8 +33,8 @@ void write_binary_stl(const TriangleMesh& mesh, const std::filesystem::path& pat
     throw MeshError(fmt::format("cannot write {}: {}", path.string(), describe_solid_defects(report)));
   }
   if (mesh.triangles.size() > std::numeric_limits<std::uint32_t>::max()) {
-    throw FileError(fmt::format("{}: {} triangles do not fit the 32-bit count of binary STL",
-                                path.string(), mesh.triangles.size()));
+    throw FileError(fmt::format("{}: {} triangles do not fit the 32-bit count of binary STL", path.string(),
+                                mesh.triangles.size()));
   }
   // Write next to the target and rename: a failed write never leaves a truncated file behind.
   std::filesystem::path partial = path;
@@ -42,8 +42,7 @@ void write_binary_stl(const TriangleMesh& mesh, const std::filesystem::path& pat
   {
     std::ofstream out(partial, std::ios::binary | std::ios::trunc);
     if (!out) {
-      throw FileError(fmt::format("{}: cannot open for writing: {}", path.string(),
-                                  std::strerror(errno)));
+      throw FileError(fmt::format("{}: cannot open for writing: {}", path.string(), std::strerror(errno)));
     }
     std::array<unsigned char, 84> header{};
     const char title[] = "binary STL written by tumble";
@@ -83,8 +82,8 @@ void write_binary_stl(const TriangleMesh& mesh, const std::filesystem::path& pat
   std::filesystem::rename(partial, path, ec);
   if (ec) {
     std::filesystem::remove(partial, ec);
-    throw FileError(fmt::format("{}: cannot move the written file into place: {}", path.string(),
-                                ec.message()));
+    throw FileError(
+        fmt::format("{}: cannot move the written file into place: {}", path.string(), ec.message()));
   }
 }
 

@@ -73,7 +73,8 @@ void arc(std::vector<ProfilePoint>& out, double r, double zc, double theta0, dou
   for (int i = include_first ? 0 : 1; i <= steps; ++i) {
     const double theta = theta0 + (theta1 - theta0) * i / steps;
     const bool pole = std::abs(std::abs(theta) - pi / 2) < 1e-12;
-    out.push_back({pole ? 0.0 : r * std::cos(theta), zc + (pole ? std::copysign(r, theta) : r * std::sin(theta))});
+    out.push_back(
+        {pole ? 0.0 : r * std::cos(theta), zc + (pole ? std::copysign(r, theta) : r * std::sin(theta))});
   }
 }
 
@@ -111,9 +112,8 @@ TriangleMesh box(const Vec3& size) {
 TriangleMesh tessellate(const Shape& shape, int segments) {
   validate_shape(shape);
   if (segments < 3) {
-    throw InvalidArgument(fmt::format(
-        "cannot tessellate a {} with {} segments: a circle needs at least 3", shape_name(shape),
-        segments));
+    throw InvalidArgument(fmt::format("cannot tessellate a {} with {} segments: a circle needs at least 3",
+                                      shape_name(shape), segments));
   }
   return std::visit(
       Overloaded{
@@ -149,8 +149,8 @@ TriangleMesh tessellate(const Shape& shape, int segments) {
             std::vector<ProfilePoint> profile;
             for (int i = 0; i < segments; ++i) {
               const double theta = 2.0 * pi * i / segments;
-              profile.push_back({s.major_radius + s.minor_radius * std::cos(theta),
-                                 s.minor_radius * std::sin(theta)});
+              profile.push_back(
+                  {s.major_radius + s.minor_radius * std::cos(theta), s.minor_radius * std::sin(theta)});
             }
             return revolve(profile, segments, true);
           },

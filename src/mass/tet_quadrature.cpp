@@ -51,8 +51,8 @@ TetRule grundmann_moller_tet(int degree) {
       for (int b1 = 0; b0 + b1 <= total; ++b1) {
         for (int b2 = 0; b0 + b1 + b2 <= total; ++b2) {
           const int b3 = total - b0 - b1 - b2;
-          rule.barycentric.emplace_back((2 * b0 + 1) / denom, (2 * b1 + 1) / denom,
-                                        (2 * b2 + 1) / denom, (2 * b3 + 1) / denom);
+          rule.barycentric.emplace_back((2 * b0 + 1) / denom, (2 * b1 + 1) / denom, (2 * b2 + 1) / denom,
+                                        (2 * b3 + 1) / denom);
           rule.weights.push_back(w);
         }
       }

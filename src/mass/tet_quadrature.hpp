@@ -8,7 +8,7 @@ namespace tumble::detail {
 /// A rule on any tetrahedron T = (v0, v1, v2, v3):  ∫_T f dV ≈ |T| Σ_k w_k f(Σ_j λ_kj v_j).
 /// The weights sum to 1 (they are fractions of the volume); some are negative.
 struct TetRule {
-  int degree = 0;                           ///< every polynomial of total degree ≤ degree is exact
+  int degree = 0;                            ///< every polynomial of total degree ≤ degree is exact
   std::vector<Eigen::Vector4d> barycentric;  ///< λ_k, one row per point, Σ_j λ_kj = 1
   std::vector<double> weights;               ///< w_k
 };

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <tuple>
 #include <fmt/format.h>
+#include <tuple>
 
 #include "tumble/error.hpp"
 
@@ -18,9 +18,10 @@ void require(bool ok, const std::string& message) {
 double evaluate(const Event& e, const SystemState& s) {
   const double g = e.g(s);
   if (!std::isfinite(g)) {
-    throw InvalidArgument(fmt::format("event '{}' returned {} at t = {} s; an event function must return a "
-                                      "finite number whose sign changes at the event",
-                                      e.name, g, s.t));
+    throw InvalidArgument(
+        fmt::format("event '{}' returned {} at t = {} s; an event function must return a "
+                    "finite number whose sign changes at the event",
+                    e.name, g, s.t));
   }
   return g;
 }
@@ -44,7 +45,8 @@ struct Hit {
 /// 4 ulp of the time and returned in time order; g_prev (the values at the step's start) is updated
 /// to the values at its end.
 std::vector<Hit> find_hits(const std::vector<Event>& events, std::vector<double>& g_prev, Formulation F,
-                           const SystemCoordinates& after, double t_start, double h, const StateInStep& state_at) {
+                           const SystemCoordinates& after, double t_start, double h,
+                           const StateInStep& state_at) {
   std::vector<Hit> hits;
   const SystemState end = to_state(F, after);
   const double resolution = 4 * 2.220446049250313e-16 * std::max(std::abs(t_start), h);
@@ -82,14 +84,14 @@ void validate(const RunSettings& s) {
           fmt::format("output interval {} s is invalid: give a time >= 0 (0 = every step)",
                       s.output_interval));
   require(s.threads >= 0 && s.threads <= 4096,
-          fmt::format("threads = {} is invalid: give a count from 1 to 4096, or 0 for one per core", s.threads));
+          fmt::format("threads = {} is invalid: give a count from 1 to 4096, or 0 for one per core",
+                      s.threads));
   if (is_adaptive(s.integrator)) {
     make_adaptive_integrator(s.integrator, s.tolerances);  // validates the tolerances
   } else {
     make_integrator(s.integrator);  // throws, listing the names, if unknown
   }
 }
-
 
 SystemState simulate(const Model& model, SystemState state, const RunSettings& settings,
                      const SampleSink& on_sample, IntegratorStats* stats,
@@ -101,7 +103,8 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
   return simulate(model, std::move(state), settings, hooks);
 }
 
-SystemState simulate(const Model& model, SystemState state, const RunSettings& settings, const RunHooks& hooks) {
+SystemState simulate(const Model& model, SystemState state, const RunSettings& settings,
+                     const RunHooks& hooks) {
   const SampleSink& on_sample = hooks.on_sample;
   IntegratorStats* stats = hooks.stats;
   const std::function<bool()>& stop_requested = hooks.stop_requested;
@@ -200,7 +203,8 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
     integrator->step(model, settings.formulation, x, step_h);
     ++step;
     if (stats) {
-      *stats = {step, 0, integrator->evaluations_counted().value_or(step * integrator->evaluations_per_step())};
+      *stats = {step, 0,
+                integrator->evaluations_counted().value_or(step * integrator->evaluations_per_step())};
     }
     if (x.t >= t_sample - tiny) x.t = t_sample;  // remove the rounding of the accumulated time
     check(x, step, step_h);

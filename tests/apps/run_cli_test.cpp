@@ -1,7 +1,7 @@
 // `tumble run` and `tumble check` end to end: outputs where the user asked, command-line overrides,
 // the drift warning, one-line errors, nothing half-written after an error, and Ctrl-C.
-#include <gtest/gtest.h>
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -80,7 +80,8 @@ TEST(RunCli, CommandLineOverridesTheFile) {
                              " --duration 0.5 --timestep 1e-2 --output-interval 0.1 --integrator euler"
                              " --drift-threshold 0");
   ASSERT_EQ(r2.status, 0) << r2.output;
-  EXPECT_NE(r2.output.find("for 0.5 s (euler, mixed formulation): 6 samples"), std::string::npos) << r2.output;
+  EXPECT_NE(r2.output.find("for 0.5 s (euler, mixed formulation): 6 samples"), std::string::npos)
+      << r2.output;
   const auto diag = file_lines(dir / "top.diagnostics.csv");
   ASSERT_EQ(diag.size(), 7u);  // t = 0, 0.1, ..., 0.5
   EXPECT_EQ(diag.back().substr(0, 4), "0.5,");
@@ -123,13 +124,16 @@ TEST(RunCli, TheOutputIsByteIdenticalForAnyThreadCount) {
   // 300 boxes spread over five blocks of the engine, with damping (velocities in world axes): the files
   // of a run on 1 and on 2 threads are the same, byte for byte.
   test::TempDir dir("run_threads");
-  std::string toml = "[simulation]\nduration = 0.05\ntimestep = 1e-3\noutput_interval = 0.025\nintegrator = \"rk4\"\n"
-                     "[world]\ngravity = [0, 0, -9.81]\n"
-                     "[[forces]]\ntype = \"damping\"\nlinear = 0.1\nangular = 0.01\n";
+  std::string toml =
+      "[simulation]\nduration = 0.05\ntimestep = 1e-3\noutput_interval = 0.025\nintegrator = \"rk4\"\n"
+      "[world]\ngravity = [0, 0, -9.81]\n"
+      "[[forces]]\ntype = \"damping\"\nlinear = 0.1\nangular = 0.01\n";
   for (int i = 0; i < 300; ++i) {
-    toml += "[[bodies]]\nname = \"box" + std::to_string(i) + "\"\nshape = { type = \"box\", size = [0.1, 0.2, 0.3] }\n"
-            "density = 1000\nposition = [" + std::to_string(i) + ", 0, 0]\nangular_velocity = [" +
-            std::to_string(1 + i % 7) + ", -3, " + std::to_string(i % 5) + "]\n";
+    toml += "[[bodies]]\nname = \"box" + std::to_string(i) +
+            "\"\nshape = { type = \"box\", size = [0.1, 0.2, 0.3] }\n"
+            "density = 1000\nposition = [" +
+            std::to_string(i) + ", 0, 0]\nangular_velocity = [" + std::to_string(1 + i % 7) + ", -3, " +
+            std::to_string(i % 5) + "]\n";
   }
   const auto scene = dir.write("boxes.toml", toml);
   const auto one = dir / "one.csv", two = dir / "two.csv";
@@ -150,15 +154,23 @@ TEST(RunCli, BadInputGetsOneReadableLine) {
     EXPECT_NE(r.output.find(expected), std::string::npos) << args << "\n" << r.output;
   };
   const std::string scene = example("t_handle.toml") + " -o " + (dir / "x.csv").string();
-  expect_error("run " + scene + " --timestep -1", "tumble: error: timestep -1 s is invalid: give a positive step");
-  expect_error("run " + scene + " --integrator rk5", "tumble: error: unknown integrator 'rk5'; choose one of: ");
-  expect_error("run " + scene + " --formulation sideways", "unknown formulation 'sideways'; choose world, mixed or body");
+  expect_error("run " + scene + " --timestep -1",
+               "tumble: error: timestep -1 s is invalid: give a positive step");
+  expect_error("run " + scene + " --integrator rk5",
+               "tumble: error: unknown integrator 'rk5'; choose one of: ");
+  expect_error("run " + scene + " --formulation sideways",
+               "unknown formulation 'sideways'; choose world, mixed or body");
   expect_error("run " + scene + " --drift-threshold -1", "--drift-threshold -1 is invalid");
-  expect_error("run " + scene + " --threads -2", "threads = -2 is invalid: give a count from 1 to 4096, or 0");
-  expect_error("run " + example("t_handle.toml") + " -o " + dir.path().string(), "is a directory: give a file name, e.g. ");
-  expect_error("run no/such/scene.toml", "tumble: error: cannot read scene file no/such/scene.toml: no such file");
-  const auto bad = dir.write("bad.toml", "[simulation]\nduration = 1\n[[bodies]]\nname = \"a\"\nmass = -1\ninertia = [1, 1, 1]\n");
-  expect_error("run " + bad.string(), "tumble: error: " + bad.string() + ":5:8: body 'a': mass is -1 kg: it must be positive");
+  expect_error("run " + scene + " --threads -2",
+               "threads = -2 is invalid: give a count from 1 to 4096, or 0");
+  expect_error("run " + example("t_handle.toml") + " -o " + dir.path().string(),
+               "is a directory: give a file name, e.g. ");
+  expect_error("run no/such/scene.toml",
+               "tumble: error: cannot read scene file no/such/scene.toml: no such file");
+  const auto bad = dir.write(
+      "bad.toml", "[simulation]\nduration = 1\n[[bodies]]\nname = \"a\"\nmass = -1\ninertia = [1, 1, 1]\n");
+  expect_error("run " + bad.string(),
+               "tumble: error: " + bad.string() + ":5:8: body 'a': mass is -1 kg: it must be positive");
   expect_error("check " + bad.string(), bad.string() + ":5:8:");
   EXPECT_TRUE(std::filesystem::is_empty(dir.path()) ||
               (std::filesystem::exists(dir / "bad.toml") && !std::filesystem::exists(dir / "x.csv")));
@@ -185,7 +197,8 @@ stiffness = 1e12
 )");
   const auto r = run_tumble("run " + scene.string() + " -o " + (dir / "out/stiff.csv").string());
   EXPECT_EQ(r.status, 1) << r.output;
-  EXPECT_NE(r.output.find("tumble: error: the state of body 'b' became non-finite at t = "), std::string::npos)
+  EXPECT_NE(r.output.find("tumble: error: the state of body 'b' became non-finite at t = "),
+            std::string::npos)
       << r.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "out/stiff.csv"));
   EXPECT_FALSE(std::filesystem::exists(dir / "out/stiff.diagnostics.csv"));
@@ -203,7 +216,8 @@ TEST(RunCli, CtrlCStopsCleanlyAndKeepsAValidFile) {
   argv.push_back(nullptr);
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 2, (dir / "stderr.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, 2, (dir / "stderr.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC,
+                                   0644);
   pid_t pid = 0;
   ASSERT_EQ(posix_spawn(&pid, TUMBLE_CLI, &actions, nullptr, argv.data(), environ), 0);
   posix_spawn_file_actions_destroy(&actions);
@@ -232,7 +246,8 @@ TEST(RunCli, CtrlCStopsCleanlyAndKeepsAValidFile) {
 
 TEST(RunCli, ProgressBarWhenAsked) {
   test::TempDir dir("run_progress");
-  const auto r = run_tumble("run " + example("thrown_box.toml") + " -o " + (dir / "b.csv").string() + " --progress");
+  const auto r =
+      run_tumble("run " + example("thrown_box.toml") + " -o " + (dir / "b.csv").string() + " --progress");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("100%  t = 1.2 / 1.2 s  elapsed "), std::string::npos) << r.output;
   // Not a terminal and not asked: no bar.
@@ -259,8 +274,8 @@ TEST(RunCli, HelpExplainsWithExamples) {
     EXPECT_NE(r.output.find("tumble " + cmd + " examples/"), std::string::npos) << r.output;
   }
   const auto r = run_tumble("run --help");
-  for (const char* option : {"--output", "--format", "--integrator", "--formulation", "--timestep", "--duration",
-                             "--quiet", "--progress", "--drift-threshold"}) {
+  for (const char* option : {"--output", "--format", "--integrator", "--formulation", "--timestep",
+                             "--duration", "--quiet", "--progress", "--drift-threshold"}) {
     EXPECT_NE(r.output.find(option), std::string::npos) << option;
   }
 }

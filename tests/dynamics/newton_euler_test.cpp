@@ -33,9 +33,12 @@ TEST(NewtonEuler, RatesOfTheThreeFormulationsDescribeTheSameMotion) {
     const double m = rng.uniform(0.5, 3.0);
     const BodyState s{rng.vec(-1, 1), Quat(rng.rotation()), rng.vec(-2, 2), rng.vec(-5, 5)};
     const Vec3 f = rng.vec(-3, 3), tau = rng.vec(-3, 3);
-    const auto w = newton_euler<double>(Formulation::world, m, Lambda, to_coordinates(Formulation::world, s), f, tau);
-    const auto x = newton_euler<double>(Formulation::mixed, m, Lambda, to_coordinates(Formulation::mixed, s), f, tau);
-    const auto b = newton_euler<double>(Formulation::body, m, Lambda, to_coordinates(Formulation::body, s), f, tau);
+    const auto w =
+        newton_euler<double>(Formulation::world, m, Lambda, to_coordinates(Formulation::world, s), f, tau);
+    const auto x =
+        newton_euler<double>(Formulation::mixed, m, Lambda, to_coordinates(Formulation::mixed, s), f, tau);
+    const auto b =
+        newton_euler<double>(Formulation::body, m, Lambda, to_coordinates(Formulation::body, s), f, tau);
     const Vec3 omega_b = s.omega_b(), v_b = s.q.conjugate() * s.v;
     // Sums of O(10) products: rounding ~1e-15 of the largest term; 1e-13 absolute leaves a margin.
     EXPECT_LT((w.omega_dot - s.q * x.omega_dot).norm(), 1e-13);
@@ -55,8 +58,8 @@ TEST(NewtonEuler, FormulationsAgreeAfterTenSecondsOfForcedTumbling) {
   model.add_body(tumbling_box());
   model.add_force<UniformGravity>(Vec3(0, 0, -9.81));
   model.add_force<PointForce>(0, Vec3(0.3, -0.2, 0.5), Frame::body, Vec3(0.05, 0.0, -0.04), Frame::body);
-  const BodyState s0 = state_from_reference(model.bodies[0], Vec3(0, 0, 1), Quat::Identity(),
-                                            Vec3(1, 0, 4), Vec3(0.4, 3.0, 0.2), Frame::body);
+  const BodyState s0 = state_from_reference(model.bodies[0], Vec3(0, 0, 1), Quat::Identity(), Vec3(1, 0, 4),
+                                            Vec3(0.4, 3.0, 0.2), Frame::body);
   std::vector<SystemState> finals;
   for (Formulation F : kAll) finals.push_back(test::run(model, test::single(s0), 10.0, 5e-4, "rk4", F));
   // RK4 global error ∝ h⁴: measured 2.7e-9 m at h = 1e-3 on a 450 m fall, so 1.7e-10 at h = 5e-4.
@@ -104,10 +107,11 @@ TEST(NewtonEuler, MomentaAboutAPointAndEnergyFollowTheirDefinitions) {
   const Mat3 I = inertia_world(body, s);
   EXPECT_LT((angular_momentum(body, s) - I * s.omega_w).norm(), 1e-14);
   const Vec3 x0(0.5, -1, 2);
-  EXPECT_LT((angular_momentum_about(body, s, x0) - ((s.o - x0).cross(body.mass() * s.v) + I * s.omega_w)).norm(),
-            1e-14);
-  EXPECT_NEAR(kinetic_energy(body, s), 0.5 * body.mass() * s.v.squaredNorm() + 0.5 * s.omega_w.dot(I * s.omega_w),
-              1e-15);
+  EXPECT_LT(
+      (angular_momentum_about(body, s, x0) - ((s.o - x0).cross(body.mass() * s.v) + I * s.omega_w)).norm(),
+      1e-14);
+  EXPECT_NEAR(kinetic_energy(body, s),
+              0.5 * body.mass() * s.v.squaredNorm() + 0.5 * s.omega_w.dot(I * s.omega_w), 1e-15);
 }
 
 TEST(NewtonEuler, ConstantTorqueAboutAPrincipalAxisGivesLinearSpinUp) {
@@ -177,7 +181,8 @@ TEST(NewtonEuler, TorqueFreeBodyConservesEnergyAndWorldMomentumToRk4Accuracy) {
     const SystemState end = test::run(model, test::single(s0), 20.0, h, "rk4");
     const Invariants after = invariants(model, end);
     const double dE = std::abs(*after.total_energy() - *before.total_energy()) / *before.total_energy();
-    const double dL = (after.angular_momentum - before.angular_momentum).norm() / before.angular_momentum.norm();
+    const double dL = (after.angular_momentum - before.angular_momentum).norm() /
+                      before.angular_momentum.norm();
     // Fourth order: the drift after 20 s is C h⁴ t; with |ω| h = 0.01 it is far below 1e-8.
     EXPECT_LT(dE, 1e-8) << "h = " << h;
     EXPECT_LT(dL, 1e-8) << "h = " << h;
@@ -189,8 +194,8 @@ TEST(NewtonEuler, TorqueFreeBodyConservesEnergyAndWorldMomentumToRk4Accuracy) {
 }
 
 TEST(NewtonEuler, AxisymmetricBodyPrecessesAtTheClosedFormRates) {
-  const test::AxisymmetricTop top{0.6, 1.0, Eigen::AngleAxisd(0.5, Vec3(1, 1, 0).normalized()).toRotationMatrix(),
-                                  Vec3(0.8, -0.3, 5.0)};
+  const test::AxisymmetricTop top{
+      0.6, 1.0, Eigen::AngleAxisd(0.5, Vec3(1, 1, 0).normalized()).toRotationMatrix(), Vec3(0.8, -0.3, 5.0)};
   Model model;
   model.add_body(RigidBody::from_principal_moments(1.0, Vec3(top.I_t, top.I_t, top.I_s)));
   const BodyState s0{Vec3::Zero(), Quat(top.R0), Vec3::Zero(), top.R0 * top.omega_b0};
@@ -212,8 +217,8 @@ TEST(NewtonEuler, IntermediateAxisFlipsWithTheEllipticPeriod) {
   Model model;
   model.add_body(RigidBody::from_principal_moments(1.0, I));
   const double h = 1e-3;
-  const auto traj = test::trajectory(model, test::single({Vec3::Zero(), Quat::Identity(), Vec3::Zero(), w0}), 30.0,
-                                     h, "rk4");
+  const auto traj = test::trajectory(model, test::single({Vec3::Zero(), Quat::Identity(), Vec3::Zero(), w0}),
+                                     30.0, h, "rk4");
   std::vector<double> zeros;  // sign changes of ω₂, located by linear interpolation: sn'' = 0 at its
                               // zeros, so the interpolation error is O(h³) ≈ 1e-9 s
   for (size_t i = 1; i < traj.size(); ++i) {
@@ -238,7 +243,8 @@ TEST(Particles, AngularMomentumChangesByTheMomentOfForce) {
   model.add_force<UniformGravity>(g);
   SystemState s0{0.0, {}, {ParticleState{x0, v0}}};
   const SystemState end = test::run(model, s0, T, 1e-2, "rk4");
-  const Vec3 dl = angular_momentum(model.particles[0], end.particles[0]) - angular_momentum(model.particles[0], s0.particles[0]);
+  const Vec3 dl = angular_momentum(model.particles[0], end.particles[0]) -
+                  angular_momentum(model.particles[0], s0.particles[0]);
   const Vec3 expected = (x0 * T + v0 * T * T / 2 + g * T * T * T / 6).cross(m * g);
   EXPECT_LT((dl - expected).norm(), 1e-11);  // polynomial motion: RK4 exact up to rounding
   EXPECT_LT((moment_of_force(x0, m * g) - x0.cross(m * g)).norm(), 0.0 + 1e-300);
@@ -252,7 +258,9 @@ TEST(Particles, CentralForceConservesAngularMomentum) {
   // Spring from the particle to the world origin through a callback-free route: use a force model on
   // particles — uniform gravity would not be central, so write Hooke's law via the general interface.
   struct CentralSpring final : ForceModel {
-    void accumulate(const SystemView& v, Loads& loads) const override { loads.particles[0] -= 5.0 * v.particle_states[0].x; }
+    void accumulate(const SystemView& v, Loads& loads) const override {
+      loads.particles[0] -= 5.0 * v.particle_states[0].x;
+    }
     std::string describe() const override { return "central spring"; }
   };
   model.forces.push_back(std::make_shared<CentralSpring>());

@@ -6,15 +6,17 @@
 
 #include "../support/random.hpp"
 #include "../support/sim_helpers.hpp"
-#include "tumble/error.hpp"
 #include "tumble/dynamics/quantities.hpp"
+#include "tumble/error.hpp"
 #include "tumble/forces/forces.hpp"
 #include "tumble/sim/diagnostics.hpp"
 
 namespace tumble {
 namespace {
 
-RigidBody ball(double m = 2.0, double I = 0.1) { return RigidBody::from_principal_moments(m, Vec3(I, I, I), "ball"); }
+RigidBody ball(double m = 2.0, double I = 0.1) {
+  return RigidBody::from_principal_moments(m, Vec3(I, I, I), "ball");
+}
 
 TEST(Forces, ViscousDampingDecaysExponentially) {
   // m v̇ = −c v ⇒ v = v₀ e^{−ct/m}; for an isotropic body I ω̇ = −c_ω ω ⇒ ω = ω₀ e^{−c_ω t/I}.
@@ -38,8 +40,9 @@ TEST(Forces, QuadraticDragSlowsAsOneOverTime) {
   model.add_force<QuadraticDrag>(0, 0.3, 0.0);
   const Vec3 dir = Vec3(1, 2, 2).normalized();
   const double v0 = 10.0, T = 3.0;
-  const BodyState s = test::run(model, test::single({Vec3::Zero(), Quat::Identity(), v0 * dir, Vec3::Zero()}),
-                                T, 1e-3, "rk4").bodies[0];
+  const BodyState s =
+      test::run(model, test::single({Vec3::Zero(), Quat::Identity(), v0 * dir, Vec3::Zero()}), T, 1e-3, "rk4")
+          .bodies[0];
   const double v = v0 / (1 + 0.3 * v0 * T / 2.0);
   // Rates up to k v₀/m = 1.5/s at h = 1e-3: RK4 relative error ≲ 1e-12.
   EXPECT_NEAR(s.v.norm(), v, 1e-11 * v0);
@@ -70,11 +73,12 @@ TEST(Forces, SpringBetweenTwoTumblingBodiesConservesMomentaAndEnergy) {
   Model model;
   model.add_body(RigidBody::from_principal_moments(1.0, Vec3(0.02, 0.03, 0.04), "a"));
   model.add_body(RigidBody::from_principal_moments(1.5, Vec3(0.05, 0.06, 0.09), "b"));
-  model.add_force<Spring>(Spring::End{0, Vec3(0.1, 0.0, 0.05)}, Spring::End{1, Vec3(-0.05, 0.1, 0.0)}, 20.0, 0.5, 0.0);
+  model.add_force<Spring>(Spring::End{0, Vec3(0.1, 0.0, 0.05)}, Spring::End{1, Vec3(-0.05, 0.1, 0.0)}, 20.0,
+                          0.5, 0.0);
   const SystemState s0{0.0,
                        {BodyState{Vec3(0, 0, 0), Quat::Identity(), Vec3(0.1, 0, 0), Vec3(1, 2, 3)},
-                        BodyState{Vec3(1, 0.2, 0), Quat(Eigen::AngleAxisd(1.0, Vec3::UnitZ())), Vec3(-0.2, 0.1, 0),
-                                  Vec3(-2, 0, 1)}},
+                        BodyState{Vec3(1, 0.2, 0), Quat(Eigen::AngleAxisd(1.0, Vec3::UnitZ())),
+                                  Vec3(-0.2, 0.1, 0), Vec3(-2, 0, 1)}},
                        {}};
   const Invariants a = invariants(model, s0);
   const Invariants b = invariants(model, test::run(model, s0, 5.0, 5e-4, "rk4"));
@@ -114,8 +118,8 @@ TEST(Forces, PointForcesAndTorquesInEachFrame) {
 }
 
 TEST(Forces, GravityGradientTorqueMatchesTheClosedFormAndConservesEnergy) {
-  const double mu = 3.986004418e14;                  // Earth, m³/s²
-  const Vec3 Lambda(100.0, 200.0, 250.0);            // kg·m², a small satellite
+  const double mu = 3.986004418e14;        // Earth, m³/s²
+  const Vec3 Lambda(100.0, 200.0, 250.0);  // kg·m², a small satellite
   const RigidBody sat = RigidBody::from_principal_moments(500.0, Lambda, "sat");
   test::Random rng(31);
   const Vec3 r(7.0e6, 1.0e6, -0.5e6);
@@ -129,7 +133,8 @@ TEST(Forces, GravityGradientTorqueMatchesTheClosedFormAndConservesEnergy) {
   const Vec3 tau = 3 * mu / std::pow(r.norm(), 3) * u.cross(I * u);  // 3μ/R³ R̂ × (I R̂)
   EXPECT_LT((loads.bodies[0].torque - tau).norm(), 1e-13 * tau.norm());
   // The pull is the point-mass one up to the I/(m r²) ~ 1e-14 correction.
-  EXPECT_LT((loads.bodies[0].force + mu * 500.0 / r.squaredNorm() * u).norm(), 1e-12 * mu * 500.0 / r.squaredNorm());
+  EXPECT_LT((loads.bodies[0].force + mu * 500.0 / r.squaredNorm() * u).norm(),
+            1e-12 * mu * 500.0 / r.squaredNorm());
   // A principal axis along r̂ feels no torque.
   BodyState aligned = s;
   aligned.q = Quat::FromTwoVectors(Vec3::UnitX(), u);
@@ -149,7 +154,8 @@ TEST(Forces, ForceModelsNameWhatIsWrong) {
     evaluate_loads(model, test::single(BodyState{}));
     FAIL();
   } catch (const InvalidArgument& e) {
-    EXPECT_NE(std::string(e.what()).find("torque refers to body #3, but the model has 1 bodies"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("torque refers to body #3, but the model has 1 bodies"),
+              std::string::npos);
   }
   EXPECT_THROW(model.body_index("nope"), InvalidArgument);
   EXPECT_EQ(model.body_index("ball"), 0u);

@@ -18,8 +18,8 @@
 namespace tumble {
 namespace {
 
-const std::vector<std::string> kFixedStep = {"euler", "semi_implicit_euler", "rk4", "lie_rk4",
-                                            "implicit_gyro", "splitting", "splitting4", "midpoint"};
+const std::vector<std::string> kFixedStep = {
+    "euler", "semi_implicit_euler", "rk4", "lie_rk4", "implicit_gyro", "splitting", "splitting4", "midpoint"};
 const Formulation kFormulations[] = {Formulation::world, Formulation::mixed, Formulation::body};
 
 /// n different bodies (masses, moments, reference offsets) in random states, spinning at a few rad/s.
@@ -81,7 +81,8 @@ TEST(Batch, AStepAllocatesNothingAfterTheFirst) {
       model.add_particle(Particle{"p", 0.5});
       b.state.particles.push_back(ParticleState{Vec3(0, 0, 1), Vec3(0.1, 0, 0)});
       model.add_force<Spring>(Spring::End{0, Vec3::Zero()}, Spring::End{1, Vec3::Zero()}, 10.0, 0.5, 0.1);
-      model.add_force<Spring>(Spring::End{2, Vec3::Zero()}, Spring::End{all_bodies, Vec3::Zero(), 0}, 5.0, 0.2, 0.0);
+      model.add_force<Spring>(Spring::End{2, Vec3::Zero()}, Spring::End{all_bodies, Vec3::Zero(), 0}, 5.0,
+                              0.2, 0.0);
     }
     for (const std::string& name : kFixedStep) {
       SystemCoordinates x = to_coordinates(Formulation::mixed, b.state);
@@ -109,7 +110,8 @@ TEST(Batch, ABodyStepsTheSameAloneAsAmongOthersBitForBit) {
         one.add_body(b.bodies[i]);
         add_local_forces(one);
         const SystemCoordinates alone = run_steps(one, SystemState{0.0, {b.state.bodies[i]}, {}}, name, F, 5);
-        EXPECT_TRUE(same_body(together, i, alone, 0)) << name << ", " << formulation_name(F) << ", body " << i;
+        EXPECT_TRUE(same_body(together, i, alone, 0))
+            << name << ", " << formulation_name(F) << ", body " << i;
       }
     }
   }
@@ -121,7 +123,8 @@ TEST(Batch, ResultsAreBitIdenticalForAnyThreadCount) {
   Model model;
   for (const RigidBody& body : b.bodies) model.add_body(body);
   add_local_forces(model);
-  model.add_force<Spring>(Spring::End{3, Vec3::Zero()}, Spring::End{998, Vec3::Zero()}, 10.0, 0.5, 0.1);  // couples two blocks
+  model.add_force<Spring>(Spring::End{3, Vec3::Zero()}, Spring::End{998, Vec3::Zero()}, 10.0, 0.5,
+                          0.1);  // couples two blocks
   for (const std::string& name : kFixedStep) {
     const SystemCoordinates one = run_steps(model, b.state, name, Formulation::mixed, 3, 1);
     for (const int threads : {2, 3}) {
@@ -144,7 +147,8 @@ TEST(Batch, FusedAndStagedStepsAreBitIdentical) {
   staged.add_force<NoForce>();
   for (const std::string& name : kFixedStep) {
     for (const Formulation F : kFormulations) {
-      const SystemCoordinates a = run_steps(fused, b.state, name, F, 4), c = run_steps(staged, b.state, name, F, 4);
+      const SystemCoordinates a = run_steps(fused, b.state, name, F, 4),
+                              c = run_steps(staged, b.state, name, F, 4);
       size_t differing = 0;
       for (size_t i = 0; i < 300; ++i) differing += same_body(a, i, c, i) ? 0 : 1;
       EXPECT_EQ(differing, 0u) << name << ", " << formulation_name(F);
@@ -157,9 +161,7 @@ TEST(Batch, AForceOverColumnsEqualsTheSameForcePerBody) {
   // (columns, once per block) and once as BodyCallbacks (one body at a time): the same loads, the same
   // motion bit for bit.
   const Bodies b = random_bodies(50, 19);
-  auto wrench = [](const BodyState& s) {
-    return Wrench{s.q * Vec3(2.0, 0, 0), -0.01 * s.omega_w};
-  };
+  auto wrench = [](const BodyState& s) { return Wrench{s.q * Vec3(2.0, 0, 0), -0.01 * s.omega_w}; };
   Model columns, per_body;
   for (const RigidBody& body : b.bodies) columns.add_body(body), per_body.add_body(body);
   columns.add_force<BlockCallback>([&](const BodyBlock& block, BlockLoads& loads) {
@@ -169,7 +171,8 @@ TEST(Batch, AForceOverColumnsEqualsTheSameForcePerBody) {
     }
   });
   for (size_t i = 0; i < b.bodies.size(); ++i) {
-    per_body.add_force<BodyCallback>(i, [&](double, const RigidBody&, const BodyState& s) { return wrench(s); });
+    per_body.add_force<BodyCallback>(i,
+                                     [&](double, const RigidBody&, const BodyState& s) { return wrench(s); });
   }
   for (const char* name : {"rk4", "splitting", "midpoint"}) {
     const SystemCoordinates a = run_steps(columns, b.state, name, Formulation::mixed, 5);
@@ -203,7 +206,8 @@ TEST(Batch, ABlockCallbackTrapOscillatesAtSqrtKOverM) {
     const double w = std::sqrt(k / model.bodies[i].mass());
     const Vec3 expected = s0.bodies[i].o * std::cos(w * x.t);
     const double phase_error = std::pow(w * 1e-3, 4) * w * x.t / 120;
-    EXPECT_LT((x.bodies.vec3(BodyColumns::o, i) - expected).norm(), (2 * phase_error + 1e-14) * s0.bodies[i].o.norm())
+    EXPECT_LT((x.bodies.vec3(BodyColumns::o, i) - expected).norm(),
+              (2 * phase_error + 1e-14) * s0.bodies[i].o.norm())
         << "body " << i;
   }
 }

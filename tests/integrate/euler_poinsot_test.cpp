@@ -71,7 +71,8 @@ TEST(EulerPoinsot, ConservesEnergyAndWorldMomentumAtAllTimes) {
       for (double t = t0 - 50.0; t <= t0 + 50.0; t += 0.73) {
         const Vec3 w = ep.omega_b(t);
         EXPECT_NEAR(energy(c.Lambda, w), E0, 3e-14 * E0) << c.name << " t = " << t;
-        EXPECT_LT((ep.q(t) * Vec3(c.Lambda.cwiseProduct(w)) - L0).norm(), 3e-14 * L0.norm()) << c.name << " t = " << t;
+        EXPECT_LT((ep.q(t) * Vec3(c.Lambda.cwiseProduct(w)) - L0).norm(), 3e-14 * L0.norm())
+            << c.name << " t = " << t;
         EXPECT_NEAR(ep.q(t).norm(), 1.0, 4 * kEps);
       }
     }
@@ -101,8 +102,7 @@ TEST(EulerPoinsot, SatisfiesEulersEquationAndTheKinematics) {
       const Vec3 dw = derivative([&](double s) { return Vec3(ep.omega_b(s)); }, t);
       EXPECT_LT((dw - euler_body<double>(c.Lambda, w, Vec3::Zero())).norm(), tol_w) << c.name << " t = " << t;
       // Ṙ = R[ω_b]×  ⇔  q̇ = ½ q ⊗ (0, ω_b) (sign of q fixed by continuity: q is smooth in t).
-      const Eigen::Vector4d dq =
-          derivative([&](double s) { return Eigen::Vector4d(ep.q(s).coeffs()); }, t);
+      const Eigen::Vector4d dq = derivative([&](double s) { return Eigen::Vector4d(ep.q(s).coeffs()); }, t);
       EXPECT_LT((dq - q_dot_body<double>(ep.q(t), w).coeffs()).norm(), (t > 1e3 ? 2e-8 : 2e-11) * (1 + W))
           << c.name << " t = " << t;
     }
@@ -132,7 +132,8 @@ TEST(EulerPoinsot, GroupPropertyRestartingFromAnyStateGivesTheSameMotion) {
         const double tol = c.regime == Regime::about_minor_axis && c.Lambda(0) == 1.5 && c.omega(0) == 0.002
                                ? 1e-9  // 7e7 amplification at each flip (numerics.md §3)
                                : 1e-13;
-        EXPECT_LT((restarted.omega_b(t2) - ep.omega_b(t1 + t2)).norm(), tol * W) << c.name << " " << t1 << "+" << t2;
+        EXPECT_LT((restarted.omega_b(t2) - ep.omega_b(t1 + t2)).norm(), tol * W)
+            << c.name << " " << t1 << "+" << t2;
         EXPECT_LT(rotation_angle_between(restarted.R(t2), ep.R(t1 + t2)), tol * (1 + W * (t1 + t2)))
             << c.name << " " << t1 << "+" << t2;
       }
@@ -243,7 +244,8 @@ TEST(EulerPoinsot, FlipIntervalOfTheTennisRacketNearTheSeparatrix) {
   }
   // The modulus-only route (k → Boost ellint_1(k)) as written in tests/support/closed_forms.hpp
   // loses digits here: measured, not asserted to be small.
-  const double boost_route = test::intermediate_axis_flip_interval(Vec3(1.5, 2.5, 4.0), Vec3(0.002, 6.0, 0.0));
+  const double boost_route =
+      test::intermediate_axis_flip_interval(Vec3(1.5, 2.5, 4.0), Vec3(0.002, 6.0, 0.0));
   std::printf("[ measured ] flip interval: (k, k') route error %.1e, Boost ellint_1(k) route error %.1e\n",
               std::abs(ep.flip_interval() - 6.2617744637604357342) / 6.26,
               std::abs(boost_route - 6.2617744637604357342) / 6.26);
@@ -267,8 +269,8 @@ TEST(EulerPoinsot, NearSeparatrixAgreesWithTheTaylorReferenceWithinItsConditioni
 }
 
 TEST(EulerPoinsot, AxisymmetricBodyFollowsTheClosedForm) {
-  const test::AxisymmetricTop top{0.6, 1.0, Eigen::AngleAxisd(0.5, Vec3(1, 1, 0).normalized()).toRotationMatrix(),
-                                  Vec3(0.8, -0.3, 5.0)};
+  const test::AxisymmetricTop top{
+      0.6, 1.0, Eigen::AngleAxisd(0.5, Vec3(1, 1, 0).normalized()).toRotationMatrix(), Vec3(0.8, -0.3, 5.0)};
   const EulerPoinsot ep(Vec3(top.I_t, top.I_t, top.I_s), Quat(top.R0), top.omega_b0);
   ASSERT_EQ(ep.regime(), Regime::axisymmetric);
   EXPECT_NEAR(ep.period_omega(), 2 * M_PI / std::abs(top.n()), 1e-15 * ep.period_omega());
@@ -287,8 +289,8 @@ TEST(EulerPoinsot, NearlyAxisymmetricBodiesApproachTheAxisymmetricAnswer) {
   for (double delta : {1e-9, 64 * kEps, 4 * kEps}) {
     const Vec3 I(1.0 - delta / 2, 1.0 + delta / 2, 1.6);
     const EulerPoinsot ep(I, Quat(top.R0), top.omega_b0);
-    EXPECT_EQ(ep.regime(), delta > EulerPoinsot::kEqualMomentsTolerance ? Regime::about_major_axis
-                                                                        : Regime::axisymmetric);
+    EXPECT_EQ(ep.regime(),
+              delta > EulerPoinsot::kEqualMomentsTolerance ? Regime::about_major_axis : Regime::axisymmetric);
     for (double t = 0; t < 10; t += 0.53) {
       const double tol = 4 * delta * 5.1 * (1 + t) + 1e-13 * (1 + t);
       EXPECT_LT((ep.omega_b(t) - top.omega_b(t)).norm(), tol * 5.1) << delta << " t = " << t;
@@ -328,7 +330,8 @@ TEST(EulerPoinsot, SpinExactlyAboutAPrincipalAxisIsSteady) {
       EXPECT_EQ(ep.regime(), expected[k]) << k;
       for (double t : {0.2, 9.0, 1e3}) {
         EXPECT_LT((ep.omega_b(t) - w * Vec3::Unit(k)).norm(), 4 * kEps * std::abs(w)) << k;
-        const Mat3 R = some_rotation().toRotationMatrix() * Eigen::AngleAxisd(w * t, Vec3::Unit(k)).toRotationMatrix();
+        const Mat3 R = some_rotation().toRotationMatrix() *
+                       Eigen::AngleAxisd(w * t, Vec3::Unit(k)).toRotationMatrix();
         EXPECT_LT(rotation_angle_between(ep.R(t), R), 1e-14 * (1 + std::abs(w) * t)) << k << " t = " << t;
       }
     }
@@ -393,7 +396,9 @@ TEST(EulerPoinsot, RejectsInvalidInput) {
   EXPECT_THROW(EulerPoinsot(Vec3(1, -1, 2), Quat::Identity(), Vec3(1, 1, 1)), InvalidArgument);
   EXPECT_THROW(EulerPoinsot(Vec3(1, 2, 3), Quat(0, 0, 0, 0), Vec3(1, 1, 1)), InvalidArgument);
   EXPECT_THROW(EulerPoinsot(Vec3(1, 2, 3), Quat::Identity(), Vec3(1, std::nan(""), 1)), InvalidArgument);
-  EXPECT_THROW(EulerPoinsot(Vec3(1, 2, std::numeric_limits<double>::infinity()), Quat::Identity(), Vec3(1, 1, 1)), InvalidArgument);
+  EXPECT_THROW(EulerPoinsot(Vec3(1, 2, std::numeric_limits<double>::infinity()), Quat::Identity(),
+                            Vec3(1, 1, 1)),
+               InvalidArgument);
 }
 
 }  // namespace

@@ -13,8 +13,8 @@
 namespace tumble {
 namespace {
 
-const test::AxisymmetricTop kTop{0.6, 1.0, Eigen::AngleAxisd(0.5, Vec3(1, 1, 0).normalized()).toRotationMatrix(),
-                                 Vec3(0.4, -0.3, 2.0)};
+const test::AxisymmetricTop kTop{
+    0.6, 1.0, Eigen::AngleAxisd(0.5, Vec3(1, 1, 0).normalized()).toRotationMatrix(), Vec3(0.4, -0.3, 2.0)};
 const Vec3 kGravity(0, 0, -9.81), kO0(0, 0, 1), kV0(1, 0.5, 5);
 
 /// Largest error at T against the closed form: attitude angle, |ω_b − exact| (rad/s) and |o − exact| (m).
@@ -37,12 +37,8 @@ struct OrderCase {
 };
 
 TEST(FixedStep, MeasuredOrderMatchesTheory) {
-  const OrderCase cases[] = {{"euler", 1, 2e-3},
-                             {"semi_implicit_euler", 1, 2e-3},
-                             {"rk4", 4, 2e-2},
-                             {"lie_rk4", 4, 2e-2},
-                             {"implicit_gyro", 1, 2e-3},
-                             {"midpoint", 2, 1e-2}};
+  const OrderCase cases[] = {{"euler", 1, 2e-3},   {"semi_implicit_euler", 1, 2e-3}, {"rk4", 4, 2e-2},
+                             {"lie_rk4", 4, 2e-2}, {"implicit_gyro", 1, 2e-3},       {"midpoint", 2, 1e-2}};
   for (const auto& c : cases) {
     for (Formulation F : {Formulation::world, Formulation::mixed, Formulation::body}) {
       const double e1 = error_at(c.integrator, F, c.h, 2.0);
@@ -50,8 +46,10 @@ TEST(FixedStep, MeasuredOrderMatchesTheory) {
       const double e3 = error_at(c.integrator, F, c.h / 4, 2.0);
       // Slope of log(error) against log(h) from the two finer pairs; the bound is ±0.2.
       const double slope1 = std::log2(e1 / e2), slope2 = std::log2(e2 / e3);
-      EXPECT_NEAR(slope1, c.order, 0.2) << c.integrator << " " << formulation_name(F) << " e=" << e1 << "," << e2;
-      EXPECT_NEAR(slope2, c.order, 0.2) << c.integrator << " " << formulation_name(F) << " e=" << e2 << "," << e3;
+      EXPECT_NEAR(slope1, c.order, 0.2)
+          << c.integrator << " " << formulation_name(F) << " e=" << e1 << "," << e2;
+      EXPECT_NEAR(slope2, c.order, 0.2)
+          << c.integrator << " " << formulation_name(F) << " e=" << e2 << "," << e3;
     }
   }
 }
@@ -148,7 +146,7 @@ TEST(FixedStep, AStopRequestEndsTheRunAfterTheCurrentStepWithALastSample) {
         return true;
       },
       nullptr, [&] { return ++steps_seen == 250; });  // asked after every step: stop after step 250
-  ASSERT_EQ(times.size(), 4u);  // 0, 1, 2 on the grid, then 2.5 where the run stopped
+  ASSERT_EQ(times.size(), 4u);                        // 0, 1, 2 on the grid, then 2.5 where the run stopped
   // 50 additions of h after the last snapped sample time: rounding ≤ 50 ulp(2.5) ≈ 2e-14.
   EXPECT_NEAR(times.back(), 2.5, 1e-13);
   EXPECT_EQ(end.t, times.back());

@@ -67,8 +67,8 @@ TEST(ImplicitGyro, StableAtLargeStepsBecauseItDissipates) {
 
 TEST(Dopri45, MeetsItsToleranceAndLandsOnSampleTimes) {
   // Axisymmetric top under gravity against its closed form, at two tolerances.
-  const test::AxisymmetricTop top{0.6, 1.0, Eigen::AngleAxisd(0.5, Vec3(1, 1, 0).normalized()).toRotationMatrix(),
-                                  Vec3(0.4, -0.3, 5.0)};
+  const test::AxisymmetricTop top{
+      0.6, 1.0, Eigen::AngleAxisd(0.5, Vec3(1, 1, 0).normalized()).toRotationMatrix(), Vec3(0.4, -0.3, 5.0)};
   Model model = free_body(Vec3(top.I_t, top.I_t, top.I_s));
   const BodyState s0{Vec3::Zero(), Quat(top.R0), Vec3::Zero(), top.R0 * top.omega_b0};
   std::vector<double> errors;
@@ -83,13 +83,16 @@ TEST(Dopri45, MeetsItsToleranceAndLandsOnSampleTimes) {
     IntegratorStats stats;
     double worst = 0;
     int samples = 0;
-    simulate(model, test::single(s0), rs, [&](const SystemState& x) {
-      EXPECT_NEAR(x.t, std::min(0.37 * samples, 20.0), 1e-12);
-      ++samples;
-      worst = std::max(worst, rotation_angle_between(x.bodies[0].R(), top.R(x.t)));
-      worst = std::max(worst, (x.bodies[0].omega_b() - top.omega_b(x.t)).norm() / top.omega_b0.norm());
-      return true;
-    }, &stats);
+    simulate(
+        model, test::single(s0), rs,
+        [&](const SystemState& x) {
+          EXPECT_NEAR(x.t, std::min(0.37 * samples, 20.0), 1e-12);
+          ++samples;
+          worst = std::max(worst, rotation_angle_between(x.bodies[0].R(), top.R(x.t)));
+          worst = std::max(worst, (x.bodies[0].omega_b() - top.omega_b(x.t)).norm() / top.omega_b0.norm());
+          return true;
+        },
+        &stats);
     EXPECT_EQ(samples, 56);  // 0, 0.37, ..., 19.98 and 20
     EXPECT_GT(stats.steps, 0);
     EXPECT_GE(stats.evaluations, 6 * stats.steps);

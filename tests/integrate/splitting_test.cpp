@@ -69,8 +69,8 @@ TEST(Splitting, UniformGravityIsExactToo) {
 Model torqued() {
   Model model;
   model.add_body(RigidBody::from_principal_moments(1.0, Vec3(0.02, 0.03, 0.04), "pendulum"));
-  model.add_force<Spring>(Spring::End{0, Vec3(0.1, 0.05, 0.0)}, Spring::End{all_bodies, Vec3(0, 0, 0.5)}, 30.0,
-                          0.3, 0.0);
+  model.add_force<Spring>(Spring::End{0, Vec3(0.1, 0.05, 0.0)}, Spring::End{all_bodies, Vec3(0, 0, 0.5)},
+                          30.0, 0.3, 0.0);
   model.add_force<UniformGravity>(Vec3(0, 0, -9.81));
   return model;
 }
@@ -81,12 +81,14 @@ double error_vs_reference(const std::string& method, double h) {
   static const SystemState reference = test::run(torqued(), test::single(kTorquedStart), 2.0, 1e-4, "rk4");
   const BodyState s = test::run(model, test::single(kTorquedStart), 2.0, h, method).bodies[0];
   const BodyState& r = reference.bodies[0];
-  return std::max({rotation_angle_between(s.R(), r.R()), (s.o - r.o).norm(), (s.omega_w - r.omega_w).norm() / 10});
+  return std::max(
+      {rotation_angle_between(s.R(), r.R()), (s.o - r.o).norm(), (s.omega_w - r.omega_w).norm() / 10});
 }
 
 TEST(Splitting, MeasuredOrderUnderTorque) {
   // Reference: RK4 at h = 1e-4 (error ~1e-13, below the finest error measured here by > 100×).
-  for (const auto& [method, order, h] : {std::tuple{"splitting", 2, 1e-2}, std::tuple{"splitting4", 4, 2e-2}}) {
+  for (const auto& [method, order, h] :
+       {std::tuple{"splitting", 2, 1e-2}, std::tuple{"splitting4", 4, 2e-2}}) {
     const double e1 = error_vs_reference(method, h), e2 = error_vs_reference(method, h / 2),
                  e3 = error_vs_reference(method, h / 4);
     EXPECT_NEAR(std::log2(e1 / e2), order, 0.2) << method << " " << e1 << " " << e2;
@@ -115,7 +117,8 @@ TEST(Splitting, EnergyErrorStaysBoundedOverAMillionSteps) {
       if (x.t >= 0.9 * rs.duration) last = std::max(last, err);
       return true;
     });
-    std::printf("%-10s max |dE|/E over t in [0, 100] s: %.3e, over [900, 1000] s: %.3e\n", method.c_str(), first, last);
+    std::printf("%-10s max |dE|/E over t in [0, 100] s: %.3e, over [900, 1000] s: %.3e\n", method.c_str(),
+                first, last);
     if (method == "splitting") {
       EXPECT_LT(last, 2.0 * first);  // bounded: no secular growth
       EXPECT_LT(last, 1e-4);         // second order at h = 1e-3 with rates ~10/s: (h ω)² ~ 1e-4

@@ -28,91 +28,114 @@ TEST(SceneErrors, SyntaxError) {
 }
 
 TEST(SceneErrors, UnknownKeysSuggestTheClosest) {
-  EXPECT_EQ(error_of(kSim + "[[bodies]]\nname = \"a\"\nshape = { type = \"box\", size = [1, 1, 1] }\ndensty = 1.0\n"),
+  EXPECT_EQ(error_of(kSim + "[[bodies]]\nname = \"a\"\nshape = { type = \"box\", size = [1, 1, 1] }\ndensty "
+                            "= 1.0\n"),
             "bad.toml:6:1: body 'a': unknown key 'densty'; did you mean 'density'?");
   EXPECT_EQ(error_of("[simulaton]\nduration = 1.0\n"),
             "bad.toml:1:2: scene: unknown key 'simulaton'; did you mean 'simulation'?");
-  EXPECT_EQ(error_of(kSim + "[[bodies]]\nname = \"a\"\nshape = { type = \"sphere\", radius = 1, size = 2 }\nmass = 1\n"),
+  EXPECT_EQ(error_of(kSim + "[[bodies]]\nname = \"a\"\nshape = { type = \"sphere\", radius = 1, size = 2 "
+                            "}\nmass = 1\n"),
             "bad.toml:5:40: body 'a' shape (sphere): unknown key 'size'; the keys here are: radius, type");
   // Nothing close: the valid keys are listed instead.
-  EXPECT_EQ(error_of("[simulation]\nduration = 1.0\ncolour = \"red\"\n"),
-            "bad.toml:3:1: [simulation]: unknown key 'colour'; the keys here are: duration, timestep, integrator, "
-            "formulation, output_interval, rtol, atol, drift_threshold");
-  EXPECT_EQ(error_of(kSim + "[[bodies]]\nname = \"a\"\nshape = { type = \"bx\", size = [1, 1, 1] }\nmass = 1\n"),
+  EXPECT_EQ(
+      error_of("[simulation]\nduration = 1.0\ncolour = \"red\"\n"),
+      "bad.toml:3:1: [simulation]: unknown key 'colour'; the keys here are: duration, timestep, integrator, "
+      "formulation, output_interval, rtol, atol, drift_threshold");
+  EXPECT_EQ(error_of(kSim +
+                     "[[bodies]]\nname = \"a\"\nshape = { type = \"bx\", size = [1, 1, 1] }\nmass = 1\n"),
             "bad.toml:5:18: body 'a' shape: unknown shape type \"bx\"; did you mean \"box\"?");
-  EXPECT_EQ(error_of("[simulation]\nduration = 1.0\nintegrator = \"rk5\"\n[[particles]]\nname = \"p\"\nmass = 1\n")
+  EXPECT_EQ(error_of(
+                "[simulation]\nduration = 1.0\nintegrator = \"rk5\"\n[[particles]]\nname = \"p\"\nmass = 1\n")
                 .substr(0, 66),
             "bad.toml:3:14: [simulation]: unknown integrator \"rk5\"; did you mea");
 }
 
 TEST(SceneErrors, WrongTypesAndLengths) {
-  EXPECT_EQ(error_of(kSim + "[[bodies]]\nname = \"a\"\nshape = { type = \"box\", size = [1, 1] }\ndensity = 1.0\n"),
-            "bad.toml:5:32: body 'a' shape (box): size must be an array of 3 numbers (m), found an array of 2");
-  EXPECT_EQ(error_of(kSim + "[[bodies]]\nname = \"a\"\nmass = 1\ninertia = [1, 1, 1]\nposition = [0, \"0\", 0]\n"),
+  EXPECT_EQ(
+      error_of(kSim + "[[bodies]]\nname = \"a\"\nshape = { type = \"box\", size = [1, 1] }\ndensity = 1.0\n"),
+      "bad.toml:5:32: body 'a' shape (box): size must be an array of 3 numbers (m), found an array of 2");
+  EXPECT_EQ(error_of(kSim +
+                     "[[bodies]]\nname = \"a\"\nmass = 1\ninertia = [1, 1, 1]\nposition = [0, \"0\", 0]\n"),
             "bad.toml:7:16: body 'a': position[1] must be a number (m), found the string \"0\"");
-  EXPECT_EQ(error_of(kSim + "[[bodies]]\nname = \"a\"\nshape = { type = \"box\", size = [1, 1, 1] }\ndensity = \"heavy\"\n"),
+  EXPECT_EQ(error_of(kSim + "[[bodies]]\nname = \"a\"\nshape = { type = \"box\", size = [1, 1, 1] }\ndensity "
+                            "= \"heavy\"\n"),
             "bad.toml:6:11: body 'a': density must be a number (kg/m^3), found the string \"heavy\"");
-  EXPECT_EQ(error_of(kSim + "[[bodies]]\nname = \"a\"\nmass = 1\ninertia = [1, 1, 1]\nangular_velocity_frame = \"bdy\"\n"),
+  EXPECT_EQ(error_of(kSim + "[[bodies]]\nname = \"a\"\nmass = 1\ninertia = [1, 1, 1]\nangular_velocity_frame "
+                            "= \"bdy\"\n"),
             "bad.toml:7:26: body 'a': angular_velocity_frame must be \"world\" or \"body\", found \"bdy\"");
 }
 
 TEST(SceneErrors, NonFiniteNumbers) {
-  EXPECT_EQ(error_of(kSim + "[[bodies]]\nname = \"a\"\nmass = 1\ninertia = [1, 1, 1]\nvelocity = [0.0, nan, 0.0]\n"),
+  EXPECT_EQ(error_of(kSim +
+                     "[[bodies]]\nname = \"a\"\nmass = 1\ninertia = [1, 1, 1]\nvelocity = [0.0, nan, 0.0]\n"),
             "bad.toml:7:18: body 'a': velocity[1] is nan: give a finite number (m/s)");
   EXPECT_EQ(error_of("[simulation]\nduration = inf\n"),
             "bad.toml:2:12: [simulation]: duration is inf: give a finite number (s)");
 }
 
 TEST(SceneErrors, NonPositiveMassDensityTimestep) {
-  EXPECT_EQ(error_of(kSim + "[[bodies]]\nname = \"a\"\nshape = { type = \"sphere\", radius = 1.0 }\nmass = -2.0\n"),
+  EXPECT_EQ(error_of(kSim +
+                     "[[bodies]]\nname = \"a\"\nshape = { type = \"sphere\", radius = 1.0 }\nmass = -2.0\n"),
             "bad.toml:6:8: body 'a': mass is -2 kg: it must be positive");
-  EXPECT_EQ(error_of(kSim + "[[bodies]]\nname = \"a\"\nshape = { type = \"sphere\", radius = 1.0 }\ndensity = 0\n"),
+  EXPECT_EQ(error_of(kSim +
+                     "[[bodies]]\nname = \"a\"\nshape = { type = \"sphere\", radius = 1.0 }\ndensity = 0\n"),
             "bad.toml:6:11: body 'a': density is 0 kg/m^3: it must be positive");
   EXPECT_EQ(error_of("[simulation]\nduration = 1.0\ntimestep = 0.0\n"),
             "bad.toml:3:12: [simulation]: timestep is 0 s: it must be positive");
   EXPECT_EQ(error_of(kSim + "[[particles]]\nname = \"p\"\nmass = 0\n"),
             "bad.toml:5:8: particle 'p': mass is 0 kg: it must be positive");
-  EXPECT_EQ(error_of(kSim + "[[bodies]]\nname = \"a\"\nshape = { type = \"sphere\", radius = -1.0 }\ndensity = 1\n"),
+  EXPECT_EQ(error_of(kSim +
+                     "[[bodies]]\nname = \"a\"\nshape = { type = \"sphere\", radius = -1.0 }\ndensity = 1\n"),
             "bad.toml:5:37: body 'a' shape (sphere): radius is -1 m: it must be positive");
 }
 
 TEST(SceneErrors, QuaternionsFarFromUnit) {
-  EXPECT_EQ(error_of(kSim + "[[bodies]]\nname = \"a\"\nmass = 1\ninertia = [1, 1, 1]\norientation = [0.7, 0.7, 0.0, 0.0]\n"),
+  EXPECT_EQ(error_of(kSim + "[[bodies]]\nname = \"a\"\nmass = 1\ninertia = [1, 1, 1]\norientation = [0.7, "
+                            "0.7, 0.0, 0.0]\n"),
             "bad.toml:7:15: body 'a': orientation has norm 0.989949, more than 0.001 from 1: give a unit "
             "quaternion [w, x, y, z] (w first); normalised it would be [0.707107, 0.707107, 0, 0]");
-  EXPECT_EQ(error_of(kSim + "[[bodies]]\nname = \"a\"\nmass = 1\ninertia = [1, 1, 1]\norientation = [1.0, 0.0, 0.0]\n"),
-            "bad.toml:7:15: body 'a': orientation must be a unit quaternion [w, x, y, z], found an array of 3");
+  EXPECT_EQ(
+      error_of(kSim +
+               "[[bodies]]\nname = \"a\"\nmass = 1\ninertia = [1, 1, 1]\norientation = [1.0, 0.0, 0.0]\n"),
+      "bad.toml:7:15: body 'a': orientation must be a unit quaternion [w, x, y, z], found an array of 3");
 }
 
 TEST(SceneErrors, InertiaViolatingTheTriangleInequality) {
   const std::string m = error_of(kSim + "[[bodies]]\nname = \"a\"\nmass = 2.0\ninertia = [1.0, 1.0, 3.0]\n");
-  EXPECT_EQ(m.substr(0, 80), "bad.toml:6:11: body 'a': inertia tensor violates the triangle inequality: the la");
+  EXPECT_EQ(m.substr(0, 80),
+            "bad.toml:6:11: body 'a': inertia tensor violates the triangle inequality: the la");
   EXPECT_NE(m.find("3 exceeds the sum of the other two 1 + 1 = 2 kg*m^2"), std::string::npos) << m;
-  EXPECT_EQ(error_of(kSim + "[[bodies]]\nname = \"a\"\nmass = 2.0\ninertia = [[1, 0.5, 0], [0, 1, 0], [0, 0, 1]]\n"),
+  EXPECT_EQ(error_of(kSim +
+                     "[[bodies]]\nname = \"a\"\nmass = 2.0\ninertia = [[1, 0.5, 0], [0, 1, 0], [0, 0, 1]]\n"),
             "bad.toml:6:11: body 'a': inertia must be symmetric (inertia[i][j] = inertia[j][i]): check the "
             "products of inertia");
-  EXPECT_EQ(error_of(kSim + "[[bodies]]\nname = \"a\"\ndensity = 2.0\ninertia = [1.0, 1.0, 1.0]\n"),
-            "bad.toml:6:11: body 'a': inertia needs the total mass: give mass = M (kg) (density does not apply)");
+  EXPECT_EQ(
+      error_of(kSim + "[[bodies]]\nname = \"a\"\ndensity = 2.0\ninertia = [1.0, 1.0, 1.0]\n"),
+      "bad.toml:6:11: body 'a': inertia needs the total mass: give mass = M (kg) (density does not apply)");
 }
 
 TEST(SceneErrors, MissingOrBrokenMeshes) {
   test::TempDir dir("scene_errors_mesh");
   const auto scene = dir / "bad.toml";
-  const std::string missing = error_of(kSim + "[[bodies]]\nname = \"a\"\nmesh = \"nope.stl\"\ndensity = 1.0\n", scene);
-  const std::string missing_head =
-      scene.string() + ":5:8: body 'a': cannot load mesh \"nope.stl\": " + (dir / "nope.stl").string() + ": no such file";
+  const std::string missing =
+      error_of(kSim + "[[bodies]]\nname = \"a\"\nmesh = \"nope.stl\"\ndensity = 1.0\n", scene);
+  const std::string missing_head = scene.string() + ":5:8: body 'a': cannot load mesh \"nope.stl\": " +
+                                   (dir / "nope.stl").string() + ": no such file";
   EXPECT_EQ(missing.substr(0, missing_head.size()), missing_head);
-  EXPECT_NE(missing.find("mesh paths are relative to the scene file's directory"), std::string::npos) << missing;
+  EXPECT_NE(missing.find("mesh paths are relative to the scene file's directory"), std::string::npos)
+      << missing;
 
   dir.write("broken.stl", "solid x\n");
-  const std::string broken = error_of(kSim + "[[bodies]]\nname = \"a\"\nmesh = \"broken.stl\"\ndensity = 1.0\n", scene);
+  const std::string broken =
+      error_of(kSim + "[[bodies]]\nname = \"a\"\nmesh = \"broken.stl\"\ndensity = 1.0\n", scene);
   const std::string broken_head =
       scene.string() + ":5:8: body 'a': cannot load mesh \"broken.stl\": " + (dir / "broken.stl").string();
   EXPECT_EQ(broken.substr(0, broken_head.size()), broken_head);
 
   // An open mesh: one triangle bounds no solid; the mesh check's message, located at the key.
   dir.write("open.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-  const std::string open = error_of(kSim + "[[bodies]]\nname = \"a\"\nmesh = \"open.obj\"\ndensity = 1.0\n", scene);
+  const std::string open =
+      error_of(kSim + "[[bodies]]\nname = \"a\"\nmesh = \"open.obj\"\ndensity = 1.0\n", scene);
   EXPECT_EQ(open.substr(0, scene.string().size() + 20), scene.string() + ":5:8: body 'a': open");
 }
 
@@ -121,20 +144,23 @@ TEST(SceneErrors, DuplicateAndBadNames) {
                             "[[particles]]\nname = \"a\"\nmass = 1\n"),
             "bad.toml:8:8: [[particles]] #1: duplicate name \"a\" (first defined at line 4, column 8): give "
             "every body and particle its own name");
-  EXPECT_EQ(error_of(kSim + "[[bodies]]\nname = \"a,b\"\nmass = 1\ninertia = [1, 1, 1]\n"),
-            "bad.toml:4:8: [[bodies]] #1: name \"a,b\" is not allowed: use letters, digits, '_', '-' and '.' only");
+  EXPECT_EQ(
+      error_of(kSim + "[[bodies]]\nname = \"a,b\"\nmass = 1\ninertia = [1, 1, 1]\n"),
+      "bad.toml:4:8: [[bodies]] #1: name \"a,b\" is not allowed: use letters, digits, '_', '-' and '.' only");
 }
 
 TEST(SceneErrors, MissingPiecesAndBadReferences) {
   EXPECT_EQ(error_of("[[particles]]\nname = \"p\"\nmass = 1\n"),
             "bad.toml:1:1: scene: missing [simulation]: give at least duration = T (s)");
-  EXPECT_EQ(error_of(kSim), "bad.toml:1:1: scene: the scene has nothing to simulate: add [[bodies]] or [[particles]]");
+  EXPECT_EQ(error_of(kSim),
+            "bad.toml:1:1: scene: the scene has nothing to simulate: add [[bodies]] or [[particles]]");
   EXPECT_EQ(error_of(kSim + "[[bodies]]\nname = \"a\"\nshape = { type = \"box\", size = [1, 1, 1] }\n"),
             "bad.toml:3:1: body 'a': missing the material: give density = RHO (kg/m^3) or mass = M (kg)");
   EXPECT_EQ(error_of(kSim + "[[bodies]]\nname = \"handle\"\nmass = 1\ninertia = [1, 1, 1]\n"
                             "[[forces]]\ntype = \"torque\"\nbody = \"handel\"\ntorque = [1, 0, 0]\n"),
             "bad.toml:9:8: [[forces]] #1 (torque): no body named \"handel\"; did you mean \"handle\"?");
-  EXPECT_EQ(error_of(kSim + "[[bodies]]\nname = \"a\"\nmass = 1\ninertia = [1, 1, 1]\n[[forces]]\ntype = \"sprung\"\n"),
+  EXPECT_EQ(error_of(kSim + "[[bodies]]\nname = \"a\"\nmass = 1\ninertia = [1, 1, 1]\n[[forces]]\ntype = "
+                            "\"sprung\"\n"),
             "bad.toml:8:8: [[forces]] #1: unknown force type \"sprung\"; did you mean \"spring\"?");
 }
 

@@ -211,13 +211,16 @@ position = [1.0, 0.0, 0.0]
   };
   using A = std::array<bool, 3>;
   // A spring between two bodies is internal and central: everything is conserved.
-  EXPECT_EQ(conserved("[[forces]]\ntype = \"spring\"\na = { body = \"a\" }\nb = { body = \"b\" }\nstiffness = 10.0\n"),
+  EXPECT_EQ(conserved("[[forces]]\ntype = \"spring\"\na = { body = \"a\" }\nb = { body = \"b\" }\nstiffness "
+                      "= 10.0\n"),
             (A{true, true, true}));
   // Tied to the world: energy only.
-  EXPECT_EQ(conserved("[[forces]]\ntype = \"spring\"\na = { body = \"a\" }\nb = { anchor = [0, 0, 1] }\nstiffness = 10.0\n"),
+  EXPECT_EQ(conserved("[[forces]]\ntype = \"spring\"\na = { body = \"a\" }\nb = { anchor = [0, 0, 1] "
+                      "}\nstiffness = 10.0\n"),
             (A{true, false, false}));
   // Damped: the energy is lost, but the pair of forces is still internal and central.
-  EXPECT_EQ(conserved("[[forces]]\ntype = \"spring\"\na = { body = \"a\" }\nb = { body = \"b\" }\nstiffness = 10.0\n"
+  EXPECT_EQ(conserved("[[forces]]\ntype = \"spring\"\na = { body = \"a\" }\nb = { body = \"b\" }\nstiffness "
+                      "= 10.0\n"
                       "damping = 0.1\n"),
             (A{false, true, true}));
   EXPECT_EQ(conserved("[world]\ngravity = [0, 0, -9.81]\n"), (A{true, false, false}));
@@ -367,7 +370,8 @@ stiffness = 1.0
                 "springs.toml");
     FAIL();
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("no particle named \"pp\"; did you mean \"p\"?"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("no particle named \"pp\"; did you mean \"p\"?"), std::string::npos)
+        << e.what();
   }
 }
 

@@ -219,9 +219,7 @@ TEST(Hdf5Trajectory, ManySamplesAcrossBlocksAndAbandon) {
   for (int k = 0; k < n; k += 997) EXPECT_EQ(p[static_cast<size_t>(3 * k + 1)], -k);
   EXPECT_EQ(p.back(), 0.5 * (n - 1));
 
-  {
-    auto abandoned = make_hdf5_writer(dir / "abandoned.h5", model, {});
-  }
+  { auto abandoned = make_hdf5_writer(dir / "abandoned.h5", model, {}); }
   EXPECT_FALSE(std::filesystem::exists(dir / "abandoned.h5"));
   EXPECT_FALSE(has_temporaries(dir.path()));
 }

@@ -117,8 +117,8 @@ RawMoments polynomial_on_box(const Polynomial& poly, const Vec3& lo, const Vec3&
     for (int i = 0; i < 3; ++i) {
       for (int k = 0; k < 3; ++k) {
         const int n = e[i] + k + 1;
-        F[i][k] = (std::pow(static_cast<long double>(hi(i)), n) -
-                   std::pow(static_cast<long double>(lo(i)), n)) / n;
+        F[i][k] =
+            (std::pow(static_cast<long double>(hi(i)), n) - std::pow(static_cast<long double>(lo(i)), n)) / n;
       }
     }
     RawMoments part = separable(F, 0);
@@ -188,8 +188,7 @@ MassProperties by_slicing(const Slices& s, double rho0, double alpha, double bet
   r.second(0, 0) = wide(part([&](double z, const Vec3& q) { return g(z) * q(1); }));
   r.second(1, 1) = wide(part([&](double z, const Vec3& q) { return g(z) * q(2); }));
   r.second(2, 2) = wide(part([&](double z, const Vec3& q) { return z * z * g(z) * q(0); }));
-  r.second(0, 2) = r.second(2, 0) =
-      wide(part([&](double z, const Vec3& q) { return z * alpha * q(1); }));
+  r.second(0, 2) = r.second(2, 0) = wide(part([&](double z, const Vec3& q) { return z * alpha * q(1); }));
   r.volume = wide(part([](double, const Vec3& q) { return q(0); }) / rho0);
   return r.properties();
 }
@@ -198,8 +197,7 @@ MassProperties by_slicing(const Slices& s, double rho0, double alpha, double bet
 Slices slices_of(const Shape& shape) {
   if (const auto* b = std::get_if<Box>(&shape)) {
     const double x = b->size.x(), y = b->size.y(), z = b->size.z();
-    return {[=](double) { return Vec3(x * y, y * x * x * x / 12, x * y * y * y / 12); },
-            {-z / 2, z / 2}};
+    return {[=](double) { return Vec3(x * y, y * x * x * x / 12, x * y * y * y / 12); }, {-z / 2, z / 2}};
   }
   if (const auto* s = std::get_if<Sphere>(&shape)) {
     const double r = s->radius;
@@ -241,7 +239,7 @@ Slices slices_of(const Shape& shape) {
 }
 
 std::vector<Shape> all_shapes() {
-  return {Box{Vec3(0.6, 0.9, 1.3)}, Sphere{0.7},      Ellipsoid{Vec3(0.5, 0.8, 1.1)},
+  return {Box{Vec3(0.6, 0.9, 1.3)}, Sphere{0.7},        Ellipsoid{Vec3(0.5, 0.8, 1.1)},
           Cylinder{0.4, 1.2},       Capsule{0.35, 0.9}, Cone{0.6, 1.4},
           Torus{0.8, 0.3}};
 }
@@ -270,8 +268,7 @@ TriangleMesh prism(const std::vector<Eigen::Vector2d>& polygon, double z0, doubl
 
 /// The 12-triangle mesh of the box [lo, hi].
 TriangleMesh box_mesh(const Vec3& lo, const Vec3& hi) {
-  return prism({{lo.x(), lo.y()}, {hi.x(), lo.y()}, {hi.x(), hi.y()}, {lo.x(), hi.y()}}, lo.z(),
-               hi.z());
+  return prism({{lo.x(), lo.y()}, {hi.x(), lo.y()}, {hi.x(), hi.y()}, {lo.x(), hi.y()}}, lo.z(), hi.z());
 }
 
 TriangleMesh inside_out(TriangleMesh mesh) {
@@ -289,8 +286,7 @@ double relative_error(const MassProperties& got, const MassProperties& ref) {
                    (got.center_of_mass - ref.center_of_mass).norm() / k});
 }
 
-void expect_close(const MassProperties& got, const MassProperties& ref, double tol,
-                  const std::string& what) {
+void expect_close(const MassProperties& got, const MassProperties& ref, double tol, const std::string& what) {
   EXPECT_NEAR(got.mass, ref.mass, tol * ref.mass) << what;
   const double k = std::sqrt(ref.inertia.trace() / (2 * ref.mass));
   EXPECT_LT((got.center_of_mass - ref.center_of_mass).norm(), tol * k) << what;
@@ -375,15 +371,15 @@ TEST(Density, BoxWithCubicDensityMatchesHandDerivedClosedForm) {
   const double alpha = 0.8, beta = -1.5, gamma = 2.0, delta = 1.2;
   const double V = 8 * A * B * C;
   auto rho = [&](const Vec3& x) {
-    return rho0 * (1 + alpha * x.x() + beta * x.y() * x.y() + gamma * x.x() * x.y() +
-                   delta * std::pow(x.z(), 3));
+    return rho0 *
+           (1 + alpha * x.x() + beta * x.y() * x.y() + gamma * x.x() * x.y() + delta * std::pow(x.z(), 3));
   };
   const double m = rho0 * V * (1 + beta * B * B / 3);
   const Vec3 c(rho0 * alpha * V * A * A / 3 / m, 0, rho0 * delta * V * std::pow(C, 4) / 5 / m);
   Mat3 J;
   J << rho0 * V * (A * A / 3 + beta * A * A * B * B / 9), rho0 * gamma * V * A * A * B * B / 9, 0,
-      rho0 * gamma * V * A * A * B * B / 9, rho0 * V * (B * B / 3 + beta * std::pow(B, 4) / 5), 0,
-      0, 0, rho0 * V * (C * C / 3 + beta * B * B * C * C / 9);
+      rho0 * gamma * V * A * A * B * B / 9, rho0 * V * (B * B / 3 + beta * std::pow(B, 4) / 5), 0, 0, 0,
+      rho0 * V * (C * C / 3 + beta * B * B * C * C / 9);
   const Mat3 S = J - m * c * c.transpose();
   const MassProperties exact{m, c, S.trace() * Mat3::Identity() - S, V};
 
@@ -406,8 +402,8 @@ TEST(Density, PolynomialDensityOnOffCentreCubeMeshIsExactAtEveryDegree) {
   for (int degree = kMinDensityDegree; degree <= kMaxDensityDegree; ++degree) {
     const Polynomial poly = random_polynomial(rng, degree - 2);  // the highest degree claimed exact
     const MassProperties exact = polynomial_on_box(poly, lo, hi).properties();
-    const DensityResult r =
-        integrate_density(mesh, [&](const Vec3& x) { return evaluate(poly, x); }, degree);
+    const DensityResult r = integrate_density(
+        mesh, [&](const Vec3& x) { return evaluate(poly, x); }, degree);
     // Up to degree 9 the rounding argument of kRounding holds; beyond, Σ|w| of the returned rule
     // (54 at 11 ... 545 at 17) multiplies the rounding, so the bound scales with it: Σ|w|·1e-15.
     const double sum_abs_w = [&] {
@@ -427,8 +423,8 @@ TEST(Density, PolynomialDensityOnNonConvexMeshIsExactAndSampledInTheConvexHull) 
   // folds back and ρ is also sampled outside the solid — but only in the convex hull
   // {0 ≤ x, y ≤ 1, x + y ≤ 5/4}, and the outside contributions cancel exactly.
   const double z0 = -0.2, z1 = 0.5;
-  const TriangleMesh mesh = prism(
-      {{0.25, 0.25}, {0.25, 1}, {0, 1}, {0, 0}, {1, 0}, {1, 0.25}}, z0, z1);  // reflex corner first
+  const TriangleMesh mesh =
+      prism({{0.25, 0.25}, {0.25, 1}, {0, 1}, {0, 0}, {1, 0}, {1, 0.25}}, z0, z1);  // reflex corner first
   test::Random rng(12);
   const Polynomial poly = random_polynomial(rng, 3);
   RawMoments exact = polynomial_on_box(poly, Vec3(0, 0, z0), Vec3(1, 0.25, z1));
@@ -437,8 +433,8 @@ TEST(Density, PolynomialDensityOnNonConvexMeshIsExactAndSampledInTheConvexHull) 
   bool sampled_outside = false;
   double hull_violation = 0;
   auto rho = [&](const Vec3& x) {
-    hull_violation = std::max({hull_violation, -x.x(), -x.y(), x.x() - 1, x.y() - 1,
-                               x.x() + x.y() - 1.25, z0 - x.z(), x.z() - z1});
+    hull_violation = std::max(
+        {hull_violation, -x.x(), -x.y(), x.x() - 1, x.y() - 1, x.x() + x.y() - 1.25, z0 - x.z(), x.z() - z1});
     if (x.x() > 0.25 && x.y() > 0.25) sampled_outside = true;
     return evaluate(poly, x);
   };
@@ -464,7 +460,8 @@ TEST(Density, UniformDensityEqualsTheClosedFormOfEveryPrimitive) {
   const double rho0 = 7850;
   for (const Shape& shape : all_shapes()) {
     // Degree 2 is enough for a constant ρ (the inertia integrand is quadratic).
-    const DensityResult r = integrate_density(shape, [&](const Vec3&) { return rho0; }, 2);
+    const DensityResult r = integrate_density(
+        shape, [&](const Vec3&) { return rho0; }, 2);
     const MassProperties exact = solid_mass_properties(shape, MassSpec::density(rho0));
     expect_close(r.properties, exact, kRounding, shape_name(shape));
     EXPECT_LT(r.estimated_error, kRounding) << shape_name(shape);
@@ -475,9 +472,7 @@ TEST(Density, QuadraticDensityOnEveryPrimitiveMatchesSlicing) {
   // ρ = ρ₀(1 + αx + βz + γz²): exact at degree 4. αx shifts the centre of mass sideways and, with z,
   // creates the product of inertia I_xz — so the test sees every entry the maps produce.
   const double rho0 = 1000, alpha = 0.6, beta = -0.4, gamma = 0.3;
-  auto rho = [&](const Vec3& x) {
-    return rho0 * (1 + alpha * x.x() + beta * x.z() + gamma * x.z() * x.z());
-  };
+  auto rho = [&](const Vec3& x) { return rho0 * (1 + alpha * x.x() + beta * x.z() + gamma * x.z() * x.z()); };
   for (const Shape& shape : all_shapes()) {
     const DensityResult r = integrate_density(shape, rho, 4);
     expect_close(r.properties, by_slicing(slices_of(shape), rho0, alpha, beta, gamma), kSlicing,
@@ -492,13 +487,13 @@ TEST(Density, SphereWithRadialDensityMatchesClosedForm) {
   // ρ = ρ₀(1 + k r²): m = ∫4πr²ρ dr = 4πρ₀(R³/3 + kR⁵/5); every axis has I = (2/3)∫ρ r² dV
   // = (8π/3)ρ₀(R⁵/5 + kR⁷/7). Degree 4 is exact (ρ is quadratic).
   const double R = 0.35, rho0 = 1200, k = 3.0;
-  const DensityResult r =
-      integrate_density(Sphere{R}, [&](const Vec3& x) { return rho0 * (1 + k * x.squaredNorm()); }, 4);
+  const DensityResult r = integrate_density(
+      Sphere{R}, [&](const Vec3& x) { return rho0 * (1 + k * x.squaredNorm()); }, 4);
   const double m = 4 * pi * rho0 * (std::pow(R, 3) / 3 + k * std::pow(R, 5) / 5);
   const double I = 8 * pi / 3 * rho0 * (std::pow(R, 5) / 5 + k * std::pow(R, 7) / 7);
   expect_close(r.properties,
-               MassProperties{m, Vec3::Zero(), Mat3(I * Mat3::Identity()), 4 * pi / 3 * R * R * R},
-               kRounding, "graded sphere");
+               MassProperties{m, Vec3::Zero(), Mat3(I * Mat3::Identity()), 4 * pi / 3 * R * R * R}, kRounding,
+               "graded sphere");
 }
 
 TEST(Density, LinearlyGradedCylinderShiftsItsCentreOfMassAsTheClosedFormSays) {
@@ -507,11 +502,10 @@ TEST(Density, LinearlyGradedCylinderShiftsItsCentreOfMassAsTheClosedFormSays) {
   // is odd in z) and I_xx = ∫ρ(y² + z²) − m c_z² = ρ₀(πR⁴L/4 + πR²L³/12) − m c_z².
   const double R = 0.15, L = 0.8, rho0 = 900, g = 1.7;
   {
-    const DensityResult r =
-        integrate_density(Cylinder{R, L}, [&](const Vec3& x) { return rho0 * (1 + g * x.z()); }, 3);
+    const DensityResult r = integrate_density(
+        Cylinder{R, L}, [&](const Vec3& x) { return rho0 * (1 + g * x.z()); }, 3);
     const double m = rho0 * pi * R * R * L, cz = g * L * L / 12;
-    const double Ixx = rho0 * (pi * std::pow(R, 4) * L / 4 + pi * R * R * std::pow(L, 3) / 12) -
-                       m * cz * cz;
+    const double Ixx = rho0 * (pi * std::pow(R, 4) * L / 4 + pi * R * R * std::pow(L, 3) / 12) - m * cz * cz;
     const double Izz = rho0 * pi * std::pow(R, 4) * L / 2;
     expect_close(r.properties,
                  MassProperties{m, Vec3(0, 0, cz), Vec3(Ixx, Ixx, Izz).asDiagonal(), pi * R * R * L},
@@ -520,8 +514,8 @@ TEST(Density, LinearlyGradedCylinderShiftsItsCentreOfMassAsTheClosedFormSays) {
   {
     // Graded across: ρ = ρ₀(1 + g x), c_x = g∫x² dA / A = gR²/4; I_yy = ∫ρ(x² + z²) − m c_x²,
     // I_zz = ∫ρ(x² + y²) − m c_x², with ∫x² dV = πR⁴L/4 and ∫z² dV = πR²L³/12.
-    const DensityResult r =
-        integrate_density(Cylinder{R, L}, [&](const Vec3& x) { return rho0 * (1 + g * x.x()); }, 3);
+    const DensityResult r = integrate_density(
+        Cylinder{R, L}, [&](const Vec3& x) { return rho0 * (1 + g * x.x()); }, 3);
     const double m = rho0 * pi * R * R * L, cx = g * R * R / 4;
     const double x2 = rho0 * pi * std::pow(R, 4) * L / 4, z2 = rho0 * pi * R * R * std::pow(L, 3) / 12;
     const Vec3 diag(x2 + z2, x2 + z2 - m * cx * cx, 2 * x2 - m * cx * cx);
@@ -534,8 +528,8 @@ TEST(Density, LinearlyGradedCylinderShiftsItsCentreOfMassAsTheClosedFormSays) {
 
 /// Runs degrees 3, 5, ..., 15 against `exact` and checks: the estimate falls with the degree until it
 /// reaches rounding, and bounds the true error of the returned result.
-void expect_converges(const std::function<DensityResult(int)>& run, const MassProperties& exact,
-                      double floor, const std::string& what) {
+void expect_converges(const std::function<DensityResult(int)>& run, const MassProperties& exact, double floor,
+                      const std::string& what) {
   double previous = std::numeric_limits<double>::infinity();
   bool reached_floor = false;
   for (int degree = 3; degree <= kMaxDensityDegree; degree += 2) {
@@ -561,12 +555,11 @@ TEST(Density, ExponentialDensityConvergesAndTheEstimateBoundsTheError) {
   {
     const Vec3 half(0.6, 0.4, 0.5);
     const MassProperties exact = exponential_on_box(rho0, kappa, -half, half).properties();
-    expect_converges([&](int d) { return integrate_density(Box{2 * half}, rho, d); }, exact, floor,
-                     "box");
+    expect_converges([&](int d) { return integrate_density(Box{2 * half}, rho, d); }, exact, floor, "box");
     const Vec3 lo(-0.3, -0.6, 0.1), hi(0.9, 0.2, 0.8);
     const MassProperties exact_mesh = exponential_on_box(rho0, kappa, lo, hi).properties();
-    expect_converges([&](int d) { return integrate_density(box_mesh(lo, hi), rho, d); }, exact_mesh,
-                     floor, "cube mesh");
+    expect_converges([&](int d) { return integrate_density(box_mesh(lo, hi), rho, d); }, exact_mesh, floor,
+                     "cube mesh");
   }
   {
     // Sphere with ρ = ρ₀ exp(k z): slices are disks of radius √(R² − z²) at density ρ₀e^{kz}; the
@@ -583,8 +576,8 @@ TEST(Density, ExponentialDensityConvergesAndTheEstimateBoundsTheError) {
     raw.second(0, 0) = raw.second(1, 1) = wide(part([](double, const Vec3& q) { return q(1); }));
     raw.second(2, 2) = wide(part([](double z, const Vec3& q) { return z * z * q(0); }));
     raw.volume = wide(4 * pi / 3 * R * R * R);
-    expect_converges([&](int d) { return integrate_density(Sphere{R}, rho_z, d); }, raw.properties(),
-                     floor, "sphere");
+    expect_converges([&](int d) { return integrate_density(Sphere{R}, rho_z, d); }, raw.properties(), floor,
+                     "sphere");
   }
 }
 
@@ -605,22 +598,21 @@ TEST(Density, DegreeOutsideTheSupportedRangeIsAnError) {
   auto one = [](const Vec3&) { return 1.0; };
   const TriangleMesh cube = box_mesh(Vec3::Zero(), Vec3::Ones());
   for (int degree : {-1, 0, 1, kMaxDensityDegree + 1, 100}) {
-    const std::string msg =
-        message_of<InvalidArgument>([&] { integrate_density(Sphere{1.0}, one, degree); });
-    EXPECT_NE(msg.find(fmt::format("quadrature degree {} is out of the supported range [2, 15]",
-                                   degree)),
+    const std::string msg = message_of<InvalidArgument>([&] { integrate_density(Sphere{1.0}, one, degree); });
+    EXPECT_NE(msg.find(fmt::format("quadrature degree {} is out of the supported range [2, 15]", degree)),
               std::string::npos)
         << msg;
-    EXPECT_NE(message_of<InvalidArgument>([&] { integrate_density(cube, one, degree, "cube.stl"); })
-                  .find("mesh 'cube.stl': quadrature degree"),
+    EXPECT_NE(message_of<InvalidArgument>([&] {
+                integrate_density(cube, one, degree, "cube.stl");
+              }).find("mesh 'cube.stl': quadrature degree"),
               std::string::npos);
   }
 }
 
 TEST(Density, NonFiniteDensityNamesThePoint) {
   const TriangleMesh cube = box_mesh(Vec3::Zero(), Vec3::Ones());
-  for (const double bad : {std::numeric_limits<double>::quiet_NaN(),
-                           std::numeric_limits<double>::infinity()}) {
+  for (const double bad :
+       {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
     Vec3 first_bad = Vec3::Constant(-1);
     auto rho = [&](const Vec3& x) {
       if (x.x() > 0.6) {
@@ -629,19 +621,20 @@ TEST(Density, NonFiniteDensityNamesThePoint) {
       }
       return 1.0;
     };
-    const std::string msg_shape =
-        message_of<InvalidArgument>([&] { integrate_density(Cylinder{1.0, 2.0}, rho, 5); });
+    const std::string msg_shape = message_of<InvalidArgument>([&] {
+      integrate_density(Cylinder{1.0, 2.0}, rho, 5);
+    });
     EXPECT_NE(msg_shape.find(fmt::format("cylinder: the density function returned {} kg/m^3", bad)),
               std::string::npos)
         << msg_shape;
-    EXPECT_NE(msg_shape.find(fmt::format("x = ({:.17g}, {:.17g}, {:.17g}) m", first_bad.x(),
-                                         first_bad.y(), first_bad.z())),
+    EXPECT_NE(msg_shape.find(fmt::format("x = ({:.17g}, {:.17g}, {:.17g}) m", first_bad.x(), first_bad.y(),
+                                         first_bad.z())),
               std::string::npos)
         << msg_shape;
     const std::string msg_mesh =
         message_of<InvalidArgument>([&] { integrate_density(cube, rho, 5, "cube.stl"); });
-    EXPECT_NE(msg_mesh.find(fmt::format("x = ({:.17g}, {:.17g}, {:.17g}) m", first_bad.x(),
-                                        first_bad.y(), first_bad.z())),
+    EXPECT_NE(msg_mesh.find(fmt::format("x = ({:.17g}, {:.17g}, {:.17g}) m", first_bad.x(), first_bad.y(),
+                                        first_bad.z())),
               std::string::npos)
         << msg_mesh;
     EXPECT_NE(msg_mesh.find("in the fan tetrahedron of triangle"), std::string::npos) << msg_mesh;
@@ -650,8 +643,10 @@ TEST(Density, NonFiniteDensityNamesThePoint) {
 
 TEST(Density, NonPositiveTotalMassIsAnError) {
   for (const double value : {0.0, -3.0}) {
-    const std::string msg = message_of<InvalidArgument>(
-        [&] { integrate_density(Torus{1.0, 0.2}, [&](const Vec3&) { return value; }, 3); });
+    const std::string msg = message_of<InvalidArgument>([&] {
+      integrate_density(
+          Torus{1.0, 0.2}, [&](const Vec3&) { return value; }, 3);
+    });
     EXPECT_NE(msg.find("torus: the density integrates to a total mass of"), std::string::npos) << msg;
     EXPECT_NE(msg.find("which is not positive"), std::string::npos) << msg;
   }
@@ -661,14 +656,17 @@ TEST(Density, EmptyDensityFunctionAndInvalidShapeAreErrors) {
   const std::string msg =
       message_of<InvalidArgument>([] { integrate_density(Sphere{1.0}, DensityField{}, 4); });
   EXPECT_NE(msg.find("sphere: the density function is empty"), std::string::npos) << msg;
-  EXPECT_THROW(integrate_density(Sphere{-1.0}, [](const Vec3&) { return 1.0; }, 4),
+  EXPECT_THROW(integrate_density(
+                   Sphere{-1.0}, [](const Vec3&) { return 1.0; }, 4),
                InvalidArgument);
 }
 
 TEST(Density, OpenMeshIsAMeshError) {
   TriangleMesh open = box_mesh(Vec3::Zero(), Vec3::Ones());
   open.triangles.pop_back();  // a hole: two boundary edges... three, around the missing triangle
-  EXPECT_THROW(integrate_density(open, [](const Vec3&) { return 1.0; }, 4, "open.stl"), MeshError);
+  EXPECT_THROW(integrate_density(
+                   open, [](const Vec3&) { return 1.0; }, 4, "open.stl"),
+               MeshError);
 }
 
 }  // namespace

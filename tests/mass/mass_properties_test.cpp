@@ -142,7 +142,8 @@ TEST(MassProperties, MomentAboutAxisAndRadiusOfGyrationMatchDefinition) {
     const Vec3 p = rng.vec(-3, 3);
     const Vec3 l = axis.normalized();
     double direct = 0;  // I_l = Σ m |(x − p) × l̂|²
-    for (size_t i = 0; i < cloud.m.size(); ++i) direct += cloud.m[i] * (cloud.x[i] - p).cross(l).squaredNorm();
+    for (size_t i = 0; i < cloud.m.size(); ++i)
+      direct += cloud.m[i] * (cloud.x[i] - p).cross(l).squaredNorm();
     EXPECT_NEAR(mp.moment_about_axis(axis, p), direct, kRounding * direct);
     // l̂ᵀ I l̂ with I about p is the same number (tutorial: I_l = l̂ᵀ I l̂).
     EXPECT_NEAR(l.dot(mp.inertia_about(p) * l), direct, kRounding * direct);

@@ -97,8 +97,9 @@ TEST(MeshCheck, NonManifoldEdgeListsAllItsTriangles) {
   const MeshReport r = check_mesh(mesh);
   EXPECT_EQ(r.non_manifold_edge_count, 1U);
   const std::string msg = solid_error(mesh);
-  EXPECT_CONTAINS(msg, "the mesh has 1 non-manifold edge (shared by more than two triangles), "
-                       "first: edge (0,1) of triangles {0, 1, 4}; separate the bodies");
+  EXPECT_CONTAINS(msg,
+                  "the mesh has 1 non-manifold edge (shared by more than two triangles), "
+                  "first: edge (0,1) of triangles {0, 1, 4}; separate the bodies");
   EXPECT_CONTAINS(msg, "2 boundary edges");  // the fin's free edges
 }
 
@@ -124,8 +125,9 @@ TEST(MeshCheck, IndexOutOfRange) {
   TriangleMesh mesh = tetrahedron();
   mesh.triangles[3] = {0, 3, 99};
   const std::string msg = solid_error(mesh);
-  EXPECT_CONTAINS(msg, "1 triangle refers to vertices that do not exist (the mesh has 4 vertices, "
-                       "valid indices 0..3), first: triangle 3 (vertices 0, 3, 99)");
+  EXPECT_CONTAINS(msg,
+                  "1 triangle refers to vertices that do not exist (the mesh has 4 vertices, "
+                  "valid indices 0..3), first: triangle 3 (vertices 0, 3, 99)");
   // The unchecked fast path and the shell path refuse it too instead of reading out of bounds.
   EXPECT_THROW(integrate_solid_mesh(mesh), MeshError);
   EXPECT_THROW(shell_mass_properties(mesh, 0.001, MassSpec::density(1.0)), MeshError);

@@ -95,8 +95,7 @@ TEST(MeshIntegrals, AffineMapsOfCurvedPolyhedraFollowTheTransformationLaw) {
       const Mat3 C = det * A * test::second_moment(base) * A.transpose();
       const MassProperties want{det * base.mass, A * base.center_of_mass + t,
                                 test::inertia_from_second_moment(C), det * base.volume};
-      expect_close(integrate_solid_mesh(mapped(mesh, A, t)), want, kRounding, 2.0,
-                   shape_name(shape));
+      expect_close(integrate_solid_mesh(mapped(mesh, A, t)), want, kRounding, 2.0, shape_name(shape));
     }
   }
 }
@@ -141,8 +140,7 @@ TEST(MeshIntegrals, FarFromTheOriginTheReferencePointKeepsFullAccuracy) {
   }
 
   const MassProperties naive = integrate_about_origin(far);
-  EXPECT_GT((naive.inertia - n.inertia).cwiseAbs().maxCoeff(),
-            1e-8 * n.inertia.cwiseAbs().maxCoeff())
+  EXPECT_GT((naive.inertia - n.inertia).cwiseAbs().maxCoeff(), 1e-8 * n.inertia.cwiseAbs().maxCoeff())
       << "the naive evaluation should lose accuracy here, or the test proves nothing";
 }
 
@@ -192,8 +190,7 @@ TEST(MeshIntegrals, ScaleByDensityOrMass) {
   EXPECT_NEAR(steel.surface_area, 2 * (0.02 + 0.04 + 0.08), kRounding);
   const MeshMassResult two_kg = solid_mass_properties(box, MassSpec::mass(2.0));
   EXPECT_NEAR(two_kg.properties.mass, 2.0, kRounding);
-  EXPECT_LT(test::rel_diff(two_kg.properties.inertia, box_inertia(2.0, Vec3(0.1, 0.2, 0.4))),
-            kRounding);
+  EXPECT_LT(test::rel_diff(two_kg.properties.inertia, box_inertia(2.0, Vec3(0.1, 0.2, 0.4))), kRounding);
 }
 
 TEST(MeshIntegrals, ShellOfABoxMatchesTheClosedForm) {
@@ -204,8 +201,8 @@ TEST(MeshIntegrals, ShellOfABoxMatchesTheClosedForm) {
   for (int trial = 0; trial < 10; ++trial) {
     const Mat3 R = rng.rotation();
     const Vec3 t = rng.vec(-4, 4);
-    const MeshMassResult r = shell_mass_properties(mapped(tessellate(Box{size}, 4), R, t), 0.002,
-                                                   MassSpec::density(2700.0));
+    const MeshMassResult r =
+        shell_mass_properties(mapped(tessellate(Box{size}, 4), R, t), 0.002, MassSpec::density(2700.0));
     expect_close(r.properties, closed.transformed(R, t), kRounding, size.norm());
     EXPECT_NEAR(r.properties.volume, closed.volume, kRounding * closed.volume);
     EXPECT_NEAR(r.surface_area, surface_area(Box{size}), kRounding * r.surface_area);
@@ -226,8 +223,8 @@ TEST(MeshIntegrals, OpenShellTriangleMatchesPointMassDefinition) {
     C += A / 3.0 * r * r.transpose();
   }
   const MeshMassResult r = shell_mass_properties(tri, 0.01, MassSpec::density(1.0 / 0.01));
-  expect_close(r.properties, MassProperties{A, centroid, test::inertia_from_second_moment(C), 0.0},
-               kRounding, 1.0);
+  expect_close(r.properties, MassProperties{A, centroid, test::inertia_from_second_moment(C), 0.0}, kRounding,
+               1.0);
   EXPECT_NEAR(r.properties.volume, A * 0.01, kRounding);
 }
 

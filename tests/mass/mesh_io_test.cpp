@@ -50,9 +50,7 @@ MassProperties t_handle_closed_form(double unit, double density) {
              .transformed(Mat3::Identity(), unit * Vec3(0, 0, 3));
 }
 
-void write_text(const std::filesystem::path& path, const std::string& text) {
-  std::ofstream(path) << text;
-}
+void write_text(const std::filesystem::path& path, const std::string& text) { std::ofstream(path) << text; }
 
 std::string ascii_stl(const TriangleMesh& m) {
   std::string s = "solid handle\n";
@@ -115,7 +113,8 @@ TEST(MeshIo, PolygonsAreTriangulatedAndAllObjectsMerged) {
     }
     const int b = 8 * k + 1;  // OBJ indices are 1-based and global
     // Quads counter-clockwise seen from outside (corner i: x = bit 0, y = bit 1, z = bit 2).
-    const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                             {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
     for (const auto& q : quads) s += fmt::format("f {} {} {} {}\n", b + q[0], b + q[1], b + q[2], b + q[3]);
   }
   write_text(dir / "cubes.obj", s);
@@ -198,7 +197,8 @@ TEST(MeshIo, NonFiniteCoordinateNamesTheVertex) {
   const std::string msg = file_error(dir / "nan.obj");
   // The second corner of the first face is the vertex (0, nan, 0).
   EXPECT_NE(msg.find("corner 1 of face 0 of mesh 0 has non-finite coordinates (0, nan, 0)"),
-            std::string::npos) << msg;
+            std::string::npos)
+      << msg;
 }
 
 TEST(MeshIo, WriteFailureIsAFileError) {

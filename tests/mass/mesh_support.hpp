@@ -28,20 +28,19 @@ inline Mat3 second_moment(const MassProperties& mp) {
   return 0.5 * mp.inertia.trace() * Mat3::Identity() - mp.inertia;
 }
 /// Inertia from the second-moment matrix: I = tr(C) I₃ − C.
-inline Mat3 inertia_from_second_moment(const Mat3& C) {
-  return C.trace() * Mat3::Identity() - C;
-}
+inline Mat3 inertia_from_second_moment(const Mat3& C) { return C.trace() * Mat3::Identity() - C; }
 
 /// Mass, centre (relative to `length`) and inertia (relative to its largest entry) agree to `tol`.
-inline void expect_close(const MassProperties& got, const MassProperties& want, double tol,
-                         double length, const std::string& what = "") {
+inline void expect_close(const MassProperties& got, const MassProperties& want, double tol, double length,
+                         const std::string& what = "") {
   EXPECT_NEAR(got.mass, want.mass, tol * std::abs(want.mass)) << what;
   EXPECT_LT((got.center_of_mass - want.center_of_mass).norm(), tol * length)
       << what << "\n got c = " << got.center_of_mass.transpose()
       << "\nwant c = " << want.center_of_mass.transpose();
-  EXPECT_LT((got.inertia - want.inertia).cwiseAbs().maxCoeff(),
-            tol * want.inertia.cwiseAbs().maxCoeff())
-      << what << "\n got I =\n" << got.inertia << "\nwant I =\n" << want.inertia;
+  EXPECT_LT((got.inertia - want.inertia).cwiseAbs().maxCoeff(), tol * want.inertia.cwiseAbs().maxCoeff())
+      << what << "\n got I =\n"
+      << got.inertia << "\nwant I =\n"
+      << want.inertia;
 }
 
 /// A fresh directory under the system's temporary directory, removed with the object.
@@ -49,9 +48,8 @@ class TempDir {
  public:
   TempDir() {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = std::filesystem::temp_directory_path() /
-            (std::string("tumble_") + info->test_suite_name() + "_" + info->name() + "_" +
-             std::to_string(::getpid()));
+    path_ = std::filesystem::temp_directory_path() / (std::string("tumble_") + info->test_suite_name() + "_" +
+                                                      info->name() + "_" + std::to_string(::getpid()));
     std::filesystem::create_directories(path_);
   }
   ~TempDir() {

@@ -74,8 +74,8 @@ TEST(Shapes, SolidsMatchIntegrationBySlicing) {
   {
     const double r = 0.4;
     expect_same(solid_mass_properties(Sphere{r}, unit),
-                by_slicing({[&](double z) { return disk(safe_sqrt(r * r - z * z)); }, {-r, r}}),
-                kQuadrature, "sphere");
+                by_slicing({[&](double z) { return disk(safe_sqrt(r * r - z * z)); }, {-r, r}}), kQuadrature,
+                "sphere");
   }
   {
     const double a = 0.3, b = 0.5, c = 0.8;
@@ -90,8 +90,7 @@ TEST(Shapes, SolidsMatchIntegrationBySlicing) {
   {
     const double r = 0.2, h = 0.9;
     expect_same(solid_mass_properties(Cylinder{r, h}, unit),
-                by_slicing({[&](double) { return disk(r); }, {-h / 2, h / 2}}), kQuadrature,
-                "cylinder");
+                by_slicing({[&](double) { return disk(r); }, {-h / 2, h / 2}}), kQuadrature, "cylinder");
   }
   {
     const double r = 0.25, h = 0.6;
@@ -105,8 +104,7 @@ TEST(Shapes, SolidsMatchIntegrationBySlicing) {
   {
     const double r = 0.3, h = 1.1;
     expect_same(solid_mass_properties(Cone{r, h}, unit),
-                by_slicing({[&](double z) { return disk(r * (1 - z / h)); }, {0, h}}), kQuadrature,
-                "cone");
+                by_slicing({[&](double z) { return disk(r * (1 - z / h)); }, {0, h}}), kQuadrature, "cone");
     EXPECT_DOUBLE_EQ(solid_mass_properties(Cone{r, h}, unit).center_of_mass.z(), h / 4);
   }
   {
@@ -116,8 +114,8 @@ TEST(Shapes, SolidsMatchIntegrationBySlicing) {
       const double s4 = pi * (std::pow(ro, 4) - std::pow(ri, 4)) / 4;
       return Vec3(pi * (ro * ro - ri * ri), s4, s4);
     };
-    expect_same(solid_mass_properties(Torus{R, r}, unit), by_slicing({section, {-r, r}}),
-                kQuadrature, "torus");
+    expect_same(solid_mass_properties(Torus{R, r}, unit), by_slicing({section, {-r, r}}), kQuadrature,
+                "torus");
   }
 }
 
@@ -139,15 +137,29 @@ void expect_shell_is_derivative(const Shape& shell, const std::function<Shape(do
 }
 
 TEST(Shapes, ShellsAreTheThinWallLimitOfSolids) {
-  expect_shell_is_derivative(Box{Vec3(0.3, 0.5, 0.7)},
-                             [](double e) { return Box{Vec3(0.3 + 2 * e, 0.5 + 2 * e, 0.7 + 2 * e)}; },
-                             "box");
-  expect_shell_is_derivative(Sphere{0.4}, [](double e) { return Sphere{0.4 + e}; }, "sphere");
-  expect_shell_is_derivative(Cylinder{0.2, 0.9}, [](double e) { return Cylinder{0.2 + e, 0.9 + 2 * e}; },
-                             "cylinder");
-  expect_shell_is_derivative(Capsule{0.25, 0.6}, [](double e) { return Capsule{0.25 + e, 0.6}; },
-                             "capsule");
-  expect_shell_is_derivative(Torus{0.5, 0.15}, [](double e) { return Torus{0.5, 0.15 + e}; }, "torus");
+  expect_shell_is_derivative(
+      Box{Vec3(0.3, 0.5, 0.7)}, [](double e) { return Box{Vec3(0.3 + 2 * e, 0.5 + 2 * e, 0.7 + 2 * e)}; },
+      "box");
+  expect_shell_is_derivative(
+      Sphere{0.4}, [](double e) { return Sphere{0.4 + e}; }, "sphere");
+  expect_shell_is_derivative(
+      Cylinder{0.2, 0.9},
+      [](double e) {
+        return Cylinder{0.2 + e, 0.9 + 2 * e};
+      },
+      "cylinder");
+  expect_shell_is_derivative(
+      Capsule{0.25, 0.6},
+      [](double e) {
+        return Capsule{0.25 + e, 0.6};
+      },
+      "capsule");
+  expect_shell_is_derivative(
+      Torus{0.5, 0.15},
+      [](double e) {
+        return Torus{0.5, 0.15 + e};
+      },
+      "torus");
 }
 
 TEST(Shapes, ConeShellMatchesRingIntegrals) {
@@ -189,9 +201,10 @@ TEST(Shapes, DensityAndTotalMassAgree) {
 }
 
 TEST(Shapes, EveryPrimitiveIsAValidBody) {
-  const std::vector<Shape> shapes = {Box{Vec3(0.1, 0.2, 0.3)}, Sphere{0.1}, Ellipsoid{Vec3(0.1, 0.2, 0.3)},
-                                     Cylinder{0.1, 0.5},        Capsule{0.1, 0.2}, Cone{0.2, 0.1},
-                                     Torus{0.3, 0.05}};
+  const std::vector<Shape> shapes = {
+      Box{Vec3(0.1, 0.2, 0.3)}, Sphere{0.1},       Ellipsoid{Vec3(0.1, 0.2, 0.3)},
+      Cylinder{0.1, 0.5},       Capsule{0.1, 0.2}, Cone{0.2, 0.1},
+      Torus{0.3, 0.05}};
   for (const Shape& s : shapes) {
     EXPECT_NO_THROW(solid_mass_properties(s, MassSpec::density(1000)).validate()) << shape_name(s);
     if (!std::holds_alternative<Ellipsoid>(s)) {

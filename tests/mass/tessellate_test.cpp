@@ -15,9 +15,9 @@ namespace tumble {
 namespace {
 
 const std::vector<Shape>& curved_shapes() {
-  static const std::vector<Shape> shapes = {
-      Sphere{0.7},         Ellipsoid{Vec3(1.0, 0.6, 0.3)}, Cylinder{0.5, 2.0},
-      Capsule{0.4, 1.0},   Cone{0.5, 1.5},                 Torus{1.0, 0.3}};
+  static const std::vector<Shape> shapes = {Sphere{0.7},        Ellipsoid{Vec3(1.0, 0.6, 0.3)},
+                                            Cylinder{0.5, 2.0}, Capsule{0.4, 1.0},
+                                            Cone{0.5, 1.5},     Torus{1.0, 0.3}};
   return shapes;
 }
 
@@ -28,8 +28,7 @@ TEST(Tessellate, EveryShapeIsAClosedManifoldOutwardMesh) {
     for (int segments : {3, 4, 5, 8, 17, 64}) {
       const TriangleMesh mesh = tessellate(shape, segments);
       const MeshReport r = check_mesh(mesh);
-      EXPECT_TRUE(r.solid()) << shape_name(shape) << " " << segments << ": "
-                             << describe_solid_defects(r);
+      EXPECT_TRUE(r.solid()) << shape_name(shape) << " " << segments << ": " << describe_solid_defects(r);
       // Consistent orientation plus positive signed volume means every triangle faces outward.
       EXPECT_GT(integrate_solid_mesh(mesh).mass, 0.0) << shape_name(shape) << " " << segments;
     }
@@ -60,7 +59,8 @@ Eigen::Vector4d errors(const MassProperties& got, const MassProperties& want) {
 /// it by 4(1 + O(N⁻²)): at N = 64 the ratio is within 3.9..4.1 (the O(N⁻²) correction is ~(π/N)²·c,
 /// measured below 1%). Richardson's (4 X(2N) − X(N))/3 removes the N⁻² term and leaves O(N⁻⁴):
 /// ~(error at N)² ≈ 2e-5 at N = 64; 1e-4 bounds it for all shapes. Finally the finest mesh is close.
-void expect_second_order(const Shape& shape, const std::function<MassProperties(const TriangleMesh&)>& of_mesh,
+void expect_second_order(const Shape& shape,
+                         const std::function<MassProperties(const TriangleMesh&)>& of_mesh,
                          const MassProperties& exact) {
   const int N = 64;
   const MassProperties coarse = of_mesh(tessellate(shape, N));
@@ -103,7 +103,8 @@ TEST(Tessellate, EllipsoidShellAreaConvergesToLegendresFormula) {
   const Ellipsoid e{Vec3(1.0, 0.6, 0.3)};
   const double exact = surface_area(e);
   auto err = [&](int n) {
-    return (shell_mass_properties(tessellate(e, n), 1.0, MassSpec::density(1.0)).surface_area - exact) / exact;
+    return (shell_mass_properties(tessellate(e, n), 1.0, MassSpec::density(1.0)).surface_area - exact) /
+           exact;
   };
   EXPECT_NEAR(err(64) / err(128), 4.0, 0.1);
   EXPECT_LT(std::abs(err(128)), 2.5e-3);

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "integrate/stages.hpp"
 #include "../support/ref_pack.hpp"
+#include "integrate/stages.hpp"
 #include "tumble/dynamics/columns.hpp"
 #include "tumble/math/simd.hpp"
 
@@ -50,13 +50,24 @@ Columns random_inputs() {
   std::uniform_real_distribution<double> uniform(0.5, 2.0);
   for (std::size_t i = 0; i < kBodies; ++i) {
     const Quat q = Quat(normal(rng), normal(rng), normal(rng), normal(rng)).normalized();
-    const double state[13] = {normal(rng), normal(rng), normal(rng), q.w(), q.x(), q.y(), q.z(),
-                              normal(rng), normal(rng), normal(rng), 10 * normal(rng), 10 * normal(rng), 10 * normal(rng)};
+    const double state[13] = {normal(rng),
+                              normal(rng),
+                              normal(rng),
+                              q.w(),
+                              q.x(),
+                              q.y(),
+                              q.z(),
+                              normal(rng),
+                              normal(rng),
+                              normal(rng),
+                              10 * normal(rng),
+                              10 * normal(rng),
+                              10 * normal(rng)};
     for (std::size_t k = 0; k < 13; ++k) in[k][i] = state[k];
-    in[13][i] = uniform(rng);                              // m
-    for (std::size_t k = 14; k < 17; ++k) in[k][i] = 0.1 * uniform(rng);  // Λ
-    for (std::size_t k = 17; k < 23; ++k) in[k][i] = normal(rng);          // f, τ
-    in[23][i] = 1e-3 * uniform(rng);                                        // h
+    in[13][i] = uniform(rng);                                                           // m
+    for (std::size_t k = 14; k < 17; ++k) in[k][i] = 0.1 * uniform(rng);                // Λ
+    for (std::size_t k = 17; k < 23; ++k) in[k][i] = normal(rng);                       // f, τ
+    in[23][i] = 1e-3 * uniform(rng);                                                    // h
     const double size = std::pow(10.0, -6.0 + 6.5 * static_cast<double>(i % 5) / 4.0);  // 1e-6 … 3
     const Vec3 phi = size * Vec3(normal(rng), normal(rng), normal(rng)).normalized();
     for (std::size_t k = 0; k < 3; ++k) in[24 + k][i] = phi(static_cast<Eigen::Index>(k));
@@ -70,9 +81,12 @@ Columns evaluate(const Columns& in, F&& f) {
   Columns out;
   for (std::size_t i = 0; i < kBodies; i += Lanes<T>::width) {
     auto arg = [&](std::size_t k) { return Lanes<T>::load(in[k] + i); };
-    const Coordinates<T> x{{arg(0), arg(1), arg(2)}, QuatT<T>(arg(3), arg(4), arg(5), arg(6)), {arg(7), arg(8), arg(9)},
+    const Coordinates<T> x{{arg(0), arg(1), arg(2)},
+                           QuatT<T>(arg(3), arg(4), arg(5), arg(6)),
+                           {arg(7), arg(8), arg(9)},
                            {arg(10), arg(11), arg(12)}};
-    const Vec3T<T> Lambda(arg(14), arg(15), arg(16)), f_w(arg(17), arg(18), arg(19)), tau(arg(20), arg(21), arg(22));
+    const Vec3T<T> Lambda(arg(14), arg(15), arg(16)), f_w(arg(17), arg(18), arg(19)),
+        tau(arg(20), arg(21), arg(22));
     const Vec3T<T> phi(arg(24), arg(25), arg(26));
     std::vector<T> values;
     f(values, x, arg(13), Lambda, f_w, tau, arg(23), phi);
@@ -104,16 +118,16 @@ void check(const char* what, F&& f) {
 
 TEST(GenericScalar, NewtonEulerInEveryFormulationIsTheSameOnDoublesAndPacks) {
   for (const Formulation F : {Formulation::world, Formulation::mixed, Formulation::body}) {
-    check("newton_euler", [F](auto& out, const auto& x, auto m, const auto& Lambda, const auto& f, const auto& tau, auto,
-                             const auto&) {
+    check("newton_euler", [F](auto& out, const auto& x, auto m, const auto& Lambda, const auto& f,
+                              const auto& tau, auto, const auto&) {
       using T = std::decay_t<decltype(m)>;
       put(out, newton_euler<T>(F, m, Lambda, x, f, tau));
       const auto [o_dot, q_dot] = kinematics<T>(F, x);
       put(out, o_dot), put(out, q_dot);
     });
   }
-  check("newton_euler_world", [](auto& out, const auto& x, auto m, const auto& Lambda, const auto& f, const auto& tau,
-                                 auto, const auto&) {
+  check("newton_euler_world", [](auto& out, const auto& x, auto m, const auto& Lambda, const auto& f,
+                                 const auto& tau, auto, const auto&) {
     using T = std::decay_t<decltype(m)>;
     put(out, newton_euler_world<T>(m, Lambda, x, f, tau));
     put(out, newton_euler_mixed<T>(m, Lambda, x, f, tau));

@@ -20,7 +20,9 @@ Model thrown_ball() {
   model.add_force<UniformGravity>(Vec3(0, 0, -g));
   return model;
 }
-Event landing() { return {"landing", [](const SystemState& s) { return s.bodies[0].o.z(); }, -1, true}; }
+Event landing() {
+  return {"landing", [](const SystemState& s) { return s.bodies[0].o.z(); }, -1, true};
+}
 
 TEST(Events, ABallStopsWhenItLandsAtTheClosedFormTime) {
   const Model model = thrown_ball();
@@ -37,8 +39,8 @@ TEST(Events, ABallStopsWhenItLandsAtTheClosedFormTime) {
     last_sample = s.t;
     return true;
   };
-  const SystemState end =
-      simulate(model, test::single({Vec3(0, 0, z0), Quat::Identity(), Vec3(0, 0, v0), Vec3::Zero()}), rs, hooks);
+  const SystemState end = simulate(
+      model, test::single({Vec3(0, 0, z0), Quat::Identity(), Vec3(0, 0, v0), Vec3::Zero()}), rs, hooks);
   const double t_star = (v0 + std::sqrt(v0 * v0 + 2 * g * z0)) / g;
   ASSERT_EQ(hits.size(), 1u);
   EXPECT_EQ(hits[0].name, "landing");
@@ -60,7 +62,8 @@ TEST(Events, TheTHandleFlipsAreRecordedAtTheEllipticInterval) {
   rs.integrator = "splitting";  // exact for a free body: only the event location's resolution remains
   RunHooks hooks;
   hooks.events.push_back({"flip", [](const SystemState& s) { return s.bodies[0].omega_b().y(); }, 0, false});
-  hooks.events.push_back({"flip up", [](const SystemState& s) { return s.bodies[0].omega_b().y(); }, +1, false});
+  hooks.events.push_back(
+      {"flip up", [](const SystemState& s) { return s.bodies[0].omega_b().y(); }, +1, false});
   std::vector<double> flips, ups;
   hooks.on_event = [&](const EventHit& hit) { (hit.name == "flip" ? flips : ups).push_back(hit.state.t); };
   simulate(model, test::single({Vec3::Zero(), Quat::Identity(), Vec3::Zero(), w0}), rs, hooks);
@@ -93,8 +96,8 @@ TEST(Events, AdaptiveRunsLocateEventsOnTheirDenseOutput) {
     samples.push_back(s.t);
     return true;
   };
-  const SystemState end =
-      simulate(model, test::single({Vec3(0, 0, z0), Quat::Identity(), Vec3(0, 0, v0), Vec3(0.1, 3, 0)}), rs, hooks);
+  const SystemState end = simulate(
+      model, test::single({Vec3(0, 0, z0), Quat::Identity(), Vec3(0, 0, v0), Vec3(0.1, 3, 0)}), rs, hooks);
   ASSERT_EQ(hits.size(), 2u);
   EXPECT_EQ(hits[0].name, "apex");
   EXPECT_NEAR(hits[0].state.t, v0 / g, 1e-13);
@@ -103,7 +106,8 @@ TEST(Events, AdaptiveRunsLocateEventsOnTheirDenseOutput) {
   EXPECT_EQ(end.t, hits[1].state.t);
   // Samples on the grid up to the landing, then the landing itself, in time order.
   ASSERT_GE(samples.size(), 3u);
-  for (size_t i = 0; i + 1 < samples.size(); ++i) EXPECT_NEAR(samples[i], 0.25 * static_cast<double>(i), 1e-12);
+  for (size_t i = 0; i + 1 < samples.size(); ++i)
+    EXPECT_NEAR(samples[i], 0.25 * static_cast<double>(i), 1e-12);
   EXPECT_EQ(samples.back(), end.t);
 }
 
@@ -124,9 +128,9 @@ TEST(Events, AdaptiveRunsStopAfterTheStepInWhichAStopIsRequested) {
   };
   hooks.stats = &stats;
   hooks.stop_requested = [&] { return ++asked == 5; };
-  const SystemState end =
-      simulate(model, test::single({Vec3::Zero(), Quat::Identity(), Vec3::Zero(), Vec3(0.3, 2, 0.1)}), rs, hooks);
-  EXPECT_EQ(stats.steps, 5);  // asked once per accepted step
+  const SystemState end = simulate(
+      model, test::single({Vec3::Zero(), Quat::Identity(), Vec3::Zero(), Vec3(0.3, 2, 0.1)}), rs, hooks);
+  EXPECT_EQ(stats.steps, 5);      // asked once per accepted step
   ASSERT_EQ(samples.size(), 2u);  // t = 0, then the state where the run stopped
   EXPECT_GT(end.t, 0.0);
   EXPECT_LT(end.t, 50.0);
@@ -137,9 +141,11 @@ TEST(Events, ANonFiniteEventValueIsAnErrorNamingTheEvent) {
   const Model model = thrown_ball();
   RunSettings rs;
   RunHooks hooks;
-  hooks.events.push_back({"broken", [](const SystemState& s) { return s.t > 0.5 ? std::nan("") : 1.0; }, 0, false});
+  hooks.events.push_back(
+      {"broken", [](const SystemState& s) { return s.t > 0.5 ? std::nan("") : 1.0; }, 0, false});
   try {
-    simulate(model, test::single({Vec3(0, 0, z0), Quat::Identity(), Vec3(0, 0, v0), Vec3::Zero()}), rs, hooks);
+    simulate(model, test::single({Vec3(0, 0, z0), Quat::Identity(), Vec3(0, 0, v0), Vec3::Zero()}), rs,
+             hooks);
     FAIL();
   } catch (const InvalidArgument& e) {
     EXPECT_NE(std::string(e.what()).find("event 'broken' returned nan"), std::string::npos) << e.what();

@@ -17,8 +17,9 @@ void* allocate(std::size_t n, std::size_t alignment) {
     g_bytes.fetch_add(static_cast<long>(n), std::memory_order_relaxed);
   }
   if (n == 0) n = 1;
-  void* p = alignment <= alignof(std::max_align_t) ? std::malloc(n)
-                                                   : std::aligned_alloc(alignment, (n + alignment - 1) / alignment * alignment);
+  void* p = alignment <= alignof(std::max_align_t)
+                ? std::malloc(n)
+                : std::aligned_alloc(alignment, (n + alignment - 1) / alignment * alignment);
   if (!p) throw std::bad_alloc();
   return p;
 }
@@ -51,7 +52,9 @@ namespace tumble::test {
 
 long allocations_counted() { return g_count.load(); }
 
-CountAllocations::CountAllocations() : start_(g_count.load()), start_bytes_(g_bytes.load()) { g_counting = true; }
+CountAllocations::CountAllocations() : start_(g_count.load()), start_bytes_(g_bytes.load()) {
+  g_counting = true;
+}
 CountAllocations::~CountAllocations() { g_counting = false; }
 long CountAllocations::count() const { return g_count.load() - start_; }
 long CountAllocations::bytes() const { return g_bytes.load() - start_bytes_; }

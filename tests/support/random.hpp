@@ -22,11 +22,9 @@ class Random {
     const double m = uniform(0.1, 10.0);
     // Moments from a random box's extents satisfy the triangle inequality by construction.
     const Vec3 s = vec(0.1, 2.0);
-    const Vec3 d(s.y() * s.y() + s.z() * s.z(), s.x() * s.x() + s.z() * s.z(),
-                 s.x() * s.x() + s.y() * s.y());
+    const Vec3 d(s.y() * s.y() + s.z() * s.z(), s.x() * s.x() + s.z() * s.z(), s.x() * s.x() + s.y() * s.y());
     const Mat3 R = rotation();
-    return MassProperties{m, vec(-1.0, 1.0), R * (m / 12.0 * d).asDiagonal() * R.transpose(),
-                          s.prod()};
+    return MassProperties{m, vec(-1.0, 1.0), R * (m / 12.0 * d).asDiagonal() * R.transpose(), s.prod()};
   }
 
  private:

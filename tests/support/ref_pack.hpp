@@ -35,11 +35,21 @@ struct RefPack {
     for (std::size_t i = 0; i < W; ++i) r.v[i] = f(a.v[i], b.v[i]);
     return r;
   }
-  friend RefPack operator+(const RefPack& a, const RefPack& b) { return zip([](double x, double y) { return x + y; }, a, b); }
-  friend RefPack operator-(const RefPack& a, const RefPack& b) { return zip([](double x, double y) { return x - y; }, a, b); }
-  friend RefPack operator*(const RefPack& a, const RefPack& b) { return zip([](double x, double y) { return x * y; }, a, b); }
-  friend RefPack operator/(const RefPack& a, const RefPack& b) { return zip([](double x, double y) { return x / y; }, a, b); }
-  friend RefPack operator-(const RefPack& a) { return map([](double x) { return -x; }, a); }
+  friend RefPack operator+(const RefPack& a, const RefPack& b) {
+    return zip([](double x, double y) { return x + y; }, a, b);
+  }
+  friend RefPack operator-(const RefPack& a, const RefPack& b) {
+    return zip([](double x, double y) { return x - y; }, a, b);
+  }
+  friend RefPack operator*(const RefPack& a, const RefPack& b) {
+    return zip([](double x, double y) { return x * y; }, a, b);
+  }
+  friend RefPack operator/(const RefPack& a, const RefPack& b) {
+    return zip([](double x, double y) { return x / y; }, a, b);
+  }
+  friend RefPack operator-(const RefPack& a) {
+    return map([](double x) { return -x; }, a);
+  }
   RefPack& operator+=(const RefPack& b) { return *this = *this + b; }
   RefPack& operator-=(const RefPack& b) { return *this = *this - b; }
   RefPack& operator*=(const RefPack& b) { return *this = *this * b; }
@@ -54,10 +64,18 @@ struct RefPack {
     for (std::size_t i = 0; i < W; ++i) r.v[i] = m.b[i] ? a.v[i] : b.v[i];
     return r;
   }
-  friend RefPack sqrt(const RefPack& a) { return map([](double x) { return std::sqrt(x); }, a); }
-  friend RefPack sin(const RefPack& a) { return map([](double x) { return std::sin(x); }, a); }
-  friend RefPack cos(const RefPack& a) { return map([](double x) { return std::cos(x); }, a); }
-  friend RefPack abs(const RefPack& a) { return map([](double x) { return std::abs(x); }, a); }
+  friend RefPack sqrt(const RefPack& a) {
+    return map([](double x) { return std::sqrt(x); }, a);
+  }
+  friend RefPack sin(const RefPack& a) {
+    return map([](double x) { return std::sin(x); }, a);
+  }
+  friend RefPack cos(const RefPack& a) {
+    return map([](double x) { return std::cos(x); }, a);
+  }
+  friend RefPack abs(const RefPack& a) {
+    return map([](double x) { return std::abs(x); }, a);
+  }
 };
 
 }  // namespace tumble::test
@@ -84,7 +102,15 @@ struct NumTraits<tumble::test::RefPack<W>> : GenericNumTraits<double> {
   using NonInteger = Real;
   using Literal = Real;
   using Nested = Real;
-  enum { IsComplex = 0, IsInteger = 0, IsSigned = 1, RequireInitialization = 1, ReadCost = 1, AddCost = 1, MulCost = 1 };
+  enum {
+    IsComplex = 0,
+    IsInteger = 0,
+    IsSigned = 1,
+    RequireInitialization = 1,
+    ReadCost = 1,
+    AddCost = 1,
+    MulCost = 1
+  };
   static Real epsilon() { return Real(NumTraits<double>::epsilon()); }
   static Real dummy_precision() { return Real(NumTraits<double>::dummy_precision()); }
   static int digits10() { return NumTraits<double>::digits10(); }

@@ -51,8 +51,9 @@ class Columns {
       n_ = n;
       count_ = count;
       stride_ = padded_size(n);
-      data_.reset(total() ? static_cast<double*>(::operator new[](total() * sizeof(double), std::align_val_t{64}))
-                          : nullptr);
+      data_.reset(total()
+                      ? static_cast<double*>(::operator new[](total() * sizeof(double), std::align_val_t{64}))
+                      : nullptr);
     }
     std::fill(data_.get(), data_.get() + total(), 0.0);
   }

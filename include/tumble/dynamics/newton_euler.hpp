@@ -80,7 +80,7 @@ TUMBLE_INLINE CoordinateRates<T> newton_euler_world(T m, const Vec3T<T>& Lambda,
 /// Mixed formulation: v in world, ^bω in body.
 template <class T>
 TUMBLE_INLINE CoordinateRates<T> newton_euler_mixed(T m, const Vec3T<T>& Lambda, const Coordinates<T>& x,
-                                      const Vec3T<T>& f_w, const Vec3T<T>& tau_b) {
+                                                    const Vec3T<T>& f_w, const Vec3T<T>& tau_b) {
   CoordinateRates<T> r;
   r.o_dot = x.v;
   r.q_dot = q_dot_body<T>(x.q, x.omega);
@@ -92,7 +92,7 @@ TUMBLE_INLINE CoordinateRates<T> newton_euler_mixed(T m, const Vec3T<T>& Lambda,
 /// Body formulation: ^bv and ^bω in body; ^bv̇ = ^bf/m − ^bω × ^bv, ȯ = R ^bv.
 template <class T>
 TUMBLE_INLINE CoordinateRates<T> newton_euler_body(T m, const Vec3T<T>& Lambda, const Coordinates<T>& x,
-                                     const Vec3T<T>& f_b, const Vec3T<T>& tau_b) {
+                                                   const Vec3T<T>& f_b, const Vec3T<T>& tau_b) {
   CoordinateRates<T> r;
   r.o_dot = x.q * x.v;
   r.q_dot = q_dot_body<T>(x.q, x.omega);
@@ -120,7 +120,8 @@ TUMBLE_INLINE std::pair<Vec3T<T>, QuatT<T>> kinematics(Formulation formulation, 
 /// mass): the wrench is rotated into the frames the formulation needs, ^bu = Rᵀ u.
 template <class T>
 TUMBLE_INLINE CoordinateRates<T> newton_euler(Formulation formulation, T m, const Vec3T<T>& Lambda,
-                                const Coordinates<T>& x, const Vec3T<T>& f_w, const Vec3T<T>& tau_w) {
+                                              const Coordinates<T>& x, const Vec3T<T>& f_w,
+                                              const Vec3T<T>& tau_w) {
   switch (formulation) {
     case Formulation::world:
       return newton_euler_world<T>(m, Lambda, x, f_w, tau_w);

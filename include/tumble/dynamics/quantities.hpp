@@ -48,8 +48,8 @@ inline Vec3 point_velocity(const RigidBody& body, const BodyState& s, const Vec3
 
 /// Acceleration of a body-fixed point: a + ω̇ × r + ω × (ω × r), r = x − o, given the centre-of-mass
 /// acceleration a and the angular acceleration ω̇ (world).
-inline Vec3 point_acceleration(const RigidBody& body, const BodyState& s, const Vec3& r_ref,
-                               const Vec3& a, const Vec3& omega_dot_w) {
+inline Vec3 point_acceleration(const RigidBody& body, const BodyState& s, const Vec3& r_ref, const Vec3& a,
+                               const Vec3& omega_dot_w) {
   const Vec3 r = point_position(body, s, r_ref) - s.o;
   return a + omega_dot_w.cross(r) + s.omega_w.cross(s.omega_w.cross(r));
 }

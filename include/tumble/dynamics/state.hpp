@@ -29,10 +29,10 @@ struct BodyState {
 
 /// Pose and velocity of the body reference frame, as a user describes a body.
 struct ReferenceFrameState {
-  Vec3 position = Vec3::Zero();     ///< origin of the reference frame, world (m)
+  Vec3 position = Vec3::Zero();         ///< origin of the reference frame, world (m)
   Quat orientation = Quat::Identity();  ///< reference frame → world
-  Vec3 velocity = Vec3::Zero();     ///< velocity of that origin, world (m/s)
-  Vec3 omega_w = Vec3::Zero();      ///< angular velocity, world (rad/s)
+  Vec3 velocity = Vec3::Zero();         ///< velocity of that origin, world (m/s)
+  Vec3 omega_w = Vec3::Zero();          ///< angular velocity, world (rad/s)
 };
 
 /// From the pose of the reference frame, the velocity of its origin and ω in `omega_frame` axes

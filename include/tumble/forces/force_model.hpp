@@ -77,7 +77,9 @@ struct BlockLoads {
     }
   }
   /// A force applied at the world point x of body j, whose centre of mass is at o: f and (x − o) × f.
-  void add_force_at(size_t j, const Vec3& o, const Vec3& force, const Vec3& x) { add(j, force, (x - o).cross(force)); }
+  void add_force_at(size_t j, const Vec3& o, const Vec3& force, const Vec3& x) {
+    add(j, force, (x - o).cross(force));
+  }
 };
 
 class ForceModel {

@@ -62,7 +62,8 @@ class PureTorque final : public LocalForceModel {
 /// Viscous damping: f = −c_v v, τ = −c_ω ω (world), on one body or all_bodies (and particles: f = −c_v v).
 class ViscousDamping final : public LocalForceModel {
  public:
-  ViscousDamping(size_t body, double linear, double angular) : body_(body), linear_(linear), angular_(angular) {}
+  ViscousDamping(size_t body, double linear, double angular)
+      : body_(body), linear_(linear), angular_(angular) {}
   void accumulate_block(const BodyBlock& block, BlockLoads& loads) const override;
   void accumulate_particles(const SystemView& view, std::span<Vec3> f) const override;
   void check(size_t n_bodies, size_t n_particles) const override;
@@ -76,7 +77,8 @@ class ViscousDamping final : public LocalForceModel {
 /// Quadratic drag: f = −k_v |v| v, τ = −k_ω |ω| ω; k_v = ½ ρ_fluid C_d A.
 class QuadraticDrag final : public LocalForceModel {
  public:
-  QuadraticDrag(size_t body, double linear, double angular) : body_(body), linear_(linear), angular_(angular) {}
+  QuadraticDrag(size_t body, double linear, double angular)
+      : body_(body), linear_(linear), angular_(angular) {}
   void accumulate_block(const BodyBlock& block, BlockLoads& loads) const override;
   void accumulate_particles(const SystemView& view, std::span<Vec3> f) const override;
   void check(size_t n_bodies, size_t n_particles) const override;

@@ -61,9 +61,9 @@ struct Tolerances {
 
 /// Work done by an integrator in a run.
 struct IntegratorStats {
-  long steps = 0;            ///< accepted steps
-  long rejected = 0;         ///< rejected step attempts (adaptive only)
-  long evaluations = 0;      ///< right-hand-side (force model) evaluations
+  long steps = 0;        ///< accepted steps
+  long rejected = 0;     ///< rejected step attempts (adaptive only)
+  long evaluations = 0;  ///< right-hand-side (force model) evaluations
 };
 
 class AdaptiveIntegrator {

@@ -17,12 +17,12 @@ namespace tumble {
 /// cn r = k′ sd v, dn r = k′ nd v): near r = ±K, cn and dn are small and the angle am r ≈ ±π/2
 /// would give them (and Π(n; am r), whose φ-derivative is ∝ 1/dn) only absolute accuracy.
 struct JacobiValues {
-  double sn = 0.0, cn = 1.0, dn = 1.0;  ///< at u
-  double am = 0.0;                       ///< am u, continuous in u: jπ + am r
-  double j = 0.0;                        ///< half-periods removed (an integer)
-  double r = 0.0;                        ///< u − 2Kj
-  double sn_r = 0.0, cn_r = 1.0;         ///< sn r, cn r (dn r = dn u)
-  bool reflected = false;                ///< |r| > K/2: the values below are set
+  double sn = 0.0, cn = 1.0, dn = 1.0;                 ///< at u
+  double am = 0.0;                                     ///< am u, continuous in u: jπ + am r
+  double j = 0.0;                                      ///< half-periods removed (an integer)
+  double r = 0.0;                                      ///< u − 2Kj
+  double sn_r = 0.0, cn_r = 1.0;                       ///< sn r, cn r (dn r = dn u)
+  bool reflected = false;                              ///< |r| > K/2: the values below are set
   double v = 0.0, sn_v = 0.0, cn_v = 1.0, dn_v = 1.0;  ///< v = K − |r| and sn, cn, dn there
 };
 
@@ -48,9 +48,9 @@ class JacobiElliptic {
   static constexpr int kMaxSteps = 40;
   double landen_am(double r) const;  // am r by the descending Landen recursion (|r| ≤ K/2 in use)
   double m_, m1_, K_;
-  int steps_ = 0;             // N, the number of AGM steps
-  double a_N_ = 1.0;          // a_N, the arithmetic–geometric mean of 1 and k′
-  double ratio_[kMaxSteps];   // c_n / a_n, n = 1 … N
+  int steps_ = 0;            // N, the number of AGM steps
+  double a_N_ = 1.0;         // a_N, the arithmetic–geometric mean of 1 and k′
+  double ratio_[kMaxSteps];  // c_n / a_n, n = 1 … N
 };
 
 /// The complete integral of the third kind, Π(n | m) = ∫₀^{π/2} dθ / ((1 − n sin²θ) √(1 − m sin²θ)),
@@ -77,7 +77,7 @@ class EllipticPi {
 
  private:
   double n_, m_, m1_;
-  double complete_ = 0.0;   // Π(n | m)
+  double complete_ = 0.0;                                   // Π(n | m)
   double n_reflected_ = 0.0, c_linear_ = 0.0, c_Pi_ = 0.0;  // n′, m/(m−n), −n m₁/((m−n)(1−n))
 };
 

@@ -27,11 +27,11 @@ struct SceneBodyInfo {
 };
 
 struct Scene {
-  std::filesystem::path path;  ///< the scene file (as given)
-  std::string text;            ///< its contents, stored with the outputs
-  RunSettings settings;        ///< [simulation]
-  Model model;                 ///< bodies, particles and force models, in file order
-  SystemState initial;         ///< the state at t = 0
+  std::filesystem::path path;            ///< the scene file (as given)
+  std::string text;                      ///< its contents, stored with the outputs
+  RunSettings settings;                  ///< [simulation]
+  Model model;                           ///< bodies, particles and force models, in file order
+  SystemState initial;                   ///< the state at t = 0
   std::vector<SceneBodyInfo> body_info;  ///< parallel to model.bodies
   /// Which invariants the scene's forces conserve (decided from the force models present).
   Conservation conserved;

@@ -49,10 +49,10 @@ struct ValidityOptions {
 
 /// Mass m, centre of mass c and inertia tensor about c, in the body's reference frame.
 struct MassProperties {
-  double mass = 0.0;                    ///< m (kg)
-  Vec3 center_of_mass = Vec3::Zero();   ///< c (m), in the reference frame
-  Mat3 inertia = Mat3::Zero();          ///< I about c, reference-frame axes (kg·m²)
-  double volume = 0.0;                  ///< volume of material (m³); 0 where not known (explicit data)
+  double mass = 0.0;                   ///< m (kg)
+  Vec3 center_of_mass = Vec3::Zero();  ///< c (m), in the reference frame
+  Mat3 inertia = Mat3::Zero();         ///< I about c, reference-frame axes (kg·m²)
+  double volume = 0.0;                 ///< volume of material (m³); 0 where not known (explicit data)
 
   /// A body given by its mass, centre and inertia about its centre (e.g. from a data sheet).
   static MassProperties from_inertia(double mass, const Vec3& center_of_mass, const Mat3& inertia,
@@ -83,9 +83,7 @@ struct MassProperties {
 
   /// Radius of gyration about an axis: k = √(I_l / m).
   double radius_of_gyration(const Vec3& axis, const Vec3& point) const;
-  double radius_of_gyration(const Vec3& axis) const {
-    return radius_of_gyration(axis, center_of_mass);
-  }
+  double radius_of_gyration(const Vec3& axis) const { return radius_of_gyration(axis, center_of_mass); }
 
   /// Principal moments (ascending) and axes of the inertia tensor about the centre of mass.
   PrincipalAxes principal_axes(const PrincipalAxesOptions& options = {}) const {

@@ -52,17 +52,17 @@ struct MeshReport {
   std::size_t vertex_count = 0;
   std::size_t triangle_count = 0;
 
-  std::size_t non_finite_vertex_count = 0;    ///< NaN or infinite coordinates
+  std::size_t non_finite_vertex_count = 0;  ///< NaN or infinite coordinates
   std::vector<VertexRef> non_finite_vertices;
-  std::size_t out_of_range_count = 0;         ///< triangles with an index ≥ vertex_count
+  std::size_t out_of_range_count = 0;  ///< triangles with an index ≥ vertex_count
   std::vector<TriangleRef> out_of_range_triangles;
-  std::size_t degenerate_count = 0;           ///< a repeated index, or zero area (see check_mesh)
+  std::size_t degenerate_count = 0;  ///< a repeated index, or zero area (see check_mesh)
   std::vector<TriangleRef> degenerate_triangles;
-  std::size_t boundary_edge_count = 0;        ///< edges used by one triangle only (holes)
+  std::size_t boundary_edge_count = 0;  ///< edges used by one triangle only (holes)
   std::vector<EdgeUse> boundary_edges;
-  std::size_t non_manifold_edge_count = 0;    ///< edges used by more than two triangles
+  std::size_t non_manifold_edge_count = 0;  ///< edges used by more than two triangles
   std::vector<NonManifoldEdge> non_manifold_edges;
-  std::size_t misoriented_edge_count = 0;     ///< edges two triangles traverse the same way
+  std::size_t misoriented_edge_count = 0;  ///< edges two triangles traverse the same way
   std::vector<MisorientedEdge> misoriented_edges;
 
   double surface_area = 0.0;  ///< Σ triangle areas (m²); 0 if indices or coordinates are invalid
@@ -72,8 +72,8 @@ struct MeshReport {
   bool usable() const { return non_finite_vertex_count == 0 && out_of_range_count == 0; }
   /// Bounds a solid: usable, no degenerate triangles, closed, manifold, consistently oriented.
   bool solid() const {
-    return usable() && degenerate_count == 0 && boundary_edge_count == 0 &&
-           non_manifold_edge_count == 0 && misoriented_edge_count == 0;
+    return usable() && degenerate_count == 0 && boundary_edge_count == 0 && non_manifold_edge_count == 0 &&
+           misoriented_edge_count == 0;
   }
 };
 

@@ -31,7 +31,7 @@ MeshMassResult solid_mass_properties(const TriangleMesh& mesh, const MassSpec& s
 
 /// Thin-shell mass properties: the surface carries mass uniformly, surface density ρ·t (spec density
 /// times `thickness`) or the given total mass. Works for open meshes as well as closed ones.
-MeshMassResult shell_mass_properties(const TriangleMesh& mesh, double thickness,
-                                     const MassSpec& spec, const std::string& name = "mesh");
+MeshMassResult shell_mass_properties(const TriangleMesh& mesh, double thickness, const MassSpec& spec,
+                                     const std::string& name = "mesh");
 
 }  // namespace tumble

@@ -28,8 +28,15 @@ struct NumTraits<xsimd::batch<double, Arch>> : GenericNumTraits<double> {
   using NonInteger = Real;
   using Literal = Real;
   using Nested = Real;
-  enum { IsComplex = 0, IsInteger = 0, IsSigned = 1, RequireInitialization = 1, ReadCost = 1, AddCost = 1,
-         MulCost = 1 };
+  enum {
+    IsComplex = 0,
+    IsInteger = 0,
+    IsSigned = 1,
+    RequireInitialization = 1,
+    ReadCost = 1,
+    AddCost = 1,
+    MulCost = 1
+  };
   static Real epsilon() { return Real(NumTraits<double>::epsilon()); }
   static Real dummy_precision() { return Real(NumTraits<double>::dummy_precision()); }
   static int digits10() { return NumTraits<double>::digits10(); }

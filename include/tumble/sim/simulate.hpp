@@ -15,9 +15,9 @@ struct RunSettings {
   double output_interval = 0.0;  ///< s between samples; 0 = every step. The final time is always sampled.
   Formulation formulation = Formulation::mixed;
   std::string integrator = "rk4";
-  Tolerances tolerances;         ///< for adaptive integrators (dopri45)
-  int threads = 1;               ///< threads for fixed-step integrators; 0: one per hardware thread.
-                                 ///< Results are bit-identical for any count.
+  Tolerances tolerances;  ///< for adaptive integrators (dopri45)
+  int threads = 1;        ///< threads for fixed-step integrators; 0: one per hardware thread.
+                          ///< Results are bit-identical for any count.
 };
 
 /// Throws InvalidArgument unless duration ≥ 0, timestep > 0, output_interval ≥ 0, all finite, threads in
@@ -61,7 +61,8 @@ struct RunHooks {
 
 /// Runs the model from `state` and returns the final state. Throws tumble::Error naming the body,
 /// time and step if a state becomes non-finite (a step too large, or a force that blows up).
-SystemState simulate(const Model& model, SystemState state, const RunSettings& settings, const RunHooks& hooks);
+SystemState simulate(const Model& model, SystemState state, const RunSettings& settings,
+                     const RunHooks& hooks);
 
 /// The same with only the commonly used hooks.
 SystemState simulate(const Model& model, SystemState state, const RunSettings& settings,
