@@ -134,10 +134,27 @@ TEST(JacobiElliptic, ThirdKindIntegralAgreesWithBoostEllint3) {
   }
 }
 
+TEST(JacobiElliptic, CompleteThirdKindIntegralIsCorrectlyRoundedAlsoForLargeNegativeN) {
+  // Reference values: Boost's Carlson forms in 50-digit arithmetic (cpp_bin_float_50) for these double
+  // inputs. The Carlson form R_F + (n/3) R_J (each term correctly rounded, summed in double) cancels for
+  // n ≪ −1 (4.4e-14 relative at n = −1e6); Bulirsch's cel (elliptic_Pi_complete) is within half an ulp.
+  struct Ref {
+    double n, m1, Pi;
+  };
+  const Ref refs[] = {
+      {-1.78, 0.3, 1.157477079768482210839836},    {-1e3, 0.3, 0.05046398798773129214813433},
+      {-1e6, 1e-8, 0.001580391381443460695026952}, {-0.01, 1e-12, 15.06116018251164706625495},
+      {0.4, 0.9, 2.088633792489764898787574},      {-60.0, 1e-300, 5.867981885099428469721798},
+  };
+  for (const Ref& r : refs)
+    EXPECT_NEAR(elliptic_Pi_complete(r.n, r.m1), r.Pi, kEps * r.Pi) << r.n << " " << r.m1;
+  EXPECT_TRUE(std::isinf(elliptic_Pi_complete(-1.0, 0.0)));
+}
+
 TEST(JacobiElliptic, EllipticPiAgreesWithTheLongDoubleRouteToAFewUlps) {
-  // EllipticPi evaluates its incomplete part with R_F, R_J in double (≤ 3.1ε measured) and the complete
-  // Π(n | m) with Boost's long-double promotion; the reference below is the same formula with every
-  // integral promoted (elliptic_Pi_incomplete, elliptic_Pi_complete), including the reflection about K.
+  // EllipticPi evaluates its incomplete part with R_F, R_J in double (≤ 3.1ε measured); the reference
+  // below is the same formula with the incomplete integrals promoted to long double
+  // (elliptic_Pi_incomplete), including the reflection about K.
   for (double m1 : {0.9, 0.4, 0.1, 1e-8}) {
     const JacobiElliptic f(1.0 - m1, m1);
     const double m = f.m();

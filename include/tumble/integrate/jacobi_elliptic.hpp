@@ -54,7 +54,8 @@ class JacobiElliptic {
 };
 
 /// The complete integral of the third kind, Π(n | m) = ∫₀^{π/2} dθ / ((1 − n sin²θ) √(1 − m sin²θ)),
-/// from k′² = m₁ (Carlson: R_F(0, m₁, 1) + (n/3) R_J(0, m₁, 1, 1 − n)); n < 1, m₁ > 0.
+/// from k′² = m₁ (Bulirsch's cel(k′, 1 − n, 1, 1) in long double: correctly rounded, also for n ≪ −1
+/// where the Carlson form R_F(0, m₁, 1) + (n/3) R_J(0, m₁, 1, 1 − n) cancels); n < 1, m₁ ≥ 0 (+∞ at 0).
 double elliptic_Pi_complete(double n, double m1);
 
 /// The incomplete integral Π(n; φ | m) for |φ| ≤ π/2, given s = sin φ, c = cos φ and d = √(1 − m s²):
@@ -70,7 +71,7 @@ class EllipticPi {
   /// Throws InvalidArgument unless n ≤ 0 (the free rigid body needs n = −N ≤ 0).
   EllipticPi(double n, const JacobiElliptic& f);
   /// Π(n; am u | m) from the values f(u). The complete Π(n | m) (it multiplies the half-periods j) is
-  /// evaluated once, with Boost's long-double promotion as everywhere else here; the incomplete part
+  /// evaluated once, correctly rounded (elliptic_Pi_complete); the incomplete part
   /// |Π(n; am r)| ≤ Π(n | m) evaluates R_F and R_J in double (≤ 3ε relative instead of 0.5ε, and
   /// 3× faster): the phase of the free rigid body then moves by at most one ulp of itself.
   double operator()(const JacobiValues& v) const;
