@@ -20,21 +20,13 @@
 #include <vector>
 
 #include "../tests/support/allocation_counter.hpp"
+#include "machine.hpp"
 #include "tumble/forces/forces.hpp"
 #include "tumble/integrate/integrator.hpp"
 
 using namespace tumble;
 
 namespace {
-
-std::string cpu_model() {
-  std::ifstream in("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
-  }
-  return "unknown CPU";
-}
 
 std::vector<std::string> split(const std::string& s) {
   std::vector<std::string> out;
@@ -101,7 +93,7 @@ int main(int argc, char** argv) {
       "batched engine throughput: free boxes under gravity, h = 1e-3 s, mixed formulation, %d interleaved "
       "repetitions of >= 0.3 s\nmachine: %s, %u hardware threads; engine built for %s (%d doubles per "
       "pack)\n\n",
-      repetitions, cpu_model().c_str(), std::thread::hardware_concurrency(),
+      repetitions, bench::cpu_model().c_str(), std::thread::hardware_concurrency(),
       engine_info().instruction_set.c_str(), engine_info().lanes);
   std::vector<long> sizes;
   for (long n : {1L, 100L, 10000L, 100000L, 1000000L}) {

@@ -10,6 +10,7 @@
 #include <cstdio>
 
 #include "integrate/stages.hpp"
+#include "tumble/math/simd.hpp"
 
 namespace {
 
@@ -44,21 +45,7 @@ struct F {
 
 namespace Eigen {
 template <>
-struct NumTraits<F> : GenericNumTraits<double> {
-  using Real = F;
-  using NonInteger = F;
-  using Literal = F;
-  using Nested = F;
-  enum {
-    IsComplex = 0,
-    IsInteger = 0,
-    IsSigned = 1,
-    RequireInitialization = 1,
-    ReadCost = 1,
-    AddCost = 1,
-    MulCost = 1
-  };
-};
+struct NumTraits<F> : tumble::PackNumTraits<F> {};
 }  // namespace Eigen
 
 using namespace tumble;

@@ -14,6 +14,7 @@
 #include <unistd.h>
 #include <vector>
 
+#include "machine.hpp"
 #include "tumble/mass/mesh_io.hpp"
 #include "tumble/mass/mesh_mass.hpp"
 #include "tumble/mass/tessellate.hpp"
@@ -72,14 +73,6 @@ void BM_LoadStlAndSolidMassProperties(benchmark::State& state) {
 }
 BENCHMARK(BM_LoadStlAndSolidMassProperties)->Unit(benchmark::kMillisecond)->ComputeStatistics("min", minimum);
 
-std::string cpu_model() {
-  std::ifstream in("/proc/cpuinfo");
-  for (std::string line; std::getline(in, line);) {
-    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
-  }
-  return "unknown CPU";
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -93,7 +86,7 @@ int main(int argc, char** argv) {
     args.push_back(only.data());
   }
   int n = static_cast<int>(args.size());
-  benchmark::AddCustomContext("cpu_model", cpu_model());
+  benchmark::AddCustomContext("cpu_model", bench::cpu_model());
   benchmark::AddCustomContext("hardware_threads", std::to_string(std::thread::hardware_concurrency()));
   benchmark::AddCustomContext("mesh", "torus R=1 r=0.3, 1000x1000 segments, 2e6 triangles");
   benchmark::Initialize(&n, args.data());

@@ -13,21 +13,13 @@
 #include <thread>
 #include <vector>
 
+#include "machine.hpp"
 #include "tumble/integrate/euler_poinsot.hpp"
 #include "tumble/sim/simulate.hpp"
 
 using namespace tumble;
 
 namespace {
-
-std::string cpu_model() {
-  std::ifstream in("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
-  }
-  return "unknown CPU";
-}
 
 struct Row {
   std::string method;
@@ -56,7 +48,8 @@ int main(int argc, char** argv) {
       Lambda(0), Lambda(1), Lambda(2), omega_b0(0), omega_b0(1), omega_b0(2));
   std::printf(
       "T = %g s (%.0f flips), mixed formulation, %d repetitions; machine: %s, %u hardware threads\n\n", T,
-      T / exact.flip_interval(), repetitions, cpu_model().c_str(), std::thread::hardware_concurrency());
+      T / exact.flip_interval(), repetitions, bench::cpu_model().c_str(),
+      std::thread::hardware_concurrency());
 
   std::vector<Row> rows;
   auto measure = [&](const std::string& method, const std::string& setting, RunSettings rs) {

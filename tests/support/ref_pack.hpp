@@ -8,6 +8,7 @@
 #include <cstddef>
 
 #include "tumble/math/lanes.hpp"
+#include "tumble/math/simd.hpp"
 #include "tumble/math/types.hpp"
 
 namespace tumble::test {
@@ -97,22 +98,5 @@ struct Lanes<test::RefPack<W>> {
 
 namespace Eigen {
 template <std::size_t W>
-struct NumTraits<tumble::test::RefPack<W>> : GenericNumTraits<double> {
-  using Real = tumble::test::RefPack<W>;
-  using NonInteger = Real;
-  using Literal = Real;
-  using Nested = Real;
-  enum {
-    IsComplex = 0,
-    IsInteger = 0,
-    IsSigned = 1,
-    RequireInitialization = 1,
-    ReadCost = 1,
-    AddCost = 1,
-    MulCost = 1
-  };
-  static Real epsilon() { return Real(NumTraits<double>::epsilon()); }
-  static Real dummy_precision() { return Real(NumTraits<double>::dummy_precision()); }
-  static int digits10() { return NumTraits<double>::digits10(); }
-};
+struct NumTraits<tumble::test::RefPack<W>> : tumble::PackNumTraits<tumble::test::RefPack<W>> {};
 }  // namespace Eigen

@@ -20,14 +20,16 @@ struct Lanes<xsimd::batch<double, Arch>> {
 
 }  // namespace tumble
 
-namespace Eigen {
+namespace tumble {
 
-template <class Arch>
-struct NumTraits<xsimd::batch<double, Arch>> : GenericNumTraits<double> {
-  using Real = xsimd::batch<double, Arch>;
-  using NonInteger = Real;
-  using Literal = Real;
-  using Nested = Real;
+/// Eigen::NumTraits for a number type made of doubles — a SIMD pack, the tests' reference pack, the
+/// benchmarks' counting double: Eigen's specialisation for such a type derives from this.
+template <class T>
+struct PackNumTraits : Eigen::GenericNumTraits<double> {
+  using Real = T;
+  using NonInteger = T;
+  using Literal = T;
+  using Nested = T;
   enum {
     IsComplex = 0,
     IsInteger = 0,
@@ -37,9 +39,16 @@ struct NumTraits<xsimd::batch<double, Arch>> : GenericNumTraits<double> {
     AddCost = 1,
     MulCost = 1
   };
-  static Real epsilon() { return Real(NumTraits<double>::epsilon()); }
-  static Real dummy_precision() { return Real(NumTraits<double>::dummy_precision()); }
-  static int digits10() { return NumTraits<double>::digits10(); }
+  static T epsilon() { return T(Eigen::NumTraits<double>::epsilon()); }
+  static T dummy_precision() { return T(Eigen::NumTraits<double>::dummy_precision()); }
+  static int digits10() { return Eigen::NumTraits<double>::digits10(); }
 };
+
+}  // namespace tumble
+
+namespace Eigen {
+
+template <class Arch>
+struct NumTraits<xsimd::batch<double, Arch>> : tumble::PackNumTraits<xsimd::batch<double, Arch>> {};
 
 }  // namespace Eigen
