@@ -1,12 +1,11 @@
 // CSV trajectories. Two files:
-//   trajectory:  t,body,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz — one row per body per sample; the pose
-//                of the body's reference frame in world (position, unit quaternion w,x,y,z mapping the
-//                reference frame to world), the velocity of its origin and the angular velocity, both
-//                world. %.17g: every double reads back bit for bit.
-//   diagnostics: t,kinetic_energy,potential_energy,total_energy,px,py,pz,Lx,Ly,Lz,energy_drift,
-//                linear_momentum_drift,angular_momentum_drift — one row per sample; momenta in world,
-//                L about the world origin; drifts relative to t = 0 (drift_monitor.hpp). A field is
-//                empty where the quantity is undefined (no potential, or zero at t = 0), never "nan".
+//   trajectory:  t,body, then the columns of each chosen output field (output_fields.hpp; by default
+//                px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz: the pose of the body's reference frame in world,
+//                the velocity of its origin and ω, world) — one row per body and particle per sample.
+//                %.17g: every double reads back bit for bit.
+//   diagnostics: t and the columns of every SystemField (kinetic_energy, …, angular_momentum_drift) —
+//                one row per sample. A field is empty where the quantity is undefined (no potential,
+//                or zero at t = 0), never "nan".
 #include <fmt/format.h>
 
 #include <cerrno>
@@ -61,51 +60,56 @@ class CsvFile {
   bool failed_ = false;
 };
 
-void optional_field(fmt::memory_buffer& out, const std::optional<double>& x) {
-  if (x) fmt::format_to(std::back_inserter(out), "{:.17g}", *x);
+std::string header(const std::vector<std::string_view>& first, auto fields) {
+  std::vector<std::string_view> names = first;
+  for (const auto& f : fields) {
+    const auto& field = *f;
+    names.insert(names.end(), field.columns.begin(), field.columns.begin() + field.width);
+  }
+  return fmt::format("{}", fmt::join(names, ","));
+}
+
+std::vector<const SystemField*> all_system_fields() {
+  std::vector<const SystemField*> out;
+  for (const SystemField& f : system_fields()) out.push_back(&f);
+  return out;
 }
 
 class CsvWriter final : public TrajectoryWriter {
  public:
   CsvWriter(const std::filesystem::path& trajectory, const std::filesystem::path& diagnostics,
-            const Model& model)
+            const Model& model, std::vector<const BodyField*> fields)
       : names_(io::row_names(model)),
-        trajectory_(trajectory, "t,body,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz"),
-        diagnostics_(diagnostics,
-                     "t,kinetic_energy,potential_energy,total_energy,px,py,pz,Lx,Ly,Lz,energy_drift,"
-                     "linear_momentum_drift,angular_momentum_drift") {}
+        fields_(std::move(fields)),
+        trajectory_(trajectory, header({"t", "body"}, fields_)),
+        diagnostics_(diagnostics, header({"t"}, all_system_fields())) {}
 
   void write(const Model& model, const SystemState& state, const DriftSample& d) override {
-    io::sample_rows(model, state, rows_);
     buffer_.clear();
     auto out = std::back_inserter(buffer_);
-    for (size_t i = 0; i < rows_.size(); ++i) {
-      const ReferenceFrameState& r = rows_[i];
-      const Quat& q = r.orientation;
-      fmt::format_to(out,
-                     "{:.17g},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},"
-                     "{:.17g},{:.17g},{:.17g},{:.17g}\n",
-                     state.t, names_[i], r.position.x(), r.position.y(), r.position.z(), q.w(), q.x(), q.y(),
-                     q.z(), r.velocity.x(), r.velocity.y(), r.velocity.z(), r.omega_w.x(), r.omega_w.y(),
-                     r.omega_w.z());
+    double values[4];
+    for (size_t r = 0; r < names_.size(); ++r) {
+      fmt::format_to(out, "{:.17g},{}", state.t, names_[r]);
+      for (const BodyField* f : fields_) {
+        io::field_values(*f, model, state, r, values);
+        for (int k = 0; k < f->width; ++k) fmt::format_to(out, ",{:.17g}", values[k]);
+      }
+      fmt::format_to(out, "\n");
     }
     trajectory_.write(std::string_view(buffer_.data(), buffer_.size()));
 
     buffer_.clear();
-    const Invariants& inv = d.invariants;
-    fmt::format_to(out, "{:.17g},{:.17g},", state.t, inv.kinetic_energy);
-    optional_field(buffer_, inv.potential_energy);
-    fmt::format_to(out, ",");
-    optional_field(buffer_, inv.total_energy());
-    const Vec3& p = inv.linear_momentum;
-    const Vec3& L = inv.angular_momentum;
-    fmt::format_to(out, ",{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},", p.x(), p.y(), p.z(), L.x(),
-                   L.y(), L.z());
-    optional_field(buffer_, d.energy_drift);
-    fmt::format_to(out, ",");
-    optional_field(buffer_, d.linear_momentum_drift);
-    fmt::format_to(out, ",");
-    optional_field(buffer_, d.angular_momentum_drift);
+    fmt::format_to(out, "{:.17g}", state.t);
+    for (const SystemField& f : system_fields()) {
+      const bool defined = f.of_sample(d, values);
+      for (int k = 0; k < f.width; ++k) {
+        if (defined) {
+          fmt::format_to(out, ",{:.17g}", values[k]);
+        } else {
+          fmt::format_to(out, ",");
+        }
+      }
+    }
     fmt::format_to(out, "\n");
     diagnostics_.write(std::string_view(buffer_.data(), buffer_.size()));
     ++samples_;
@@ -126,9 +130,9 @@ class CsvWriter final : public TrajectoryWriter {
 
  private:
   std::vector<std::string> names_;
+  std::vector<const BodyField*> fields_;
   CsvFile trajectory_;
   CsvFile diagnostics_;
-  std::vector<ReferenceFrameState> rows_;
   fmt::memory_buffer buffer_;
   long samples_ = 0;
 };
@@ -143,12 +147,12 @@ std::filesystem::path diagnostics_path(const std::filesystem::path& trajectory) 
 
 std::unique_ptr<TrajectoryWriter> make_csv_writer(const std::filesystem::path& trajectory,
                                                   const std::filesystem::path& diagnostics,
-                                                  const Model& model, const TrajectoryInfo&) {
+                                                  const Model& model, const TrajectoryInfo& info) {
   if (std::filesystem::absolute(trajectory) == std::filesystem::absolute(diagnostics)) {
     throw InvalidArgument(fmt::format(
         "the trajectory and the diagnostics would both be {}: give different files", trajectory.string()));
   }
-  return std::make_unique<CsvWriter>(trajectory, diagnostics, model);
+  return std::make_unique<CsvWriter>(trajectory, diagnostics, model, body_fields(info.fields));
 }
 
 }  // namespace tumble

@@ -2,13 +2,14 @@
 //
 //   /t                 (n,)          s
 //   /names             (N,)          body names, then particle names (UTF-8 strings)
-//   /position          (n, N, 3)     origin of each body's reference frame, world (m)
-//   /orientation       (n, N, 4)     unit quaternion (w, x, y, z): reference frame -> world
-//   /velocity          (n, N, 3)     velocity of that origin, world (m/s)
-//   /angular_velocity  (n, N, 3)     world (rad/s); particles: identity orientation, zero ω
-//   /diagnostics/kinetic_energy (n,), potential_energy and total_energy (n,) when every force has a
-//     potential, linear_momentum (n, 3), angular_momentum (n, 3) (world, about the origin), and
-//     energy_drift, linear_momentum_drift, angular_momentum_drift (n,) where defined (drift_monitor.hpp)
+//   /<field>           (n, N, width) one dataset per chosen output field (output_fields.hpp), by
+//                      default position, orientation (w, x, y, z), velocity and angular_velocity: the
+//                      pose and velocity of each body's reference frame, world; particles are frames
+//                      with the identity orientation and zero ω
+//   /diagnostics/<field> (n,) or (n, 3): every SystemField defined at t = 0 (kinetic_energy, …,
+//                      angular_momentum_drift; potential and total energy only when every force has a
+//                      potential, a drift only where its scale at t = 0 is not zero)
+//   attributes of every field's dataset: unit, frame, meaning (from the same table)
 //   attributes of /: tumble_version, scene (the scene file's text), scene_file, integrator,
 //     formulation, timestep, duration, output_interval, complete (1, or 0 if interrupted), t_end
 //
@@ -148,6 +149,7 @@ class Series {
   }
 
   bool close() { return dataset_.reset(); }
+  hid_t id() const { return dataset_.get(); }
 
  private:
   std::string name_;
@@ -163,7 +165,10 @@ class Series {
 class Hdf5Writer final : public TrajectoryWriter {
  public:
   Hdf5Writer(const std::filesystem::path& path, const Model& model, const TrajectoryInfo& info)
-      : staged_(path), check_{path.string()}, names_(io::row_names(model)) {
+      : staged_(path),
+        check_{path.string()},
+        names_(io::row_names(model)),
+        fields_(body_fields(info.fields)) {
     // Errors are reported by return codes, turned into one FileError line; HDF5's own stack print
     // to stderr would only add noise.
     H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
@@ -187,10 +192,14 @@ class Hdf5Writer final : public TrajectoryWriter {
     write_names();
     const hsize_t N = names_.size();
     t_.emplace(root, "t", std::vector<hsize_t>{}, check_);
-    position_.emplace(root, "position", std::vector<hsize_t>{N, 3}, check_);
-    orientation_.emplace(root, "orientation", std::vector<hsize_t>{N, 4}, check_);
-    velocity_.emplace(root, "velocity", std::vector<hsize_t>{N, 3}, check_);
-    angular_velocity_.emplace(root, "angular_velocity", std::vector<hsize_t>{N, 3}, check_);
+    string_attribute(t_->id(), "unit", "s", check_);
+    field_series_.reserve(fields_.size());
+    for (const BodyField* f : fields_) {
+      const hsize_t width = static_cast<hsize_t>(f->width);
+      Series& series = field_series_.emplace_back(root, std::string(f->name).c_str(),
+                                                  std::vector<hsize_t>{N, width}, check_);
+      describe(series.id(), *f);
+    }
     diagnostics_ = Handle(check_(H5Gcreate2(root, "diagnostics", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
                                  "create group diagnostics"),
                           H5Gclose);
@@ -198,30 +207,22 @@ class Hdf5Writer final : public TrajectoryWriter {
 
   void write(const Model& model, const SystemState& state, const DriftSample& d) override {
     if (samples_ == 0) create_diagnostics(d);
-    io::sample_rows(model, state, rows_);
     t_->append(state.t);
-    std::vector<double> p, q, v, w;
-    for (const ReferenceFrameState& r : rows_) {
-      p.insert(p.end(), r.position.data(), r.position.data() + 3);
-      const std::array<double, 4> wxyz{r.orientation.w(), r.orientation.x(), r.orientation.y(),
-                                       r.orientation.z()};
-      q.insert(q.end(), wxyz.begin(), wxyz.end());
-      v.insert(v.end(), r.velocity.data(), r.velocity.data() + 3);
-      w.insert(w.end(), r.omega_w.data(), r.omega_w.data() + 3);
+    for (size_t k = 0; k < fields_.size(); ++k) {
+      const BodyField& f = *fields_[k];
+      const size_t width = static_cast<size_t>(f.width);
+      row_.resize(names_.size() * width);
+      for (size_t r = 0; r < names_.size(); ++r) io::field_values(f, model, state, r, &row_[r * width]);
+      field_series_[k].append(row_.data());
     }
-    position_->append(p.data());
-    orientation_->append(q.data());
-    velocity_->append(v.data());
-    angular_velocity_->append(w.data());
-    const Invariants& inv = d.invariants;
-    kinetic_->append(inv.kinetic_energy);
-    if (potential_) potential_->append(inv.potential_energy.value_or(0.0));
-    if (total_) total_->append(inv.total_energy().value_or(0.0));
-    linear_->append(inv.linear_momentum.data());
-    angular_->append(inv.angular_momentum.data());
-    if (energy_drift_) energy_drift_->append(d.energy_drift.value_or(0.0));
-    if (linear_drift_) linear_drift_->append(d.linear_momentum_drift.value_or(0.0));
-    if (angular_drift_) angular_drift_->append(d.angular_momentum_drift.value_or(0.0));
+    double values[3];
+    for (size_t k = 0; k < diagnostic_series_.size(); ++k) {
+      if (!diagnostic_series_[k]) continue;
+      const SystemField& f = system_fields()[k];
+      // Defined at t = 0, so defined throughout (the force models and the scales at t = 0 fix it).
+      if (!f.of_sample(d, values)) std::fill_n(values, f.width, 0.0);
+      diagnostic_series_[k]->append(values);
+    }
     t_end_ = state.t;
     ++samples_;
   }
@@ -263,25 +264,29 @@ class Hdf5Writer final : public TrajectoryWriter {
 
   /// Which diagnostics exist is fixed by the model and the state at t = 0: create those datasets.
   void create_diagnostics(const DriftSample& d) {
-    const hid_t g = diagnostics_.get();
-    const std::vector<hsize_t> scalar, vector{3};
-    kinetic_.emplace(g, "kinetic_energy", scalar, check_);
-    if (d.invariants.potential_energy) {
-      potential_.emplace(g, "potential_energy", scalar, check_);
-      total_.emplace(g, "total_energy", scalar, check_);
+    double values[3];
+    for (const SystemField& f : system_fields()) {
+      std::optional<Series>& series = diagnostic_series_.emplace_back();
+      if (!f.of_sample(d, values)) continue;
+      const std::vector<hsize_t> shape = f.width == 1 ? std::vector<hsize_t>{}
+                                                      : std::vector<hsize_t>{static_cast<hsize_t>(f.width)};
+      series.emplace(diagnostics_.get(), std::string(f.name).c_str(), shape, check_);
+      describe(series->id(), f);
     }
-    linear_.emplace(g, "linear_momentum", vector, check_);
-    angular_.emplace(g, "angular_momentum", vector, check_);
-    if (d.energy_drift) energy_drift_.emplace(g, "energy_drift", scalar, check_);
-    if (d.linear_momentum_drift) linear_drift_.emplace(g, "linear_momentum_drift", scalar, check_);
-    if (d.angular_momentum_drift) angular_drift_.emplace(g, "angular_momentum_drift", scalar, check_);
+  }
+
+  template <class Field>
+  void describe(hid_t dataset, const Field& f) {
+    string_attribute(dataset, "unit", std::string(f.unit), check_);
+    if (!f.frame.empty()) string_attribute(dataset, "frame", std::string(f.frame), check_);
+    string_attribute(dataset, "meaning", std::string(f.meaning), check_);
   }
 
   std::vector<Series*> all_series() {
-    std::vector<Series*> out;
-    for (auto* s : {&t_, &position_, &orientation_, &velocity_, &angular_velocity_, &kinetic_, &potential_,
-                    &total_, &linear_, &angular_, &energy_drift_, &linear_drift_, &angular_drift_}) {
-      if (*s) out.push_back(&**s);
+    std::vector<Series*> out{&*t_};
+    for (Series& s : field_series_) out.push_back(&s);
+    for (auto& s : diagnostic_series_) {
+      if (s) out.push_back(&*s);
     }
     return out;
   }
@@ -291,10 +296,11 @@ class Hdf5Writer final : public TrajectoryWriter {
   std::vector<std::string> names_;
   Handle file_;
   Handle diagnostics_;
-  std::optional<Series> t_, position_, orientation_, velocity_, angular_velocity_;
-  std::optional<Series> kinetic_, potential_, total_, linear_, angular_, energy_drift_, linear_drift_,
-      angular_drift_;
-  std::vector<ReferenceFrameState> rows_;
+  std::vector<const BodyField*> fields_;
+  std::optional<Series> t_;
+  std::vector<Series> field_series_;
+  std::vector<std::optional<Series>> diagnostic_series_;  ///< one per SystemField, empty if undefined
+  std::vector<double> row_;
   double t_end_ = 0.0;
   long samples_ = 0;
 };

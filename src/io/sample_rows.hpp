@@ -1,12 +1,12 @@
 #pragma once
-// The rows of one output sample, shared by the trajectory writers: the pose and velocity of each
-// body's reference frame (world), then each particle as a frame with the identity orientation and no
-// angular velocity.
+// The rows of one output sample, shared by the trajectory writers: each body, then each particle (a
+// frame at the particle with the identity orientation and no angular velocity), in model order. What
+// a row holds is given by the output fields (sim/output_fields.hpp).
 #include <string>
 #include <vector>
 
-#include "tumble/dynamics/state.hpp"
 #include "tumble/forces/model.hpp"
+#include "tumble/sim/output_fields.hpp"
 
 namespace tumble::io {
 
@@ -17,13 +17,14 @@ inline std::vector<std::string> row_names(const Model& model) {
   return names;
 }
 
-inline void sample_rows(const Model& model, const SystemState& state,
-                        std::vector<ReferenceFrameState>& rows) {
-  rows.clear();
-  for (size_t i = 0; i < model.bodies.size(); ++i)
-    rows.push_back(reference_state(model.bodies[i], state.bodies[i]));
-  for (const ParticleState& p : state.particles) {
-    rows.push_back(ReferenceFrameState{p.x, Quat::Identity(), p.v, Vec3::Zero()});
+/// The `field.width` values of a field for row r of a sample.
+inline void field_values(const BodyField& field, const Model& model, const SystemState& state, size_t r,
+                         double* out) {
+  const size_t n = model.bodies.size();
+  if (r < n) {
+    field.of_body(model.bodies[r], state.bodies[r], out);
+  } else {
+    field.of_particle(state.particles[r - n], out);
   }
 }
 

@@ -176,7 +176,7 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
         if (t_sample > t_b) break;
         x = integrator->interpolate(t_sample);
         ++k_out;
-        state = to_state(settings.formulation, x);
+        to_state(settings.formulation, x, state);  // reuses the storage: no allocation per sample
         finished = t_sample >= t_end;
         if (on_sample && !on_sample(state)) return state;
         if (finished) break;
@@ -221,7 +221,7 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
     const bool stop = stop_requested && stop_requested();
     if (x.t == t_sample || stop) {
       if (x.t == t_sample) ++k_out;
-      state = to_state(settings.formulation, x);
+      to_state(settings.formulation, x, state);  // reuses the storage: no allocation per sample
       if (on_sample && !on_sample(state)) return state;
       if (stop) return state;
     }

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <hdf5.h>
 
+#include <algorithm>
 #include <cstdlib>
 
 #include "../support/scene_files.hpp"
@@ -159,7 +160,7 @@ std::string read_string_attribute(hid_t file, const char* name) {
 TEST(Hdf5Trajectory, ArraysAndAttributesReadBack) {
   const Fixture f;
   test::TempDir dir("hdf5_writer");
-  TrajectoryInfo info{"[simulation]\nduration = 0.4\n# ünïcode\n", "scene.toml", "9.8.7", RunSettings{}};
+  TrajectoryInfo info{"[simulation]\nduration = 0.4\n# ünïcode\n", "scene.toml", "9.8.7", RunSettings{}, {}};
   info.settings.integrator = "rk4";
   auto writer = make_hdf5_writer(dir / "run.h5", f.model, info);
   for (const auto& s : f.states) writer->write(f.model, s, f.drift(s));
@@ -222,6 +223,92 @@ TEST(Hdf5Trajectory, ManySamplesAcrossBlocksAndAbandon) {
   { auto abandoned = make_hdf5_writer(dir / "abandoned.h5", model, {}); }
   EXPECT_FALSE(std::filesystem::exists(dir / "abandoned.h5"));
   EXPECT_FALSE(has_temporaries(dir.path()));
+}
+
+/// The names of the objects in an HDF5 group, sorted.
+std::vector<std::string> members(hid_t file, const char* group) {
+  std::vector<std::string> out;
+  H5Literate_by_name(
+      file, group, H5_INDEX_NAME, H5_ITER_INC, nullptr,
+      [](hid_t, const char* name, const H5L_info_t*, void* data) -> herr_t {
+        static_cast<std::vector<std::string>*>(data)->push_back(name);
+        return 0;
+      },
+      &out, H5P_DEFAULT);
+  return out;
+}
+
+std::string dataset_attribute(hid_t file, const std::string& dataset, const char* name) {
+  const hid_t set = H5Dopen2(file, dataset.c_str(), H5P_DEFAULT);
+  const std::string s = read_string_attribute(set, name);
+  H5Dclose(set);
+  return s;
+}
+
+TEST(OutputFields, OneTableDrivesTheCsvColumnsAndTheHdf5Datasets) {
+  // Every field, in reverse table order: both files follow the order and the table's names, units and
+  // frames, and hold the values the table's functions compute.
+  const Fixture f;
+  std::vector<std::string> names;
+  for (const BodyField& field : body_fields()) names.emplace_back(field.name);
+  std::reverse(names.begin(), names.end());
+  const std::vector<const BodyField*> fields = body_fields(names);
+  test::TempDir dir("output_fields");
+  TrajectoryInfo info{"", "scene.toml", "0", RunSettings{}, names};
+  auto csv = make_csv_writer(dir / "run.csv", dir / "run.diagnostics.csv", f.model, info);
+  auto h5 = make_hdf5_writer(dir / "run.h5", f.model, info);
+  for (const auto& s : f.states) {
+    csv->write(f.model, s, f.drift(s));
+    h5->write(f.model, s, f.drift(s));
+  }
+  csv->commit(true);
+  h5->commit(true);
+
+  const auto rows = lines(test::read_text(dir / "run.csv"));
+  std::vector<std::string> header{"t", "body"};
+  for (const BodyField* field : fields)
+    header.insert(header.end(), field->columns.begin(), field->columns.begin() + field->width);
+  EXPECT_EQ(split(rows[0], ','), header);
+
+  const hid_t file = H5Fopen((dir / "run.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  std::vector<std::string> expected{"diagnostics", "names", "t"};
+  for (const std::string& n : names) expected.push_back(n);
+  std::sort(expected.begin(), expected.end());
+  EXPECT_EQ(members(file, "/"), expected);
+  const auto last = split(rows[rows.size() - 2], ',');  // the body's row of the last sample
+  size_t column = 2;
+  for (const BodyField* field : fields) {
+    const std::string name(field->name);
+    EXPECT_EQ(dataset_attribute(file, name, "unit"), field->unit) << name;
+    EXPECT_EQ(dataset_attribute(file, name, "frame"), field->frame) << name;
+    std::vector<hsize_t> dims;
+    const auto data = read_doubles(file, name.c_str(), dims);
+    const size_t width = static_cast<size_t>(field->width);
+    ASSERT_EQ(dims, (std::vector<hsize_t>{f.states.size(), 2, width})) << name;
+    double expect[4];
+    field->of_body(f.model.bodies[0], f.states.back().bodies[0], expect);
+    for (size_t k = 0; k < width; ++k, ++column) {
+      const double from_csv = std::strtod(last[column].c_str(), nullptr);
+      const double from_h5 = data[(f.states.size() - 1) * 2 * width + k];
+      EXPECT_EQ(from_csv, expect[k]) << name << " " << k;
+      EXPECT_EQ(from_h5, expect[k]) << name << " " << k;
+    }
+  }
+  EXPECT_EQ(dataset_attribute(file, "diagnostics/angular_momentum", "unit"), "kg m²/s");
+  H5Fclose(file);
+}
+
+TEST(OutputFields, UnknownAndRepeatedFieldsAreRefusedByName) {
+  try {
+    body_fields({"position", "speed"});
+    FAIL() << "an unknown field was accepted";
+  } catch (const InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown output field 'speed'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("angular_velocity"), std::string::npos) << "lists the fields";
+  }
+  EXPECT_THROW(body_fields({"position", "position"}), InvalidArgument);
+  EXPECT_EQ(body_fields({}), default_body_fields());
 }
 
 }  // namespace

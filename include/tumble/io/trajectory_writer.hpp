@@ -1,6 +1,8 @@
 #pragma once
-// Trajectory outputs. A writer receives every output sample of a run — the pose and velocity of each
-// body's reference frame (world) and the sample's invariants and drifts — and writes them to files.
+// Trajectory outputs. A writer receives every output sample of a run and writes, for each body and
+// particle, the chosen output fields (by default the pose and velocity of each body's reference frame,
+// world), and the sample's invariants and drifts. Both lists come from sim/output_fields.hpp, which
+// names, documents and computes every column and dataset.
 //
 // Files are written under a temporary name next to the final one (NAME.tmp-PID) and renamed only by
 // commit(), so a final name never holds a half-written file:
@@ -15,15 +17,17 @@
 
 #include "tumble/forces/model.hpp"
 #include "tumble/sim/drift_monitor.hpp"
+#include "tumble/sim/output_fields.hpp"
 
 namespace tumble {
 
 /// What is stored with a trajectory besides the samples.
 struct TrajectoryInfo {
-  std::string scene_text;      ///< the scene file's contents
-  std::string scene_path;      ///< as given on the command line
-  std::string tumble_version;  ///< e.g. "0.1.0"
-  RunSettings settings;        ///< as run (after command-line overrides)
+  std::string scene_text;           ///< the scene file's contents
+  std::string scene_path;           ///< as given on the command line
+  std::string tumble_version;       ///< e.g. "0.1.0"
+  RunSettings settings;             ///< as run (after command-line overrides)
+  std::vector<std::string> fields;  ///< per-body output fields (output_fields.hpp); empty: the defaults
 };
 
 class TrajectoryWriter {
@@ -40,15 +44,15 @@ class TrajectoryWriter {
   virtual long samples() const = 0;
 };
 
-/// CSV: `trajectory` has the header t,body,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz and one row per body
-/// (and per particle, with q = (1, 0, 0, 0) and w = 0) per sample, 17 significant digits;
-/// `diagnostics` has one row per sample: energies, momenta and their drifts (see csv_writer.cpp).
+/// CSV: `trajectory` has the header t,body, then the columns of each field (by default
+/// px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz) and one row per body and per particle per sample, 17
+/// significant digits; `diagnostics` has t and the columns of every SystemField, one row per sample.
 std::unique_ptr<TrajectoryWriter> make_csv_writer(const std::filesystem::path& trajectory,
                                                   const std::filesystem::path& diagnostics,
                                                   const Model& model, const TrajectoryInfo& info);
 
-/// HDF5 (one file): datasets t, position, orientation, velocity, angular_velocity, names, and the
-/// group diagnostics; the scene text, tumble version and run settings as attributes (hdf5_writer.cpp).
+/// HDF5 (one file): datasets t, names, one (n, N, width) dataset per field, and the group diagnostics;
+/// the scene text, tumble version and run settings as attributes (hdf5_writer.cpp).
 std::unique_ptr<TrajectoryWriter> make_hdf5_writer(const std::filesystem::path& path, const Model& model,
                                                    const TrajectoryInfo& info);
 

@@ -1,0 +1,58 @@
+#pragma once
+// The table of output fields: every quantity a trajectory holds, with its name, unit, frame and how
+// it is computed. The CSV header, the HDF5 datasets and their attributes (and the Python arrays) are
+// all made from these two tables, so a quantity is defined — and documented — in one place.
+//
+//  - BodyField: one vector per body (and per particle) per sample, e.g. the position of the body's
+//    reference frame. CSV: one row per body, `width` columns per field. HDF5: a dataset (n, N, width).
+//  - SystemField: one vector per sample for the whole system (the diagnostics), e.g. the total
+//    angular momentum and its drift. It may be undefined (no potential, a zero scale at t = 0).
+#include <array>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "tumble/dynamics/particle.hpp"
+#include "tumble/dynamics/state.hpp"
+#include "tumble/sim/drift_monitor.hpp"
+
+namespace tumble {
+
+struct BodyField {
+  std::string_view name;                    ///< HDF5 dataset and Python array, e.g. "position"
+  int width;                                ///< number of values (≤ 4)
+  std::array<std::string_view, 4> columns;  ///< CSV column names, the first `width` used
+  std::string_view unit;                    ///< SI, e.g. "m/s"; "1" for a dimensionless quantity
+  std::string_view frame;                   ///< axes the vector is in, e.g. "world"
+  std::string_view meaning;                 ///< one line for docs, --help and HDF5 attributes
+  /// The value for a body from its constants and its state (centre of mass, principal frame, world).
+  void (*of_body)(const RigidBody& body, const BodyState& state, double* out);
+  /// The value for a particle: a frame at the particle with the identity orientation and ω = 0.
+  void (*of_particle)(const ParticleState& state, double* out);
+};
+
+struct SystemField {
+  std::string_view name;                    ///< HDF5 dataset in /diagnostics, e.g. "angular_momentum"
+  int width;                                ///< number of values (≤ 3)
+  std::array<std::string_view, 3> columns;  ///< CSV column names
+  std::string_view unit;
+  std::string_view frame;
+  std::string_view meaning;
+  /// Writes the value and returns true, or returns false where the quantity is undefined.
+  bool (*of_sample)(const DriftSample& sample, double* out);
+};
+
+/// Every per-body field, in the order the docs list them.
+std::span<const BodyField> body_fields();
+/// The fields written when none are chosen: position, orientation, velocity, angular_velocity (the
+/// pose and velocity of each body's reference frame, world).
+std::vector<const BodyField*> default_body_fields();
+/// The fields with these names, in the order given; an empty list gives the defaults. Throws
+/// InvalidArgument naming an unknown or repeated field and listing the known ones.
+std::vector<const BodyField*> body_fields(const std::vector<std::string>& names);
+
+/// Every diagnostics field (energies, momenta, drifts), in the order they are written.
+std::span<const SystemField> system_fields();
+
+}  // namespace tumble

@@ -1,0 +1,111 @@
+#include "tumble/sim/output_fields.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "tumble/error.hpp"
+
+namespace tumble {
+namespace {
+
+void put(const Vec3& x, double* out) {
+  out[0] = x.x();
+  out[1] = x.y();
+  out[2] = x.z();
+}
+void put(const Quat& q, double* out) {  // w first: the order of every tumble file
+  out[0] = q.w();
+  out[1] = q.x();
+  out[2] = q.y();
+  out[3] = q.z();
+}
+
+// The reference frame's pose: R_ref = R Uᵀ, p = o − R_ref c, v_p = v + ω × (p − o) (state.hpp).
+constexpr BodyField kBodyFields[] = {
+    {"position", 3, {"px", "py", "pz"}, "m", "world", "origin of the body's reference frame",
+     [](const RigidBody& b, const BodyState& s, double* out) { put(reference_state(b, s).position, out); },
+     [](const ParticleState& p, double* out) { put(p.x, out); }},
+    {"orientation", 4, {"qw", "qx", "qy", "qz"}, "1", "reference -> world",
+     "unit quaternion (w, x, y, z) of the body's reference frame",
+     [](const RigidBody& b, const BodyState& s, double* out) {
+       put(reference_state(b, s).orientation, out);
+     },
+     [](const ParticleState&, double* out) { put(Quat::Identity(), out); }},
+    {"velocity", 3, {"vx", "vy", "vz"}, "m/s", "world", "velocity of the reference frame's origin",
+     [](const RigidBody& b, const BodyState& s, double* out) { put(reference_state(b, s).velocity, out); },
+     [](const ParticleState& p, double* out) { put(p.v, out); }},
+    {"angular_velocity", 3, {"wx", "wy", "wz"}, "rad/s", "world", "angular velocity ω",
+     [](const RigidBody&, const BodyState& s, double* out) { put(s.omega_w, out); },
+     [](const ParticleState&, double* out) { put(Vec3::Zero(), out); }},
+};
+constexpr size_t kDefaultBodyFields = 4;
+
+bool put_optional(const std::optional<double>& x, double* out) {
+  if (x) *out = *x;
+  return x.has_value();
+}
+
+// Momenta in world, L about the world origin; drifts relative to t = 0 (drift_monitor.hpp).
+constexpr SystemField kSystemFields[] = {
+    {"kinetic_energy", 1, {"kinetic_energy"}, "J", "", "Σ ½ m v² + ½ ωᵀ I ω",
+     [](const DriftSample& d, double* out) {
+       *out = d.invariants.kinetic_energy;
+       return true;
+     }},
+    {"potential_energy", 1, {"potential_energy"}, "J", "",
+     "sum of the force models' potentials (undefined if one has none)",
+     [](const DriftSample& d, double* out) { return put_optional(d.invariants.potential_energy, out); }},
+    {"total_energy", 1, {"total_energy"}, "J", "", "kinetic + potential",
+     [](const DriftSample& d, double* out) { return put_optional(d.invariants.total_energy(), out); }},
+    {"linear_momentum", 3, {"px", "py", "pz"}, "kg m/s", "world", "Σ m v",
+     [](const DriftSample& d, double* out) {
+       put(d.invariants.linear_momentum, out);
+       return true;
+     }},
+    {"angular_momentum", 3, {"Lx", "Ly", "Lz"}, "kg m²/s", "world", "about the world origin: Σ (o × p + Iω)",
+     [](const DriftSample& d, double* out) {
+       put(d.invariants.angular_momentum, out);
+       return true;
+     }},
+    {"energy_drift", 1, {"energy_drift"}, "1", "", "(E − E₀) / max(|E₀|, T₀)",
+     [](const DriftSample& d, double* out) { return put_optional(d.energy_drift, out); }},
+    {"linear_momentum_drift", 1, {"linear_momentum_drift"}, "1", "", "|p − p₀| / |p₀|",
+     [](const DriftSample& d, double* out) { return put_optional(d.linear_momentum_drift, out); }},
+    {"angular_momentum_drift", 1, {"angular_momentum_drift"}, "1", "", "|L − L₀| / |L₀|",
+     [](const DriftSample& d, double* out) { return put_optional(d.angular_momentum_drift, out); }},
+};
+
+}  // namespace
+
+std::span<const BodyField> body_fields() { return kBodyFields; }
+
+std::vector<const BodyField*> default_body_fields() {
+  std::vector<const BodyField*> out;
+  for (size_t i = 0; i < kDefaultBodyFields; ++i) out.push_back(&kBodyFields[i]);
+  return out;
+}
+
+std::vector<const BodyField*> body_fields(const std::vector<std::string>& names) {
+  if (names.empty()) return default_body_fields();
+  std::vector<const BodyField*> out;
+  for (const std::string& name : names) {
+    const auto* f = std::find_if(std::begin(kBodyFields), std::end(kBodyFields),
+                                 [&](const BodyField& x) { return x.name == name; });
+    if (f == std::end(kBodyFields)) {
+      std::vector<std::string_view> known;
+      for (const BodyField& x : kBodyFields) known.push_back(x.name);
+      throw InvalidArgument(
+          fmt::format("unknown output field '{}': the fields are {}", name, fmt::join(known, ", ")));
+    }
+    if (std::find(out.begin(), out.end(), f) != out.end()) {
+      throw InvalidArgument(fmt::format("output field '{}' is listed twice: give each field once", name));
+    }
+    out.push_back(f);
+  }
+  return out;
+}
+
+std::span<const SystemField> system_fields() { return kSystemFields; }
+
+}  // namespace tumble
