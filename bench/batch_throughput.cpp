@@ -2,10 +2,13 @@
 // each fixed-step integrator, N from 1 to 10⁶, and 1 or more threads, with the engine's memory per body.
 //
 //   build/release/bin/batch_throughput [out.csv] [repetitions] [max_N] [integrators,...] [threads,...]
+//                                      [steps_per_call,...]
 //
 // The scenario is the one of bench/peers (boxes 0.1 × 0.2 × 0.3 m, 6 kg, |ω| = 10 rad/s in random
 // directions, random attitudes, g = 9.81 m/s², h = 1e-3 s, mixed formulation). Each measurement steps
-// the system directly (Integrator::step) for at least 0.3 s of wall time; repetitions are interleaved
+// the system directly for at least 0.3 s of wall time, `steps_per_call` steps per call of
+// Integrator::steps (1: step by step; 16: the chunks simulate() hands over between samples, which fused
+// integrators take through each block in cache); repetitions are interleaved
 // (every configuration once, then again), and min and median are printed. Memory is what the
 // integrator's workspace and the state allocate (tests/support/allocation_counter), per body.
 #include <algorithm>
@@ -39,6 +42,7 @@ struct Config {
   std::string integrator;
   long n;
   int threads;
+  long steps_per_call;
   std::vector<double> rates;  // body-steps per second, one per repetition
   double bytes_per_body = 0;
 };
@@ -71,7 +75,8 @@ void measure(Config& c, const Model& model, const SystemState& s0) {
   const auto t0 = std::chrono::steady_clock::now();
   double elapsed = 0;
   do {
-    for (int k = 0; k < 4; ++k, ++steps) integrator->step(model, F, x, h);
+    integrator->steps(model, F, x, h, c.steps_per_call);
+    steps += c.steps_per_call;
     elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   } while (elapsed < 0.3);
   c.rates.push_back(static_cast<double>(steps) * static_cast<double>(c.n) / elapsed);
@@ -88,6 +93,9 @@ int main(int argc, char** argv) {
   std::vector<int> thread_counts;
   for (const std::string& t : split(argc > 5 ? argv[5] : "1,2"))
     thread_counts.push_back(std::atoi(t.c_str()));
+  std::vector<long> chunks;
+  for (const std::string& k : split(argc > 6 ? argv[6] : "1,16"))
+    chunks.push_back(std::max(1L, std::atol(k.c_str())));
 
   std::printf(
       "batched engine throughput: free boxes under gravity, h = 1e-3 s, mixed formulation, %d interleaved "
@@ -102,7 +110,9 @@ int main(int argc, char** argv) {
   std::vector<Config> configs;
   for (long n : sizes) {
     for (const std::string& name : integrators) {
-      for (int t : thread_counts) configs.push_back({name, n, t, {}, 0});
+      for (int t : thread_counts) {
+        for (long k : chunks) configs.push_back({name, n, t, k, {}, 0});
+      }
     }
   }
   for (long n : sizes) {
@@ -115,16 +125,16 @@ int main(int argc, char** argv) {
     }
   }
   std::ofstream csv(csv_path);
-  csv << "integrator,N,threads,repetitions,rate_min,rate_median,bytes_per_body\n";
-  std::printf("%-20s %8s %7s %14s %14s %10s\n", "integrator", "N", "threads", "min /s", "median /s",
-              "B/body");
+  csv << "integrator,N,threads,steps_per_call,repetitions,rate_min,rate_median,bytes_per_body\n";
+  std::printf("%-20s %8s %7s %6s %14s %14s %10s\n", "integrator", "N", "threads", "steps", "min /s",
+              "median /s", "B/body");
   for (Config& c : configs) {
     std::sort(c.rates.begin(), c.rates.end());
     const double med = c.rates[c.rates.size() / 2];
-    std::printf("%-20s %8ld %7d %14.4g %14.4g %10.0f\n", c.integrator.c_str(), c.n, c.threads,
-                c.rates.front(), med, c.bytes_per_body);
-    csv << c.integrator << ',' << c.n << ',' << c.threads << ',' << repetitions << ',' << c.rates.front()
-        << ',' << med << ',' << c.bytes_per_body << '\n';
+    std::printf("%-20s %8ld %7d %6ld %14.4g %14.4g %10.0f\n", c.integrator.c_str(), c.n, c.threads,
+                c.steps_per_call, c.rates.front(), med, c.bytes_per_body);
+    csv << c.integrator << ',' << c.n << ',' << c.threads << ',' << c.steps_per_call << ',' << repetitions
+        << ',' << c.rates.front() << ',' << med << ',' << c.bytes_per_body << '\n';
   }
   std::printf("\nCSV: %s\n", csv_path.c_str());
 }

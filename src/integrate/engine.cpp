@@ -1,5 +1,7 @@
 #include "engine.hpp"
 
+#include <algorithm>
+
 #include "tumble/integrate/integrator.hpp"
 
 #ifdef _OPENMP
@@ -31,6 +33,11 @@ EngineInfo engine_info() { return {xsimd::default_arch::name(), static_cast<int>
 }  // namespace tumble
 
 namespace tumble::engine {
+
+bool Engine::fusable(const Model& model) {
+  return model.particles.empty() &&
+         std::all_of(model.forces.begin(), model.forces.end(), [](const auto& f) { return f->local(); });
+}
 
 void Engine::prepare(const Model& model, Formulation formulation, int threads, int work_sets) {
   const int wanted = threads > 0 ? threads : max_threads();

@@ -71,11 +71,24 @@ class Engine {
   /// Whether a step can take each block through all its stages alone (every force model local, no
   /// particles).
   bool fused() const { return system_.empty() && n_particles_ == 0; }
+  /// The same for a model, before prepare().
+  static bool fusable(const Model& model);
 
   /// Fused steps: calls step(FusedBlock&) for every block, in parallel.
   class FusedBlock;
   template <class Step>
   void for_each_fused_block(size_t n, Step&& step);
+  /// `count` fused steps of h: each block goes through step(FusedBlock&, t) for every step while it is
+  /// in cache (its bodies meet no other block's: every force is local), t accumulated from x.t as
+  /// step-by-step calls would; then x.t advances by the same additions.
+  template <class Step>
+  void fused_steps(SystemCoordinates& x, double h, long count, Step&& step) {
+    for_each_fused_block(x.bodies.size(), [&](FusedBlock& fb) {
+      double t = x.t;
+      for (long r = 0; r < count; ++r, t += h) step(fb, t);
+    });
+    for (long r = 0; r < count; ++r) x.t += h;
+  }
 
   /// Staged steps: evaluates the loads at y (time y.t) and calls kernel(const Block&) for every block
   /// right after its loads, in parallel; `work` are the whole-system stage variables handed to the

@@ -11,6 +11,24 @@ using engine::Block;
 using engine::kWidth;
 using engine::Pack;
 
+/// `count` steps of a one-stage method whose bodies' part is kernel(const Block&), after the loads of
+/// the block at the step's start; particle(p, state) steps particle p with the loads of its step.
+template <class Kernel, class ParticleStep>
+void one_stage_steps(engine::Engine& engine, SystemCoordinates& x, double h, long count, Kernel&& kernel,
+                     ParticleStep&& particle) {
+  if (engine.fused()) {
+    const BodyColumnsRef xr = x.bodies.ref();
+    engine.fused_steps(x, h, count,
+                       [&](engine::Engine::FusedBlock& fb, double t) { kernel(fb.evaluate(xr, t)); });
+    return;
+  }
+  for (long r = 0; r < count; ++r) {
+    engine.evaluate(x, kernel);
+    for (size_t p = 0; p < x.particles.size(); ++p) particle(p, x.particles[p]);
+    x.t += h;
+  }
+}
+
 /// x_{n+1} = x_n + h f(x_n). First order; gains energy on a free rotor (shown in the tests).
 class ExplicitEuler final : public Integrator {
  public:
@@ -18,17 +36,20 @@ class ExplicitEuler final : public Integrator {
   int order() const override { return 1; }
   int evaluations_per_step() const override { return 1; }
   void step(const Model& model, Formulation F, SystemCoordinates& x, double h) override {
+    steps(model, F, x, h, 1);
+  }
+  bool fuses_steps(const Model& model) const override { return engine::Engine::fusable(model); }
+  void steps(const Model& model, Formulation F, SystemCoordinates& x, double h, long count) override {
     engine_.prepare(model, F, threads_);
-    engine_.evaluate(x, [&](const Block& b) {
+    const BodyColumnsRef xr = x.bodies.ref();
+    auto kernel = [&](const Block& b) {
       for (size_t i = b.begin; i < b.end; i += kWidth) {
-        const Coordinates<Pack> c = x.bodies.load<Pack>(i);
-        x.bodies.store(i, advanced<Pack>(c, Pack(h), engine_.rates<Pack>(b, i, c)));
+        const Coordinates<Pack> c = xr.load<Pack>(i);
+        xr.store(i, advanced<Pack>(c, Pack(h), engine_.rates<Pack>(b, i, c)));
       }
-    });
-    for (size_t p = 0; p < x.particles.size(); ++p) {
-      x.particles[p] = advanced(x.particles[p], h, engine_.particle_rates(p, x.particles[p]));
-    }
-    x.t += h;
+    };
+    one_stage_steps(engine_, x, h, count, kernel,
+                    [&](size_t p, ParticleState& s) { s = advanced(s, h, engine_.particle_rates(p, s)); });
   }
 
  private:
@@ -43,26 +64,29 @@ class SemiImplicitEuler final : public Integrator {
   int order() const override { return 1; }
   int evaluations_per_step() const override { return 1; }
   void step(const Model& model, Formulation F, SystemCoordinates& x, double h) override {
+    steps(model, F, x, h, 1);
+  }
+  bool fuses_steps(const Model& model) const override { return engine::Engine::fusable(model); }
+  void steps(const Model& model, Formulation F, SystemCoordinates& x, double h, long count) override {
     engine_.prepare(model, F, threads_);
     const Pack hp(h);
-    engine_.evaluate(x, [&](const Block& b) {
+    const BodyColumnsRef xr = x.bodies.ref();
+    auto kernel = [&](const Block& b) {
       for (size_t i = b.begin; i < b.end; i += kWidth) {
-        Coordinates<Pack> c = x.bodies.load<Pack>(i);
+        Coordinates<Pack> c = xr.load<Pack>(i);
         const CoordinateRates<Pack> k = engine_.rates<Pack>(b, i, c);
         c.v += hp * k.v_dot;
         c.omega += hp * k.omega_dot;
         const auto [o_dot, q_dot] = kinematics<Pack>(F, c);  // with the updated velocities
         c.o += hp * o_dot;
         c.q = normalized<Pack>(QuatT<Pack>(c.q.coeffs() + hp * q_dot.coeffs()));
-        x.bodies.store(i, c);
+        xr.store(i, c);
       }
-    });
-    for (size_t p = 0; p < x.particles.size(); ++p) {
-      ParticleState& s = x.particles[p];
+    };
+    one_stage_steps(engine_, x, h, count, kernel, [&](size_t p, ParticleState& s) {
       s.v += h * engine_.particle_rates(p, s).v;
       s.x += h * s.v;
-    }
-    x.t += h;
+    });
   }
 
  private:
@@ -78,27 +102,31 @@ class RungeKutta4 final : public Integrator {
   int order() const override { return 4; }
   int evaluations_per_step() const override { return 4; }
   void step(const Model& model, Formulation F, SystemCoordinates& x, double h) override {
+    steps(model, F, x, h, 1);
+  }
+  bool fuses_steps(const Model& model) const override { return engine::Engine::fusable(model); }
+  void steps(const Model& model, Formulation F, SystemCoordinates& x, double h, long count) override {
     engine_.prepare(model, F, threads_, 2);
     const BodyColumnsRef xr = x.bodies.ref();
-    rk4::step(engine_, x, h, y_, A_particles_, {&y_.bodies, &A_},
-              [&](int s, const Block& blk, const BodyColumnsRef& in) {
-                const BodyColumnsRef &y = blk.work[0], &A = blk.work[1];
-                if (s < 3) {
-                  const Pack step_next(rk4::c[s + 1] * h), weight(rk4::b[s]);
-                  for (size_t i = blk.begin; i < blk.end; i += kWidth) {
-                    const CoordinateRates<Pack> k = engine_.rates<Pack>(blk, i, in.load<Pack>(i));
-                    A.store(i, s == 0 ? k : axpy<Pack>(A.load_rates<Pack>(i), weight, k));
-                    y.store(i, advanced<Pack>(xr.load<Pack>(i), step_next, k));
-                  }
-                } else {
-                  const Pack h6(h / 6), one(1.0);
-                  for (size_t i = blk.begin; i < blk.end; i += kWidth) {
-                    const CoordinateRates<Pack> k = engine_.rates<Pack>(blk, i, in.load<Pack>(i));
-                    xr.store(i,
-                             advanced<Pack>(xr.load<Pack>(i), h6, axpy<Pack>(A.load_rates<Pack>(i), one, k)));
-                  }
-                }
-              });
+    rk4::steps(engine_, x, h, count, y_, A_particles_, {&y_.bodies, &A_},
+               [&](int s, const Block& blk, const BodyColumnsRef& in) {
+                 const BodyColumnsRef &y = blk.work[0], &A = blk.work[1];
+                 if (s < 3) {
+                   const Pack step_next(rk4::c[s + 1] * h), weight(rk4::b[s]);
+                   for (size_t i = blk.begin; i < blk.end; i += kWidth) {
+                     const CoordinateRates<Pack> k = engine_.rates<Pack>(blk, i, in.load<Pack>(i));
+                     A.store(i, s == 0 ? k : axpy<Pack>(A.load_rates<Pack>(i), weight, k));
+                     y.store(i, advanced<Pack>(xr.load<Pack>(i), step_next, k));
+                   }
+                 } else {
+                   const Pack h6(h / 6), one(1.0);
+                   for (size_t i = blk.begin; i < blk.end; i += kWidth) {
+                     const CoordinateRates<Pack> k = engine_.rates<Pack>(blk, i, in.load<Pack>(i));
+                     xr.store(i, advanced<Pack>(xr.load<Pack>(i), h6,
+                                                axpy<Pack>(A.load_rates<Pack>(i), one, k)));
+                   }
+                 }
+               });
   }
 
  private:

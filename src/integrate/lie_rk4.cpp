@@ -35,6 +35,10 @@ class LieRungeKutta4 final : public Integrator {
   int evaluations_per_step() const override { return 4; }
 
   void step(const Model& model, Formulation F, SystemCoordinates& x, double h) override {
+    steps(model, F, x, h, 1);
+  }
+  bool fuses_steps(const Model& model) const override { return engine::Engine::fusable(model); }
+  void steps(const Model& model, Formulation F, SystemCoordinates& x, double h, long count) override {
     const bool right = F != Formulation::world;  // mixed and body integrate ^bω
     engine_.prepare(model, F, threads_, 3);
     const BodyColumnsRef xr = x.bodies.ref();
@@ -68,7 +72,7 @@ class LieRungeKutta4 final : public Integrator {
         }
       }
     };
-    rk4::step(engine_, x, h, y_, A_particles_, {&y_.bodies, &A_, &theta_}, stage);
+    rk4::steps(engine_, x, h, count, y_, A_particles_, {&y_.bodies, &A_, &theta_}, stage);
   }
 
  private:

@@ -16,25 +16,28 @@ namespace tumble::rk4 {
 inline constexpr double c[4] = {0.0, 0.5, 0.5, 1.0};
 inline constexpr double b[4] = {1.0, 2.0, 2.0, 1.0};
 
-/// One step of x by h. `y` and `A_particles` are the whole-system stage variables of staged steps
+/// `count` steps of x by h. `y` and `A_particles` are the whole-system stage variables of staged steps
 /// (with `work`, the integrator's other whole-system columns: y.bodies first); fused steps leave them
-/// untouched.
+/// untouched, and take each block through all `count` steps while it is in cache (its bodies do not
+/// interact: every force is local). The time of each step is accumulated as step-by-step calls would.
 template <class Stage>
-void step(engine::Engine& engine, SystemCoordinates& x, double h, SystemCoordinates& y,
-          std::vector<ParticleState>& A_particles, std::initializer_list<BodyColumns*> work, Stage&& stage) {
+void steps(engine::Engine& engine, SystemCoordinates& x, double h, long count, SystemCoordinates& y,
+           std::vector<ParticleState>& A_particles, std::initializer_list<BodyColumns*> work, Stage&& stage) {
   const size_t n = x.bodies.size(), np = x.particles.size();
   const BodyColumnsRef xr = x.bodies.ref();
   if (engine.fused()) {
-    engine.for_each_fused_block(n, [&](engine::Engine::FusedBlock& fb) {
+    engine.fused_steps(x, h, count, [&](engine::Engine::FusedBlock& fb, double t) {
       for (int s = 0; s < 4; ++s) {
         const BodyColumnsRef in = s == 0 ? xr : fb.work(0);
-        stage(s, fb.evaluate(in, x.t + c[s] * h), in);
+        stage(s, fb.evaluate(in, t + c[s] * h), in);
       }
     });
-  } else {
-    for (BodyColumns* w : work) w->ensure(n);
-    y.particles.resize(np);
-    A_particles.resize(np);
+    return;
+  }
+  for (BodyColumns* w : work) w->ensure(n);
+  y.particles.resize(np);
+  A_particles.resize(np);
+  for (long r = 0; r < count; ++r) {
     for (int s = 0; s < 4; ++s) {
       const SystemCoordinates& in = s == 0 ? x : y;
       const BodyColumnsRef in_ref = in.bodies.ref();
@@ -51,8 +54,8 @@ void step(engine::Engine& engine, SystemCoordinates& x, double h, SystemCoordina
       }
       y.t = x.t + (s < 3 ? c[s + 1] : 1.0) * h;
     }
+    x.t += h;
   }
-  x.t += h;
 }
 
 }  // namespace tumble::rk4

@@ -10,6 +10,9 @@
 namespace tumble {
 namespace {
 
+/// At most this many steps are handed to Integrator::steps at once (between samples, no events).
+constexpr long kChunk = 16;
+
 void require(bool ok, const std::string& message) {
   if (!ok) throw InvalidArgument(message);
 }
@@ -126,12 +129,17 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
   const double dt_out = settings.output_interval > 0 ? settings.output_interval : h;
   long k_out = 1;
   if (on_sample && !on_sample(state)) return state;
-  auto check = [&](const SystemCoordinates& y, long step, double step_h) {
+  // `steps` > 1: the last of several steps taken together from t_start, checked only after them.
+  auto check = [&](const SystemCoordinates& y, long step, double step_h, long steps = 1,
+                   double t_start = 0.0) {
     if (const std::string bad = first_non_finite(model, y); !bad.empty()) {
-      throw Error(fmt::format(
-          "the state of {} became non-finite at t = {} s (step {}, h = {} s, integrator {}); reduce "
-          "the timestep (or tolerances) or check the forces for singularities",
-          bad, y.t, step, step_h, settings.integrator));
+      const std::string when = steps == 1 ? fmt::format("at t = {} s (step {}", y.t, step)
+                                          : fmt::format("between t = {} s and t = {} s (steps {} to {}",
+                                                        t_start, y.t, step - steps + 1, step);
+      throw Error(
+          fmt::format("the state of {} became non-finite {}, h = {} s, integrator {}); reduce "
+                      "the timestep (or tolerances) or check the forces for singularities",
+                      bad, when, step_h, settings.integrator));
     }
   };
 
@@ -196,8 +204,35 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
   // A step shorter than this fraction of h is rounding of the sample grid, not a real step.
   const double tiny = 1e-9 * h;
   SystemCoordinates x_prev;
+  const bool chunks = events.empty() && integrator->fuses_steps(model);
   while (x.t < t_end - tiny) {
     const double t_sample = std::min(t0 + static_cast<double>(k_out) * dt_out, t_end);
+    if (chunks) {
+      // Full steps that end before the sample time need nothing between them: hand them over together
+      // (Integrator::steps, bit for bit the same), so fused integrators keep each block of bodies in
+      // cache across them. The chunk is bounded so that Ctrl-C is still answered promptly.
+      long count = 0;
+      for (double t = x.t; count < kChunk && std::min(h, t_sample - t) == h && t + h < t_sample - tiny;
+           t += h) {
+        ++count;
+      }
+      if (count > 1) {
+        const double t_start = x.t;
+        integrator->steps(model, settings.formulation, x, h, count);
+        step += count;
+        if (stats) {
+          *stats = {step, 0,
+                    integrator->evaluations_counted().value_or(step * integrator->evaluations_per_step())};
+        }
+        check(x, step, h, count, t_start);
+        if (stop_requested && stop_requested()) {
+          to_state(settings.formulation, x, state);
+          if (on_sample) on_sample(state);
+          return state;
+        }
+        continue;
+      }
+    }
     const double step_h = std::min(h, t_sample - x.t);
     if (!events.empty()) x_prev = x;
     integrator->step(model, settings.formulation, x, step_h);

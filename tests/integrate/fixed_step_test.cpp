@@ -131,25 +131,35 @@ TEST(FixedStep, ABlowUpIsReportedWithBodyTimeAndStep) {
 }
 
 TEST(FixedStep, AStopRequestEndsTheRunAfterTheCurrentStepWithALastSample) {
+  // The request is asked after every step, or after every chunk of up to 16 full steps that simulate
+  // hands over at once between samples (simulate.hpp): the run ends within one chunk of it.
   Model model;
   model.add_body(RigidBody::from_principal_moments(1.0, Vec3(1, 2, 2.5)));
   RunSettings s;
   s.duration = 10.0;
   s.timestep = 0.01;
   s.output_interval = 1.0;
-  int steps_seen = 0;
-  std::vector<double> times;
-  const SystemState end = simulate(
-      model, test::single(BodyState{}), s,
-      [&](const SystemState& x) {
-        times.push_back(x.t);
-        return true;
-      },
-      nullptr, [&] { return ++steps_seen == 250; });  // asked after every step: stop after step 250
-  ASSERT_EQ(times.size(), 4u);                        // 0, 1, 2 on the grid, then 2.5 where the run stopped
-  // 50 additions of h after the last snapped sample time: rounding ≤ 50 ulp(2.5) ≈ 2e-14.
-  EXPECT_NEAR(times.back(), 2.5, 1e-13);
-  EXPECT_EQ(end.t, times.back());
+  for (const char* name : {"rk4", "midpoint"}) {  // chunked (fused) and step by step
+    s.integrator = name;
+    IntegratorStats stats;
+    std::vector<double> times;
+    const SystemState end = simulate(
+        model, test::single(BodyState{}), s,
+        [&](const SystemState& x) {
+          times.push_back(x.t);
+          return true;
+        },
+        &stats, [&] { return stats.steps >= 250; });
+    ASSERT_EQ(times.size(), 4u) << name;  // 0, 1, 2 on the grid, then where the run stopped
+    EXPECT_GE(stats.steps, 250) << name;
+    EXPECT_LT(stats.steps, 250 + 16) << name;
+    if (std::string(name) == "midpoint") {
+      EXPECT_EQ(stats.steps, 250);
+    }
+    // Fewer than 70 additions of h after the last snapped sample time: rounding ≤ 70 ulp(2.7) ≈ 3e-14.
+    EXPECT_NEAR(times.back(), 0.01 * static_cast<double>(stats.steps), 1e-13) << name;
+    EXPECT_EQ(end.t, times.back());
+  }
 }
 
 }  // namespace

@@ -43,6 +43,17 @@ class Integrator {
   /// allocates nothing. An instance serves one model at a time (a model that changes size re-binds it)
   /// and one caller at a time; it spreads its own work over threads() threads.
   virtual void step(const Model& model, Formulation formulation, SystemCoordinates& x, double h) = 0;
+  /// `count` steps of h: the same result, bit for bit, as `count` calls of step(). Integrators whose
+  /// steps are fused (rk4, lie_rk4: every force model local, no particles) take each block of bodies
+  /// through all of them while it is in cache, so the state crosses memory once per call, not once per
+  /// step: what keeps the rate flat up to millions of bodies. simulate() uses it between samples.
+  virtual void steps(const Model& model, Formulation formulation, SystemCoordinates& x, double h,
+                     long count) {
+    for (long k = 0; k < count; ++k) step(model, formulation, x, h);
+  }
+  /// Whether steps() takes blocks through several steps at once for this model (and so gains from
+  /// being handed many). simulate() chunks steps only then: the state is checked between chunks.
+  virtual bool fuses_steps(const Model& /*model*/) const { return false; }
 
   /// Threads a step uses (≤ 0: one per hardware thread). Results do not depend on it, bit for bit.
   void set_threads(int threads) { threads_ = threads; }

@@ -52,8 +52,9 @@ struct RunHooks {
   std::vector<Event> events;
   /// Called for every event crossing, in time order.
   std::function<void(const EventHit&)> on_event;
-  /// Asked after every step; when it answers true the state reached is handed to on_sample as a last,
-  /// off-grid sample and the run ends (Ctrl-C).
+  /// Asked after every step — or after every chunk of up to 16 full steps, which simulate hands at once
+  /// to integrators that gain from it (Integrator::steps) when no events are watched; when it answers
+  /// true the state reached is handed to on_sample as a last, off-grid sample and the run ends (Ctrl-C).
   std::function<bool()> stop_requested;
   /// Receives the work done (steps, rejections, force evaluations).
   IntegratorStats* stats = nullptr;
