@@ -29,6 +29,7 @@ struct RunOptions {
   std::optional<double> output_interval;
   std::optional<double> rtol;
   std::optional<int> threads;
+  std::vector<std::string> fields;
   std::optional<double> atol;
   std::optional<double> drift_threshold;
   bool quiet = false;
@@ -68,6 +69,7 @@ struct DriftExtremes {
 };
 
 int run(const RunOptions& o) {
+  body_fields(o.fields);  // an unknown field is named before the scene is read
   Scene scene = load_scene(o.scene);
   const RunSettings settings = settings_for(scene, o);
   const double threshold = o.drift_threshold.value_or(scene.drift_threshold);
@@ -95,7 +97,7 @@ int run(const RunOptions& o) {
         "--diagnostics names a CSV file; HDF5 output keeps the diagnostics in its "
         "'diagnostics' group: drop --diagnostics or use --format csv");
   }
-  const TrajectoryInfo info{scene.text, o.scene, TUMBLE_VERSION, settings, {}};
+  const TrajectoryInfo info{scene.text, o.scene, TUMBLE_VERSION, settings, o.fields};
   const std::unique_ptr<TrajectoryWriter> writer =
       hdf5 ? make_hdf5_writer(out, scene.model, info)
            : make_csv_writer(
@@ -191,6 +193,15 @@ Runner add_run_command(CLI::App& app) {
   cmd->add_option("--threads", o->threads,
                   "threads for fixed-step integrators (default 1; 0 = one per core); worth it from a few "
                   "thousand bodies; results are bit-identical for any count");
+  std::string fields_help =
+      "per-body output fields, comma-separated, in the order wanted (default: position,orientation,"
+      "velocity,angular_velocity). Each field is a group of CSV columns and one HDF5 dataset:";
+  for (const BodyField& f : body_fields()) {
+    fields_help += fmt::format("\n  {} ({}; {}, {}): {}", f.name,
+                               fmt::join(f.columns.begin(), f.columns.begin() + f.width, ","), f.unit,
+                               f.frame, f.meaning);
+  }
+  cmd->add_option("--fields,--columns", o->fields, fields_help)->delimiter(',');
   cmd->add_option("--drift-threshold", o->drift_threshold,
                   "warn when a conserved energy or angular momentum drifts by more than this, relative "
                   "to t = 0 (0 = never)");

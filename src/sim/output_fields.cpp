@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "tumble/error.hpp"
+#include "tumble/math/rotations.hpp"
 
 namespace tumble {
 namespace {
@@ -55,6 +56,82 @@ constexpr BodyField kBodyFields[] = {
      "angular velocity ω",
      [](const RigidBody&, const BodyState& s, double* out) { put(s.omega_w, out); },
      [](const ParticleState&, double* out) { put(Vec3::Zero(), out); }},
+    // Beyond the defaults: what users otherwise derive by hand (issue: outputs in the user's frames).
+    {"com_position",
+     3,
+     {"com_x", "com_y", "com_z"},
+     "m",
+     "world",
+     "centre of mass o",
+     [](const RigidBody&, const BodyState& s, double* out) { put(s.o, out); },
+     [](const ParticleState& p, double* out) { put(p.x, out); }},
+    {"com_velocity",
+     3,
+     {"com_vx", "com_vy", "com_vz"},
+     "m/s",
+     "world",
+     "velocity of the centre of mass",
+     [](const RigidBody&, const BodyState& s, double* out) { put(s.v, out); },
+     [](const ParticleState& p, double* out) { put(p.v, out); }},
+    {"angular_velocity_reference",
+     3,
+     {"wx_ref", "wy_ref", "wz_ref"},
+     "rad/s",
+     "reference",
+     "ω in the body's reference axes: R_refᵀ ω = U ^bω",
+     [](const RigidBody& b, const BodyState& s, double* out) { put(Vec3(b.U() * s.omega_b()), out); },
+     [](const ParticleState&, double* out) { put(Vec3::Zero(), out); }},
+    {"angular_velocity_principal",
+     3,
+     {"w1", "w2", "w3"},
+     "rad/s",
+     "principal",
+     "^bω = Rᵀ ω: components about the principal axes, moments λ₁ ≤ λ₂ ≤ λ₃",
+     [](const RigidBody&, const BodyState& s, double* out) { put(s.omega_b(), out); },
+     [](const ParticleState&, double* out) { put(Vec3::Zero(), out); }},
+    {"orientation_principal",
+     4,
+     {"qbw", "qbx", "qby", "qbz"},
+     "1",
+     "principal -> world",
+     "unit quaternion (w, x, y, z) of the principal frame {b}: R",
+     [](const RigidBody&, const BodyState& s, double* out) { put(s.q, out); },
+     [](const ParticleState&, double* out) { put(Quat::Identity(), out); }},
+    {"euler_zyx",
+     3,
+     {"yaw", "pitch", "roll"},
+     "rad",
+     "reference -> world",
+     "R_ref = Rz(yaw) Ry(pitch) Rx(roll); yaw, roll in (−π, π], pitch in [−π/2, π/2]",
+     [](const RigidBody& b, const BodyState& s, double* out) {
+       put(euler_zyx(reference_state(b, s).orientation.toRotationMatrix()), out);
+     },
+     [](const ParticleState&, double* out) { put(Vec3::Zero(), out); }},
+    {"euler_zxz",
+     3,
+     {"phi", "theta", "psi"},
+     "rad",
+     "reference -> world",
+     "R_ref = Rz(φ) Rx(θ) Rz(ψ) (3-1-3); φ, ψ in (−π, π], θ in [0, π]",
+     [](const RigidBody& b, const BodyState& s, double* out) {
+       put(euler_zxz(reference_state(b, s).orientation.toRotationMatrix()), out);
+     },
+     [](const ParticleState&, double* out) { put(Vec3::Zero(), out); }},
+    {"axis_angle",
+     4,
+     {"axis_x", "axis_y", "axis_z", "angle"},
+     "1, rad",
+     "reference -> world",
+     "R_ref = exp(angle [axis]×), angle in [0, π]; axis (1, 0, 0) at angle 0",
+     [](const RigidBody& b, const BodyState& s, double* out) {
+       const AxisAngle a = axis_angle(reference_state(b, s).orientation);
+       put(a.axis, out);
+       out[3] = a.angle;
+     },
+     [](const ParticleState&, double* out) {
+       put(Vec3::UnitX(), out);
+       out[3] = 0.0;
+     }},
 };
 constexpr size_t kDefaultBodyFields = 4;
 

@@ -1,6 +1,7 @@
 // The trajectory writers on their own: what is written reads back bit for bit (CSV from its text,
 // HDF5 through the C API), the files appear under their final names only when committed, and an
 // abandoned run leaves nothing behind.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <hdf5.h>
 
@@ -297,6 +298,16 @@ TEST(OutputFields, OneTableDrivesTheCsvColumnsAndTheHdf5Datasets) {
   }
   EXPECT_EQ(dataset_attribute(file, "diagnostics/angular_momentum", "unit"), "kg m²/s");
   H5Fclose(file);
+}
+
+TEST(OutputFields, EveryFieldIsDocumentedWithItsColumns) {
+  // docs/scene-format.md lists every field as a table row: `name` | `col,col,…` | unit | frame.
+  const std::string doc = test::read_text(std::filesystem::path(TUMBLE_SOURCE_DIR) / "docs/scene-format.md");
+  for (const BodyField& f : body_fields()) {
+    const auto columns = fmt::format("{}", fmt::join(f.columns.begin(), f.columns.begin() + f.width, ","));
+    const auto row = fmt::format("| `{}` | `{}` | {} |", f.name, columns, f.unit);
+    EXPECT_NE(doc.find(row), std::string::npos) << "docs/scene-format.md lacks the row " << row;
+  }
 }
 
 TEST(OutputFields, UnknownAndRepeatedFieldsAreRefusedByName) {

@@ -1,0 +1,73 @@
+#pragma once
+// Other descriptions of a rotation R (a unit quaternion q, w first, in tumble): Euler angles in two
+// named conventions and axis–angle. Used for output columns and for orientations given in scenes.
+//
+//  - ZYX (yaw–pitch–roll, aerospace): R = Rz(yaw) Ry(pitch) Rx(roll), angles (yaw, pitch, roll) with
+//    yaw, roll ∈ (−π, π] and pitch ∈ [−π/2, π/2]. At pitch = ±π/2 (gimbal lock) only yaw ∓ roll is
+//    defined: roll is set to 0.
+//  - ZXZ (3-1-3, classical mechanics and orbits): R = Rz(φ) Rx(θ) Rz(ψ), angles (φ, θ, ψ) with
+//    φ, ψ ∈ (−π, π] and θ ∈ [0, π]. At θ = 0 or π only φ ± ψ is defined: ψ is set to 0.
+//  - Axis–angle: R = exp(angle [axis]×), angle ∈ [0, π], |axis| = 1; at angle = 0 the axis is
+//    arbitrary and given as (1, 0, 0).
+// Rotations are active and map the rotated frame's coordinates to the fixed frame's: x_w = R x.
+#include <algorithm>
+#include <cmath>
+
+#include "tumble/math/types.hpp"
+
+namespace tumble {
+
+/// Rotations about one axis: Rx(a), Ry(a), Rz(a).
+inline Mat3 rotation_x(double a) { return Eigen::AngleAxisd(a, Vec3::UnitX()).toRotationMatrix(); }
+inline Mat3 rotation_y(double a) { return Eigen::AngleAxisd(a, Vec3::UnitY()).toRotationMatrix(); }
+inline Mat3 rotation_z(double a) { return Eigen::AngleAxisd(a, Vec3::UnitZ()).toRotationMatrix(); }
+
+/// Below this cos(pitch) (ZYX) or sin(θ) (ZXZ) the two outer axes are treated as aligned: the outer
+/// angles are then known only through their sum or difference, and atan2 of the rounding left in the
+/// matrix entries (~1e-16) would give an arbitrary split.
+inline constexpr double kGimbalLock = 1e-12;
+
+/// (yaw, pitch, roll) with R = Rz(yaw) Ry(pitch) Rx(roll).
+inline Vec3 euler_zyx(const Mat3& R) {
+  // R(2,0) = −sin pitch, R(1,0)/R(0,0) = tan yaw, R(2,1)/R(2,2) = tan roll; pitch from atan2 keeps
+  // its accuracy near ±π/2, where asin(−R(2,0)) would lose half the digits.
+  const double c = std::hypot(R(0, 0), R(1, 0));
+  const double pitch = std::atan2(-R(2, 0), c);
+  if (c < kGimbalLock) return {std::atan2(-R(0, 1), R(1, 1)), pitch, 0.0};  // R = Rz(yaw) Ry(±π/2)
+  return {std::atan2(R(1, 0), R(0, 0)), pitch, std::atan2(R(2, 1), R(2, 2))};
+}
+
+inline Mat3 from_euler_zyx(const Vec3& yaw_pitch_roll) {
+  return rotation_z(yaw_pitch_roll.x()) * rotation_y(yaw_pitch_roll.y()) * rotation_x(yaw_pitch_roll.z());
+}
+
+/// (φ, θ, ψ) with R = Rz(φ) Rx(θ) Rz(ψ).
+inline Vec3 euler_zxz(const Mat3& R) {
+  // Third column (sin φ sin θ, −cos φ sin θ, cos θ), third row (sin θ sin ψ, sin θ cos ψ, cos θ).
+  const double s = std::hypot(R(2, 0), R(2, 1));
+  const double theta = std::atan2(s, R(2, 2));
+  if (s < kGimbalLock) return {std::atan2(R(1, 0), R(0, 0)), theta, 0.0};  // R = Rz(φ) Rx(0 or π)
+  return {std::atan2(R(0, 2), -R(1, 2)), theta, std::atan2(R(2, 0), R(2, 1))};
+}
+
+inline Mat3 from_euler_zxz(const Vec3& phi_theta_psi) {
+  return rotation_z(phi_theta_psi.x()) * rotation_x(phi_theta_psi.y()) * rotation_z(phi_theta_psi.z());
+}
+
+/// Unit axis and angle ∈ [0, π] of the rotation q (either sign of q).
+struct AxisAngle {
+  Vec3 axis = Vec3::UnitX();
+  double angle = 0.0;  ///< rad
+};
+
+inline AxisAngle axis_angle(const Quat& q) {
+  // q = ±(cos(angle/2), sin(angle/2) axis): the sign with w ≥ 0 gives angle ≤ π; atan2 of the vector
+  // part's norm and w keeps small angles accurate (acos(w) would not).
+  const double sign = q.w() < 0 ? -1.0 : 1.0;
+  const Vec3 u = sign * q.vec();
+  const double s = u.norm();
+  if (s == 0.0) return {};
+  return {u / s, 2.0 * std::atan2(s, sign * q.w())};
+}
+
+}  // namespace tumble
