@@ -78,8 +78,8 @@ int main(int argc, char** argv) {
     std::fflush(stdout);
   };
 
-  for (const std::string method : {"splitting", "splitting4", "midpoint", "rk4", "lie_rk4", "implicit_gyro",
-                                   "semi_implicit_euler", "euler"}) {
+  for (const std::string method : {"exact", "splitting", "splitting4", "midpoint", "rk4", "lie_rk4",
+                                   "implicit_gyro", "semi_implicit_euler", "euler"}) {
     for (double h : {0.1, 0.03, 0.01, 3e-3, 1e-3, 3e-4}) {
       RunSettings rs;
       rs.timestep = h;

@@ -3,6 +3,7 @@
 
 #include "commands.hpp"
 #include "scene_summary.hpp"
+#include "tumble/integrate/integrator.hpp"
 #include "tumble/io/scene.hpp"
 
 namespace tumble::cli {
@@ -12,12 +13,16 @@ Runner add_check_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "check",
       "Validate a scene file without simulating: report the first problem as file:line:column, or "
-      "print a summary (each body's mass, centre of mass and principal moments; the forces; the "
+      "print a summary (each body's mass, centre of mass, principal moments and axes and initial "
+      "centre-of-mass velocity; the forces; the "
       "initial energy and momenta; which of them the forces conserve).\n\nExample:\n"
       "  tumble check examples/t_handle.toml");
   cmd->add_option("scene", *file, "scene file (TOML; see docs/scene-format.md)")->required();
   return [file] {
     const Scene scene = load_scene(*file);
+    // What `tumble run` would refuse (e.g. integrator exact with a torque) is refused here too.
+    if (!is_adaptive(scene.settings.integrator))
+      make_integrator(scene.settings.integrator)->check(scene.model);
     print_scene_warnings(scene);
     print_scene_summary(stdout, scene);
     return 0;

@@ -32,6 +32,12 @@ void print_scene_summary(std::FILE* out, const Scene& scene) {
                  ? fmt::format("rtol {:g}, atol {:g}", s.tolerances.relative, s.tolerances.absolute)
                  : fmt::format("timestep {:g} s", s.timestep),
              s.output_interval > 0 ? fmt::format("{:g} s", s.output_interval) : std::string("step"));
+  if (s.integrator == "exact") {
+    fmt::print(out,
+               "               samples are analytic: the Euler–Poinsot motion and the centre of mass's "
+               "parabola, evaluated from t = {:g} s; the timestep only sets where a run may stop\n",
+               scene.initial.t);
+  }
   fmt::print(out, "  contents     {}, {}, {}\n", count(m.bodies.size(), "body", "bodies"),
              count(m.particles.size(), "particle", "particles"),
              count(m.forces.size(), "force model", "force models"));
@@ -42,6 +48,11 @@ void print_scene_summary(std::FILE* out, const Scene& scene) {
     fmt::print(out, "    centre of mass     {} m (body reference frame)\n", vec(b.center_of_mass()));
     fmt::print(out, "    principal moments  {:.10g}  {:.10g}  {:.10g} kg*m^2 (ascending)\n", b.Lambda()(0),
                b.Lambda()(1), b.Lambda()(2));
+    const Mat3& U = b.U();
+    fmt::print(out, "    principal axes     {}  {}  {} (columns of U, reference frame)\n", vec(U.col(0)),
+               vec(U.col(1)), vec(U.col(2)));
+    fmt::print(out, "    initial velocity   {} m/s of the centre of mass (world)\n",
+               vec(scene.initial.bodies[i].v));
   }
   for (const Particle& p : m.particles) fmt::print(out, "  particle '{}': mass {:.10g} kg\n", p.name, p.mass);
   for (const auto& f : m.forces) fmt::print(out, "  force        {}\n", f->describe());

@@ -14,6 +14,7 @@ std::unique_ptr<Integrator> implicit_gyro();
 std::unique_ptr<Integrator> splitting();
 std::unique_ptr<Integrator> splitting4();
 std::unique_ptr<Integrator> implicit_midpoint();
+std::unique_ptr<Integrator> exact();
 std::unique_ptr<AdaptiveIntegrator> dopri45(const Tolerances& tolerances);
 
 }  // namespace tumble::methods

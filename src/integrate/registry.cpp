@@ -21,6 +21,7 @@ const std::map<std::string, std::function<std::unique_ptr<Integrator>()>>& fixed
       {"splitting", methods::splitting},
       {"splitting4", methods::splitting4},
       {"midpoint", methods::implicit_midpoint},
+      {"exact", methods::exact},
   };
   return r;
 }

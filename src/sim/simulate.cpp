@@ -118,6 +118,7 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
                                       state.bodies.size(), state.particles.size(), model.bodies.size(),
                                       model.particles.size()));
   }
+  if (!is_adaptive(settings.integrator)) make_integrator(settings.integrator)->check(model);
   SystemCoordinates x = to_coordinates(settings.formulation, state);
   if (const std::string bad = first_non_finite(model, x); !bad.empty()) {
     throw InvalidArgument(fmt::format("initial state of {} is not finite", bad));
@@ -212,8 +213,7 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
       // (Integrator::steps, bit for bit the same), so fused integrators keep each block of bodies in
       // cache across them. The chunk is bounded so that Ctrl-C is still answered promptly.
       long count = 0;
-      for (double t = x.t; count < kChunk && std::min(h, t_sample - t) == h && t + h < t_sample - tiny;
-           t += h) {
+      for (double t = x.t; count < kChunk && t_sample - t > h + tiny && t + h < t_sample - tiny; t += h) {
         ++count;
       }
       if (count > 1) {
@@ -233,7 +233,11 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
         continue;
       }
     }
-    const double step_h = std::min(h, t_sample - x.t);
+    // The step that reaches the sample time (or comes within `tiny` of it, by the rounding of the
+    // accumulated time) is the remaining interval: x.t + (t_sample − x.t) is t_sample exactly when
+    // x.t ≥ t_sample / 2 (Sterbenz), so the state is computed at the sample time itself.
+    const double remaining = t_sample - x.t;
+    const double step_h = remaining <= h + tiny ? remaining : h;
     if (!events.empty()) x_prev = x;
     integrator->step(model, settings.formulation, x, step_h);
     ++step;

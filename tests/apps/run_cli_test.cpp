@@ -167,6 +167,37 @@ TEST(RunCli, ChosenFieldsDescribeTheSameMotion) {
   }
 }
 
+TEST(RunCli, ExactSamplesAreAnalyticAndATorqueIsRefusedByCheckAndRun) {
+  test::TempDir dir("run_exact");
+  const std::string body =
+      "[[bodies]]\nname = \"box\"\nshape = { type = \"box\", size = [0.1, 0.2, 0.3] }\ndensity = 1000\n"
+      "angular_velocity = [0.1, 5.0, 0.2]\n";
+  const auto free = dir.write("free.toml",
+                              "[simulation]\nduration = 3\nintegrator = \"exact\"\n[world]\n"
+                              "gravity = [0, 0, -9.81]\n" +
+                                  body);
+  const auto c = run_tumble("check " + free.string());
+  ASSERT_EQ(c.status, 0) << c.output;
+  EXPECT_NE(c.output.find("samples are analytic"), std::string::npos) << c.output;
+  const auto r = run_tumble("run " + free.string() + " --quiet -o " + (dir / "free.csv").string());
+  EXPECT_EQ(r.status, 0) << r.output;
+
+  const auto damped = dir.write("damped.toml",
+                                "[simulation]\nduration = 1\nintegrator = \"exact\"\n[[forces]]\n"
+                                "type = \"damping\"\n"
+                                "linear = 0.1\nangular = 0.01\n" +
+                                    body);
+  for (const std::string& command :
+       {std::string("check "), "run -o " + (dir / "damped.csv").string() + " "}) {
+    const auto bad = run_tumble(command + damped.string());
+    EXPECT_EQ(bad.status, 1) << command << bad.output;
+    EXPECT_NE(bad.output.find("integrator 'exact' solves torque-free motion only"), std::string::npos)
+        << bad.output;
+    EXPECT_NE(bad.output.find("'splitting'"), std::string::npos) << bad.output;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "damped.csv"));
+}
+
 TEST(RunCli, DriftWarningOnceWithAdvice) {
   test::TempDir dir("run_drift");
   const auto r = run_tumble("run " + example("t_handle.toml") + " -o " + (dir / "t.csv").string() +

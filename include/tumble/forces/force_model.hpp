@@ -95,6 +95,10 @@ class ForceModel {
   virtual bool local() const { return false; }
   /// Whether the model reads velocities (the engine then forms world v and ω for it).
   virtual bool needs_velocity() const { return true; }
+  /// For a uniform field: the acceleration g it gives every body and particle, as a force m g through
+  /// each centre of mass (no torque about it). nullopt for every other model. The `exact` integrator
+  /// and the drift monitor's advice ask it.
+  virtual std::optional<Vec3> uniform_acceleration() const { return std::nullopt; }
   /// Throws InvalidArgument when the model refers to a body or particle index the system does not
   /// have. Called once before a run, so that evaluations need not check.
   virtual void check(size_t /*n_bodies*/, size_t /*n_particles*/) const {}

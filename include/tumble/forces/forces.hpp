@@ -18,6 +18,7 @@ class UniformGravity final : public LocalForceModel {
   void accumulate_block(const BodyBlock& block, BlockLoads& loads) const override;
   void accumulate_particles(const SystemView& view, std::span<Vec3> f) const override;
   bool needs_velocity() const override { return false; }
+  std::optional<Vec3> uniform_acceleration() const override { return g_; }
   std::string describe() const override;
   std::optional<double> potential_energy(const SystemView& view) const override;
 

@@ -55,6 +55,10 @@ class Integrator {
   /// being handed many). simulate() chunks steps only then: the state is checked between chunks.
   virtual bool fuses_steps(const Model& /*model*/) const { return false; }
 
+  /// Throws InvalidArgument, naming what is in the way, if this integrator cannot run `model` (only
+  /// `exact` refuses some: it solves torque-free motion under a uniform field). simulate() asks first.
+  virtual void check(const Model& /*model*/) const {}
+
   /// Threads a step uses (≤ 0: one per hardware thread). Results do not depend on it, bit for bit.
   void set_threads(int threads) { threads_ = threads; }
   int threads() const { return threads_; }

@@ -10,7 +10,8 @@ namespace tumble {
 
 struct RunSettings {
   double duration = 1.0;         ///< s
-  double timestep = 1e-3;        ///< s; the last step before a sample time is shortened to land on it.
+  double timestep = 1e-3;        ///< s; the last step before a sample time is what remains of the
+                                 ///< interval (shorter, or longer by rounding only), to land on it.
                                  ///< For adaptive integrators: the first trial step.
   double output_interval = 0.0;  ///< s between samples; 0 = every step. The final time is always sampled.
   Formulation formulation = Formulation::mixed;

@@ -1,0 +1,142 @@
+// exact: the analytic motion, evaluated at each step's end from one anchor; no stepping.
+//
+// When every force is a uniform field g (none, or uniform gravity) no torque acts about any centre of
+// mass, so each body's rotation is the Euler–Poinsot motion from its initial state (EulerPoinsot), and
+// its centre of mass, like each particle, follows the parabola
+//   o(t) = o₀ + v₀ τ + ½ g τ²,  v(t) = v₀ + g τ,  τ = t − t₀.
+// Every state is evaluated from the anchor (t₀ and the state there), so a sample at 100 s carries the
+// rounding of one evaluation, not of 10⁵ steps: the timestep only sets where a run may stop. A state
+// that is not the one this integrator produced last (an event's bisection restarting inside a step, a
+// user changing the state) becomes the new anchor.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+#include "engine.hpp"
+#include "methods.hpp"
+#include "tumble/error.hpp"
+#include "tumble/integrate/euler_poinsot.hpp"
+
+namespace tumble {
+namespace {
+
+class Exact final : public Integrator {
+ public:
+  std::string name() const override { return "exact"; }
+  int order() const override { return 0; }  // no discretisation error to have an order
+  int evaluations_per_step() const override { return 0; }
+
+  void check(const Model& model) const override {
+    for (const auto& force : model.forces) {
+      if (!force->uniform_acceleration()) {
+        throw InvalidArgument(fmt::format(
+            "integrator 'exact' solves torque-free motion only (no forces, or uniform gravity), but the "
+            "scene has {}; use 'splitting', which is exact for the free motion and second order in the "
+            "forces (or 'splitting4' for fourth order)",
+            force->describe()));
+      }
+    }
+  }
+
+  /// A run hands many steps at once: the end state is evaluated once.
+  bool fuses_steps(const Model&) const override { return true; }
+
+  void step(const Model& model, Formulation F, SystemCoordinates& x, double h) override {
+    steps(model, F, x, h, 1);
+  }
+
+  void steps(const Model& model, Formulation F, SystemCoordinates& x, double h, long count) override {
+    check(model);
+    engine_.prepare(model, F, threads_);
+    if (!on_trajectory(model, F, x, h)) anchor(model, F, x);
+    double t = x.t;
+    for (long r = 0; r < count; ++r) t += h;  // the times step-by-step calls would reach
+    evaluate(model, F, t, x);
+    last_ = x.bodies;  // same shape after the first step: a copy, no allocation
+    last_particles_ = x.particles;
+    last_t_ = x.t;
+    last_h_ = h;
+  }
+
+ private:
+  /// Whether x is the state this integrator produced last, for this model and formulation. Its time
+  /// may have been moved by rounding (simulate() snaps the time of a sample onto its grid).
+  bool on_trajectory(const Model& model, Formulation F, const SystemCoordinates& x, double h) const {
+    if (model_ != &model || F != formulation_ || flows_.size() != model.bodies.size() ||
+        x.bodies.size() != last_.size() || x.particles.size() != last_particles_.size() ||
+        !(std::abs(x.t - last_t_) <= 1e-9 * std::max(std::abs(h), std::abs(last_h_)))) {
+      return false;
+    }
+    for (size_t k = 0; k < BodyColumns::kCount; ++k) {
+      if (std::memcmp(x.bodies[k], last_[k], x.bodies.size() * sizeof(double)) != 0) return false;
+    }
+    for (size_t p = 0; p < last_particles_.size(); ++p) {
+      if (x.particles[p].x != last_particles_[p].x || x.particles[p].v != last_particles_[p].v) return false;
+    }
+    return true;
+  }
+
+  void anchor(const Model& model, Formulation F, const SystemCoordinates& x) {
+    model_ = &model;
+    formulation_ = F;
+    t0_ = x.t;
+    g_.setZero();
+    for (const auto& force : model.forces) g_ += *force->uniform_acceleration();
+    flows_.clear();
+    o0_.clear();
+    v0_.clear();
+    for (size_t i = 0; i < x.bodies.size(); ++i) {
+      const Coordinates<double> c = x.bodies.load(i);
+      // ^bω and world v in the formulation's own variables, without a rotation where they already are.
+      const Vec3 w_b = F == Formulation::world ? Vec3(c.q.conjugate() * c.omega) : c.omega;
+      flows_.emplace_back(model.bodies[i].Lambda(), c.q, w_b);
+      o0_.push_back(c.o);
+      v0_.push_back(F == Formulation::body ? Vec3(c.q * c.v) : c.v);
+    }
+    particles0_ = x.particles;
+  }
+
+  void evaluate(const Model& model, Formulation F, double t, SystemCoordinates& x) {
+    const double tau = t - t0_;
+    const size_t n = model.bodies.size();
+    engine_.for_each_block(n, [&](const engine::Block& blk) {
+      for (size_t i = blk.begin; i < std::min(blk.end, n); ++i) {
+        Coordinates<double> c;
+        c.q = flows_[i].q(tau);
+        const Vec3 w_b = flows_[i].omega_b(tau);
+        const Vec3 v_w = v0_[i] + tau * g_;
+        c.o = o0_[i] + tau * v0_[i] + (0.5 * tau * tau) * g_;
+        c.v = F == Formulation::body ? Vec3(c.q.conjugate() * v_w) : v_w;
+        c.omega = F == Formulation::world ? Vec3(c.q * w_b) : w_b;
+        x.bodies.store(i, c);
+      }
+    });
+    for (size_t p = 0; p < x.particles.size(); ++p) {
+      const ParticleState& s0 = particles0_[p];
+      x.particles[p] = {s0.x + tau * s0.v + (0.5 * tau * tau) * g_, s0.v + tau * g_};
+    }
+    x.t = t;
+  }
+
+  engine::Engine engine_;
+  const Model* model_ = nullptr;
+  Formulation formulation_ = Formulation::mixed;
+  double t0_ = 0.0;
+  Vec3 g_ = Vec3::Zero();
+  std::vector<EulerPoinsot> flows_;  // per body, from the anchor
+  std::vector<Vec3> o0_, v0_;        // centre of mass and its velocity (world) at the anchor
+  std::vector<ParticleState> particles0_;
+  BodyColumns last_;  // what the last step produced
+  std::vector<ParticleState> last_particles_;
+  double last_t_ = 0.0, last_h_ = 0.0;
+};
+
+}  // namespace
+
+namespace methods {
+std::unique_ptr<Integrator> exact() { return std::make_unique<Exact>(); }
+}  // namespace methods
+
+}  // namespace tumble
