@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "tumble/integrate/integrator.hpp"
 
@@ -11,6 +13,31 @@ namespace {
 
 /// E when every force has a potential, else nullopt.
 std::optional<double> energy(const Invariants& inv) { return inv.total_energy(); }
+
+/// What to change, for this scene: only integrators that remove the error here, never the one in use.
+std::string advice(const Model& model, const RunSettings& s) {
+  const bool torque_free = std::all_of(model.forces.begin(), model.forces.end(),
+                                       [](const auto& f) { return f->uniform_acceleration().has_value(); });
+  auto others = [&](std::vector<std::string> names) {
+    std::erase(names, s.integrator);
+    return names;
+  };
+  const std::string smaller = is_adaptive(s.integrator)
+                                  ? fmt::format("tighten the tolerances (now rtol {:g}, atol {:g})",
+                                                s.tolerances.relative, s.tolerances.absolute)
+                                  : fmt::format("reduce the timestep (now {:g} s)", s.timestep);
+  if (torque_free) {
+    const auto better = others({"exact", "splitting"});
+    if (better.empty()) return smaller;
+    return fmt::format("no torque acts in this scene, so '{}' {}; or {}", fmt::join(better, "' or '"),
+                       better.size() == 2
+                           ? "(the analytic motion, or exact at any step here) removes the error"
+                           : "removes the error",
+                       smaller);
+  }
+  const auto better = others({"splitting4", "dopri45"});
+  return better.empty() ? smaller : fmt::format("{}, or use '{}'", smaller, fmt::join(better, "' or '"));
+}
 
 }  // namespace
 
@@ -56,11 +83,10 @@ DriftSample DriftMonitor::observe(const SystemState& state) {
     warned_ = true;
     pending_ = fmt::format(
         "{} drifted by {:.3g} (relative to t = 0) at t = {} s, past the drift threshold {:g}; the "
-        "forces conserve it, so this is integration error: reduce the timestep (now {:g} s) or use a "
-        "higher-order integrator than '{}' (there are: {}), or raise drift_threshold in "
+        "forces conserve it, so this is integration error of '{}': {}; or raise drift_threshold in "
         "[simulation] (--drift-threshold)",
-        quantity, value, state.t, threshold_, settings_.timestep, settings_.integrator,
-        fmt::join(integrator_names(), ", "));
+        quantity, value, state.t, threshold_, settings_.integrator, advice(model_, settings_));
+    first_warning_ = pending_;
   }
   return d;
 }

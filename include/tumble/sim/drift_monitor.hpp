@@ -39,6 +39,8 @@ class DriftMonitor {
   /// The warning, once: set by the first observe() at which a conserved energy or angular momentum
   /// drifts by more than the threshold, and returned by the first call after that; nullopt otherwise.
   std::optional<std::string> take_warning();
+  /// The warning of this run, if there was one (kept for the run's closing summary).
+  const std::optional<std::string>& warning() const { return first_warning_; }
 
  private:
   const Model& model_;
@@ -49,6 +51,7 @@ class DriftMonitor {
   RunSettings settings_;
   bool warned_ = false;
   std::optional<std::string> pending_;
+  std::optional<std::string> first_warning_;
 };
 
 }  // namespace tumble
