@@ -66,7 +66,7 @@ void BM_LoadStlAndSolidMassProperties(benchmark::State& state) {
   write_binary_stl(torus(), path);
   const MassSpec spec = MassSpec::density(7850.0);
   for (auto _ : state) {
-    benchmark::DoNotOptimize(solid_mass_properties(load_mesh(path), spec));
+    benchmark::DoNotOptimize(solid_mass_properties(load_mesh(path).mesh, spec));
   }
   std::filesystem::remove(path);
   report(state);

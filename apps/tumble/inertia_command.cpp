@@ -24,6 +24,7 @@ struct InertiaOptions {
   std::optional<double> density;
   std::optional<double> mass;
   double scale = 1.0;
+  std::size_t part = 0;
   bool shell = false;
   std::optional<double> thickness;
   bool json = false;
@@ -92,16 +93,20 @@ Report measure(const InertiaOptions& o) {
                    : solid_mass_properties(shape, spec);
     r.surface_area = surface_area(shape);
   } else {
-    const TriangleMesh mesh = load_mesh(o.file, MeshLoadOptions{o.scale});
+    LoadedMesh loaded = load_mesh(o.file, MeshLoadOptions{.scale = o.scale, .part = o.part});
+    const TriangleMesh& mesh = loaded.mesh;
     const MeshMassResult result = o.shell ? shell_mass_properties(mesh, shell_thickness(o), spec, o.file)
                                           : solid_mass_properties(mesh, spec, o.file);
-    r.source = fmt::format("{} ({}, {} vertices, {} triangles{})", o.file,
+    r.source = fmt::format("{} ({}, {} vertices, {} triangles{}{}; {}: {})", o.file,
                            o.shell ? "thin shell" : "closed mesh", mesh.vertices.size(),
                            mesh.triangles.size(),
-                           o.scale != 1.0 ? fmt::format(", scaled by {}", o.scale) : "");
+                           o.part != 0 ? fmt::format(", part {} of {}", o.part, loaded.parts) : "",
+                           o.scale != 1.0 ? fmt::format(", scaled by {}", o.scale) : "", loaded.format,
+                           loaded.precision);
     r.mp = result.properties;
     r.surface_area = result.surface_area;
-    r.warnings = result.warnings;
+    r.warnings = std::move(loaded.warnings);
+    r.warnings.insert(r.warnings.end(), result.warnings.begin(), result.warnings.end());
   }
   if (o.shell && !o.thickness) r.mp.volume = 0.0;  // unknown without a thickness
   return r;
@@ -171,8 +176,10 @@ Runner add_inertia_command(CLI::App& app) {
       "  tumble inertia --shape box --size 0.1,0.2,0.3 --density 1000 --json\n"
       "  tumble inertia --shape sphere --size 0.5 --shell --thickness 0.002 --density 7850");
   cmd->add_option("file", o->file,
-                  "mesh file (STL binary/ASCII, OBJ, PLY, and other formats assimp reads); the mesh "
-                  "must be closed and consistently oriented unless --shell is given");
+                  "mesh file; the mesh must be closed and consistently oriented unless --shell is given. "
+                  "Precision: OBJ, OFF, ASCII PLY and ASCII STL are read exactly (every digit written, "
+                  "each coordinate the nearest double); binary STL holds float32 by its format; binary "
+                  "PLY and the other formats assimp reads (3MF, glTF, DAE, ...) are read as float32");
   auto* shape = cmd->add_option("--shape", o->shape,
                                 "a primitive instead of a file: box, sphere, ellipsoid, cylinder, "
                                 "capsule, cone, torus (axis z, centred; cone base at z=0)");
@@ -186,6 +193,11 @@ Runner add_inertia_command(CLI::App& app) {
   density->excludes(mass);
   cmd->add_option("--scale", o->scale,
                   "multiply mesh coordinates by S (e.g. 0.001 for a file in millimetres)")
+      ->excludes(shape);
+  cmd->add_option("--part", o->part,
+                  "take only part K (1-based, file order) of a file with several: OBJ objects (or "
+                  "groups), STL solids, assimp meshes; by default all parts are merged with a warning")
+      ->check(CLI::PositiveNumber)
       ->excludes(shape);
   auto* shell = cmd->add_flag("--shell", o->shell,
                               "thin-walled part: mass on the surface (surface density = density x "

@@ -245,7 +245,10 @@ MassProperties solid(const TableReader& t, const Material& mat, const Pose& pose
     const std::filesystem::path path = directory / file;
     TriangleMesh mesh;
     try {
-      mesh = load_mesh(path, MeshLoadOptions{scale});
+      LoadedMesh loaded = load_mesh(path, MeshLoadOptions{.scale = scale});
+      for (auto& w : loaded.warnings)
+        scene.warnings.push_back(location(t.file(), t.where("mesh")) + ": " + w);
+      mesh = std::move(loaded.mesh);
     } catch (const Error& e) {
       t.fail_at("mesh", fmt::format("cannot load mesh \"{}\": {}; mesh paths are relative to the scene "
                                     "file's directory",

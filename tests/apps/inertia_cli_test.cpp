@@ -2,7 +2,10 @@
 // gets one clear line and a non-zero exit status.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <numbers>
+#include <unistd.h>
 
 #include "../support/run.hpp"
 
@@ -56,6 +59,42 @@ TEST(InertiaCli, MeshFileGivesItsMassProperties) {
   EXPECT_NEAR(m[0], 2700 * V.at(0), 1e-12 * m[0]);
 }
 
+TEST(InertiaCli, SeveralObjectsAreMergedWithAWarningOrOnePicked) {
+  // Two unit cubes as two OBJ objects, the second twice as tall: merged they make 3 m^3 with a warning
+  // that counts them; --part 2 measures the tall one alone, without a warning.
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("tumble_cli_parts_" + std::to_string(::getpid()) + ".obj");
+  {
+    std::ofstream out(path);
+    for (int k = 0; k < 2; ++k) {
+      out << "o cube" << k + 1 << "\n";
+      for (int i = 0; i < 8; ++i)
+        out << "v " << 3 * k + (i & 1) << " " << ((i >> 1) & 1) << " " << (k + 1) * ((i >> 2) & 1) << "\n";
+      const int b = 8 * k + 1;
+      const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                               {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+      for (const auto& q : quads)
+        out << "f " << b + q[0] << " " << b + q[1] << " " << b + q[2] << " " << b + q[3] << "\n";
+    }
+  }
+  const auto all = run_tumble("inertia " + path.string() + " --density 1 --json");
+  ASSERT_EQ(all.status, 0) << all.output;
+  EXPECT_NE(all.output.find("holds 2 objects ('cube1', 'cube2'); they were merged into one body"),
+            std::string::npos)
+      << all.output;
+  EXPECT_DOUBLE_EQ(json_numbers(all.output, "volume").at(0), 3.0);
+  const auto second = run_tumble("inertia " + path.string() + " --density 1 --part 2");
+  ASSERT_EQ(second.status, 0) << second.output;
+  EXPECT_EQ(second.output.find("warning"), std::string::npos) << second.output;
+  EXPECT_NE(second.output.find("part 2 of 2; OBJ (text): every digit"), std::string::npos) << second.output;
+  EXPECT_NE(second.output.find("volume            2 m^3"), std::string::npos) << second.output;
+  const auto third = run_tumble("inertia " + path.string() + " --density 1 --part 3");
+  EXPECT_NE(third.status, 0);
+  EXPECT_NE(third.output.find("part 3 does not exist: the file has 2 objects"), std::string::npos)
+      << third.output;
+  std::filesystem::remove(path);
+}
+
 void expect_error(const std::string& args, const std::string& expected) {
   const auto r = run_tumble(args);
   EXPECT_NE(r.status, 0) << args;
@@ -79,6 +118,8 @@ TEST(InertiaCli, HelpTeachesWithExamplesAndVersionIsPrinted) {
   EXPECT_EQ(help.status, 0);
   EXPECT_NE(help.output.find("Examples:"), std::string::npos);
   EXPECT_NE(help.output.find("--scale"), std::string::npos);
+  EXPECT_NE(help.output.find("--part"), std::string::npos);
+  EXPECT_NE(help.output.find("read exactly"), std::string::npos);  // the precision of each format
   const auto version = run_tumble("--version");
   EXPECT_EQ(version.status, 0);
   EXPECT_NE(version.output.find("tumble 0."), std::string::npos);

@@ -1,5 +1,6 @@
-// Loading meshes through assimp: every format gives the same solid, STL corners are welded, the scale
-// option scales, and every failure is a FileError that names the file.
+// Loading meshes (tumble's text readers and assimp): every format gives the same solid, STL corners are
+// welded, the scale option scales, and every failure is a FileError that names the file.
+// mesh_text_test.cpp tests the precision of the text formats and their error messages.
 #include <gtest/gtest.h>
 
 #include <fmt/format.h>
@@ -90,7 +91,7 @@ TEST(MeshIo, AllFormatsGiveTheSameSolidAsTheClosedForm) {
   write_text(dir / "handle.ply", ply(mesh));
   const MassProperties want = t_handle_closed_form(1.0, 1.0);
   for (const char* name : {"binary.stl", "ascii.stl", "handle.obj", "handle.ply"}) {
-    const TriangleMesh loaded = load_mesh(dir / name);
+    const TriangleMesh loaded = load_mesh(dir / name).mesh;
     EXPECT_EQ(loaded.vertices.size(), 16U) << name;  // welded back to the shared corners
     EXPECT_EQ(loaded.triangles.size(), 28U) << name;
     const MeshMassResult r = solid_mass_properties(loaded, MassSpec::density(1.0), name);
@@ -118,7 +119,13 @@ TEST(MeshIo, PolygonsAreTriangulatedAndAllObjectsMerged) {
     for (const auto& q : quads) s += fmt::format("f {} {} {} {}\n", b + q[0], b + q[1], b + q[2], b + q[3]);
   }
   write_text(dir / "cubes.obj", s);
-  const MeshMassResult r = solid_mass_properties(load_mesh(dir / "cubes.obj"), MassSpec::density(1.0));
+  const LoadedMesh loaded = load_mesh(dir / "cubes.obj");
+  EXPECT_EQ(loaded.parts, 2U);
+  ASSERT_EQ(loaded.warnings.size(), 1U);
+  EXPECT_NE(loaded.warnings[0].find("holds 2 objects ('cube0', 'cube1'); they were merged into one body"),
+            std::string::npos)
+      << loaded.warnings[0];
+  const MeshMassResult r = solid_mass_properties(loaded.mesh, MassSpec::density(1.0));
   const Mat3 I = 2.0 * Mat3::Identity() / 6.0 + 2.0 * parallel_axis_term(1.0, Vec3(1.5, 0, 0));
   test::expect_close(r.properties, MassProperties{2.0, Vec3(2.0, 0.5, 0.5), I, 2.0}, 1e-14, 1.0);
 }
@@ -129,7 +136,7 @@ TEST(MeshIo, WeldingClosesABinaryStl) {
   TempDir dir;
   const TriangleMesh sphere = tessellate(Sphere{0.5}, 24);
   write_binary_stl(sphere, dir / "sphere.stl");
-  const TriangleMesh loaded = load_mesh(dir / "sphere.stl");
+  const TriangleMesh loaded = load_mesh(dir / "sphere.stl").mesh;
   EXPECT_EQ(loaded.vertices.size(), sphere.vertices.size());
   EXPECT_TRUE(check_mesh(loaded).solid()) << describe_solid_defects(check_mesh(loaded));
   // The file holds float32 coordinates: relative rounding 6e-8 per coordinate, a few times that in
@@ -143,10 +150,10 @@ TEST(MeshIo, ScaleMultipliesCoordinates) {
   TempDir dir;
   write_binary_stl(t_handle_cm(), dir / "handle_cm.stl");
   const MassSpec steel = MassSpec::density(7850.0);
-  const MeshMassResult one = solid_mass_properties(load_mesh(dir / "handle_cm.stl"), steel);
+  const MeshMassResult one = solid_mass_properties(load_mesh(dir / "handle_cm.stl").mesh, steel);
   for (double s : {0.01, 2.5}) {
     const MeshMassResult scaled =
-        solid_mass_properties(load_mesh(dir / "handle_cm.stl", {.scale = s}), steel);
+        solid_mass_properties(load_mesh(dir / "handle_cm.stl", {.scale = s}).mesh, steel);
     // Scaling rounds each coordinate once (ε relative); 1e-13 leaves room for the integration.
     const MassProperties want{one.properties.mass * s * s * s, s * one.properties.center_of_mass,
                               one.properties.inertia * std::pow(s, 5), one.properties.volume * s * s * s};
@@ -193,9 +200,27 @@ TEST(MeshIo, GarbageEmptyAndTriangleFreeFilesNameThePath) {
 
 TEST(MeshIo, NonFiniteCoordinateNamesTheVertex) {
   TempDir dir;
+  // Text: the line and column of the word.
   write_text(dir / "nan.obj", "v 0 0 0\nv 1 0 0\nv 0 nan 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\n");
-  const std::string msg = file_error(dir / "nan.obj");
-  // The second corner of the first face is the vertex (0, nan, 0).
+  std::string msg = file_error(dir / "nan.obj");
+  EXPECT_NE(msg.find("nan.obj:3:5: y coordinate 'nan' is not finite"), std::string::npos) << msg;
+  // Binary STL (through assimp): the first face that uses the vertex. Its second corner is (0, nan, 0).
+  // (Written by hand: write_binary_stl refuses non-finite vertices.)
+  const float nan = std::nanf("");
+  const float corners[4][3][3] = {{{0, 0, 0}, {0, nan, 0}, {1, 0, 0}},
+                                  {{0, 0, 0}, {1, 0, 0}, {0, 0, 1}},
+                                  {{1, 0, 0}, {0, nan, 0}, {0, 0, 1}},
+                                  {{0, 0, 0}, {0, 0, 1}, {0, nan, 0}}};
+  std::string stl(80, ' ');
+  const std::uint32_t count = 4;  // little-endian on every machine tumble builds for (x86-64, arm64)
+  stl.append(reinterpret_cast<const char*>(&count), 4);
+  for (const auto& facet : corners) {
+    stl.append(12, '\0');  // normal
+    stl.append(reinterpret_cast<const char*>(facet), sizeof facet);
+    stl.append(2, '\0');  // attribute
+  }
+  write_text(dir / "nan.stl", stl);
+  msg = file_error(dir / "nan.stl");
   EXPECT_NE(msg.find("corner 1 of face 0 of mesh 0 has non-finite coordinates (0, nan, 0)"),
             std::string::npos)
       << msg;
@@ -210,13 +235,13 @@ TEST(MeshIo, ExampleTHandleMatchesTwoBoxes) {
   // examples/meshes/t_handle.stl is the same T in metres (0.10 × 0.02 × 0.02 bar, 0.06 stem) stored
   // as float32: coordinates like 0.01 are rounded to 6e-8 relative, so 1e-6 bounds the difference.
   const auto path = std::filesystem::path(TUMBLE_SOURCE_DIR) / "examples/meshes/t_handle.stl";
-  const MeshMassResult r = solid_mass_properties(load_mesh(path), MassSpec::density(7850.0));
+  const MeshMassResult r = solid_mass_properties(load_mesh(path).mesh, MassSpec::density(7850.0));
   test::expect_close(r.properties, t_handle_closed_form(0.01, 7850.0), 1e-6, 0.1);
 }
 
 TEST(MeshIo, ExampleAsteroidIsAClosedSolid) {
   const auto path = std::filesystem::path(TUMBLE_SOURCE_DIR) / "examples/meshes/asteroid.obj";
-  const TriangleMesh mesh = load_mesh(path);
+  const TriangleMesh mesh = load_mesh(path).mesh;
   EXPECT_EQ(mesh.triangles.size(), 320U);
   const MeshMassResult r = solid_mass_properties(mesh, MassSpec::density(2000.0), "asteroid.obj");
   EXPECT_FALSE(r.flipped);

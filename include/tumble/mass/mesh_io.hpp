@@ -1,19 +1,36 @@
 #pragma once
-// Reading triangle meshes from files (STL binary/ASCII, OBJ, PLY and the rest assimp reads).
+// Reading triangle meshes from files. The text formats (OBJ, OFF, ASCII PLY, ASCII STL) are read by
+// tumble itself, every coordinate to the double nearest its decimal text; binary STL, binary PLY and
+// the other formats assimp knows go through assimp, which keeps float32 coordinates.
+#include <cstddef>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "tumble/mass/triangle_mesh.hpp"
 
 namespace tumble {
 
 struct MeshLoadOptions {
-  double scale = 1.0;  ///< multiplies every coordinate (0.001 for a CAD file in millimetres)
+  double scale = 1.0;    ///< multiplies every coordinate (0.001 for a CAD file in millimetres)
+  std::size_t part = 0;  ///< 0: every part of the file, merged; k ≥ 1: only the k-th (file order)
 };
 
-/// Reads every mesh in the file into one triangle mesh with node transforms applied and vertices at
-/// identical positions welded (STL stores each triangle's corners separately). Throws FileError with
-/// the path and the reason when the file is missing, unreadable, or holds no triangles.
-TriangleMesh load_mesh(const std::filesystem::path& path, const MeshLoadOptions& options = {});
+/// A mesh as read from a file, and what the user should know about the reading.
+struct LoadedMesh {
+  TriangleMesh mesh;                  ///< welded; only the vertices the triangles use
+  std::size_t parts = 1;              ///< parts in the file (OBJ objects or groups, STL solids, meshes)
+  std::string format;                 ///< e.g. "OBJ (text)", "binary STL"
+  std::string precision;              ///< what the coordinates carry, e.g. "float32 (the format's own)"
+  std::vector<std::string> warnings;  ///< one line each, for the user (several parts merged, ...)
+};
+
+/// Reads a mesh file into one triangle mesh, vertices at identical positions welded (STL stores each
+/// triangle's corners separately), polygons fanned into triangles. A file of several parts is merged
+/// with a warning that counts them, unless options.part picks one. Throws FileError with the path (and
+/// line:column in a text file) and the reason when the file is missing, unreadable, malformed, UTF-16,
+/// a point cloud or empty; InvalidArgument for a bad scale or a part that does not exist.
+LoadedMesh load_mesh(const std::filesystem::path& path, const MeshLoadOptions& options = {});
 
 /// Writes a binary STL (for tests, benchmarks and examples). Throws FileError on failure.
 void write_binary_stl(const TriangleMesh& mesh, const std::filesystem::path& path);
