@@ -7,6 +7,10 @@ source_dir="$2"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 cmake --install "$build_dir" --prefix "$work/prefix" >/dev/null
+# The documentation is installed where `tumble --help` says (share/doc/tumble).
+for doc in README.md scene-format.md NOTATION.md ARCHITECTURE.md examples/t_handle.toml; do
+  test -f "$work/prefix/share/doc/tumble/$doc" || { echo "not installed: share/doc/tumble/$doc"; exit 1; }
+done
 cmake -S "$source_dir/examples/cpp" -B "$work/build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
 cmake --build "$work/build" >/dev/null

@@ -10,6 +10,7 @@
 
 #include "commands.hpp"
 #include "tumble/error.hpp"
+#include "tumble/io/scene.hpp"
 #include "tumble/mass/mesh_io.hpp"
 #include "tumble/mass/mesh_mass.hpp"
 #include "tumble/mass/shapes.hpp"
@@ -28,6 +29,10 @@ struct InertiaOptions {
   bool shell = false;
   std::optional<double> thickness;
   bool json = false;
+  std::vector<double> about;  // a point, file axes (m)
+  std::vector<double> axis;   // a direction, file axes
+  std::string frame = "reference";
+  std::string body;  // for a scene file: one body by name
 };
 
 /// What was measured, whatever the source.
@@ -36,6 +41,7 @@ struct Report {
   MassProperties mp;
   std::optional<double> surface_area;
   std::vector<std::string> warnings;
+  std::string name;  // the body's, for a scene file
 };
 
 Shape make_shape(const std::string& name, const std::vector<double>& s) {
@@ -67,10 +73,14 @@ Shape make_shape(const std::string& name, const std::vector<double>& s) {
   return Torus{s[0], s[1]};
 }
 
+/// Without --density or --mass the material is of unit density: the mass is then the volume (the
+/// area for a shell) and the tensor the shape's own second moments, which scale with any density.
+bool unit_density(const InertiaOptions& o) { return !o.density && !o.mass; }
+
 MassSpec mass_spec(const InertiaOptions& o) {
   if (o.density) return MassSpec::density(*o.density);
   if (o.mass) return MassSpec::mass(*o.mass);
-  throw InvalidArgument("give the material: --density RHO (kg/m^3) or --mass M (kg)");
+  return MassSpec::density(1.0);
 }
 
 double shell_thickness(const InertiaOptions& o) {
@@ -79,7 +89,30 @@ double shell_thickness(const InertiaOptions& o) {
     throw InvalidArgument(
         "--shell with --density needs the wall thickness: add --thickness T (m), or give --mass");
   }
-  return 1.0;  // with a total mass the thickness only sets the reported volume; report area instead
+  return 1.0;  // with a total mass (or unit surface density) the thickness only sets the volume
+}
+
+/// Every body of a scene file (or the one named by --body), as the scene builds it: its parts, holes,
+/// polynomial density, explicit inertia — whatever the file gives.
+std::vector<Report> measure_scene(const InertiaOptions& o) {
+  const Scene scene = load_scene(o.file);
+  std::vector<Report> out;
+  for (size_t i = 0; i < scene.model.bodies.size(); ++i) {
+    const RigidBody& b = scene.model.bodies[i];
+    if (!o.body.empty() && b.name() != o.body) continue;
+    Report r;
+    r.name = b.name();
+    r.source = fmt::format("body '{}' of {}: {}", b.name(), o.file, scene.body_info[i].source);
+    r.mp = b.mass_properties();
+    out.push_back(std::move(r));
+  }
+  if (out.empty()) {
+    std::vector<std::string> names;
+    for (const RigidBody& b : scene.model.bodies) names.push_back(b.name());
+    throw InvalidArgument(
+        fmt::format("{} has no body named '{}'; its bodies are: {}", o.file, o.body, fmt::join(names, ", ")));
+  }
+  return out;
 }
 
 Report measure(const InertiaOptions& o) {
@@ -109,7 +142,41 @@ Report measure(const InertiaOptions& o) {
     r.warnings.insert(r.warnings.end(), result.warnings.begin(), result.warnings.end());
   }
   if (o.shell && !o.thickness) r.mp.volume = 0.0;  // unknown without a thickness
+  if (unit_density(o)) {
+    r.source += o.shell ? "; unit surface density (1 kg/m^2): the mass is the area"
+                        : "; unit density (1 kg/m^3): the mass is the volume";
+  }
   return r;
+}
+
+bool is_scene_file(const std::string& file) { return std::filesystem::path(file).extension() == ".toml"; }
+
+Vec3 vec3_option(const std::vector<double>& v) { return {v[0], v[1], v[2]}; }
+
+/// The derived quantities the options ask for, in the frame they ask for.
+struct Derived {
+  Mat3 inertia;                       // about the centre of mass or --about, in --frame axes
+  std::optional<Vec3> about;          // the point (file axes)
+  std::optional<double> axis_moment;  // about --axis through the point (or the centre of mass)
+  std::optional<double> gyration;     // sqrt(axis_moment / m)
+  Vec3 axis = Vec3::Zero(), axis_point = Vec3::Zero();
+};
+
+Derived derive(const InertiaOptions& o, const Report& r, const PrincipalAxes& pa) {
+  Derived d;
+  Mat3 I = r.mp.inertia;
+  if (!o.about.empty()) {
+    d.about = vec3_option(o.about);
+    I = r.mp.inertia_about(*d.about);  // I_c + m(|c − p|² E − (c − p)(c − p)ᵀ)
+  }
+  d.inertia = o.frame == "principal" ? Mat3(pa.U.transpose() * I * pa.U) : I;
+  if (!o.axis.empty()) {
+    d.axis = vec3_option(o.axis);
+    d.axis_point = d.about.value_or(r.mp.center_of_mass);
+    d.axis_moment = r.mp.moment_about_axis(d.axis, d.axis_point);
+    d.gyration = r.mp.radius_of_gyration(d.axis, d.axis_point);
+  }
+  return d;
 }
 
 std::string json_vector(const Vec3& v) { return fmt::format("[{}, {}, {}]", v(0), v(1), v(2)); }
@@ -129,20 +196,28 @@ std::string json_string(const std::string& s) {
   return out + "\"";
 }
 
-void print_json(const Report& r, const PrincipalAxes& pa) {
+std::string json_object(const Report& r, const PrincipalAxes& pa, const Derived& d,
+                        const std::string& frame) {
   // fmt's "{}" prints the shortest representation that reads back to the same double.
   std::vector<std::string> warnings;
   for (const auto& w : r.warnings) warnings.push_back(json_string(w));
-  fmt::print(
-      "{{\n  \"mass\": {},\n  \"volume\": {},\n  \"surface_area\": {},\n  \"center_of_mass\": {},\n"
-      "  \"inertia\": {},\n  \"principal_moments\": {},\n  \"principal_axes\": {},\n"
-      "  \"warnings\": [{}]\n}}\n",
-      r.mp.mass, r.mp.volume, r.surface_area ? fmt::format("{}", *r.surface_area) : "null",
-      json_vector(r.mp.center_of_mass), json_rows(r.mp.inertia), json_vector(pa.Lambda), json_rows(pa.U),
-      fmt::join(warnings, ", "));
+  std::string extra;
+  if (!r.name.empty()) extra += fmt::format("  \"name\": {},\n", json_string(r.name));
+  if (d.about) extra += fmt::format("  \"about\": {},\n", json_vector(*d.about));
+  if (d.axis_moment) {
+    extra +=
+        fmt::format("  \"axis_moment\": {},\n  \"radius_of_gyration\": {},\n", *d.axis_moment, *d.gyration);
+  }
+  return fmt::format(
+      "{{\n{}  \"mass\": {},\n  \"volume\": {},\n  \"surface_area\": {},\n  \"center_of_mass\": {},\n"
+      "  \"frame\": {},\n  \"inertia\": {},\n  \"principal_moments\": {},\n  \"principal_axes\": {},\n"
+      "  \"warnings\": [{}]\n}}",
+      extra, r.mp.mass, r.mp.volume, r.surface_area ? fmt::format("{}", *r.surface_area) : "null",
+      json_vector(r.mp.center_of_mass), json_string(frame), json_rows(d.inertia), json_vector(pa.Lambda),
+      json_rows(pa.U), fmt::join(warnings, ", "));
 }
 
-void print_human(const Report& r, const PrincipalAxes& pa) {
+void print_human(const Report& r, const PrincipalAxes& pa, const Derived& d, const std::string& frame) {
   const MassProperties& mp = r.mp;
   fmt::print("{}\n", r.source);
   fmt::print("  mass              {:.10g} kg\n", mp.mass);
@@ -150,10 +225,21 @@ void print_human(const Report& r, const PrincipalAxes& pa) {
   if (r.surface_area) fmt::print("  surface area      {:.10g} m^2\n", *r.surface_area);
   const Vec3& c = mp.center_of_mass;
   fmt::print("  centre of mass    ({:.10g}, {:.10g}, {:.10g}) m\n", c(0), c(1), c(2));
-  fmt::print("  inertia tensor about the centre of mass, file axes (kg*m^2):\n");
+  fmt::print("  inertia tensor about {}, {} (kg*m^2):\n",
+             d.about ? fmt::format("the point ({:.10g}, {:.10g}, {:.10g}) m", (*d.about)(0), (*d.about)(1),
+                                   (*d.about)(2))
+                     : std::string("the centre of mass"),
+             frame == "principal" ? "principal axes (the columns of U below)" : "file axes");
   for (int i = 0; i < 3; ++i) {
-    fmt::print("    [{:>17.10g} {:>17.10g} {:>17.10g} ]\n", mp.inertia(i, 0), mp.inertia(i, 1),
-               mp.inertia(i, 2));
+    fmt::print("    [{:>17.10g} {:>17.10g} {:>17.10g} ]\n", d.inertia(i, 0), d.inertia(i, 1),
+               d.inertia(i, 2));
+  }
+  if (d.axis_moment) {
+    fmt::print(
+        "  moment about the axis ({:.10g}, {:.10g}, {:.10g}) through ({:.10g}, {:.10g}, {:.10g}) m: {:.10g} "
+        "kg*m^2, radius of gyration {:.10g} m\n",
+        d.axis(0), d.axis(1), d.axis(2), d.axis_point(0), d.axis_point(1), d.axis_point(2), *d.axis_moment,
+        *d.gyration);
   }
   fmt::print("  principal moments (ascending) (kg*m^2):\n    {:.10g}  {:.10g}  {:.10g}\n", pa.Lambda(0),
              pa.Lambda(1), pa.Lambda(2));
@@ -169,14 +255,20 @@ Runner add_inertia_command(CLI::App& app) {
   auto o = std::make_shared<InertiaOptions>();
   CLI::App* cmd = app.add_subcommand(
       "inertia",
-      "Mass properties (tutorial section IV) of a closed triangle mesh or a primitive shape: mass, "
-      "volume, centre of mass, the inertia tensor about the centre of mass in the file's axes, and "
-      "the principal moments (ascending) and axes.\n\nExamples:\n"
+      "Mass properties (tutorial section IV) of a closed triangle mesh, a primitive shape or the "
+      "bodies of a scene file: mass, volume, centre of mass, the inertia tensor about the centre of "
+      "mass (or a point) in the file's axes (or the principal ones), the principal moments "
+      "(ascending) and axes, and the moment about an axis. Without --density or --mass the density is "
+      "1 kg/m^3: the mass is the volume, and the tensor scales with any density.\n\nExamples:\n"
       "  tumble inertia part.stl --density 2700 --scale 0.001   (aluminium part drawn in mm)\n"
       "  tumble inertia --shape box --size 0.1,0.2,0.3 --density 1000 --json\n"
+      "  tumble inertia --shape box --size 0.1,0.2,0.3 --mass 6 --about 0.05,0.1,0.15 --axis 1,0,0\n"
+      "  tumble inertia examples/asteroid.toml --frame principal   (every body as the scene builds "
+      "it: parts, holes, polynomial density)\n"
       "  tumble inertia --shape sphere --size 0.5 --shell --thickness 0.002 --density 7850");
   cmd->add_option("file", o->file,
-                  "mesh file; the mesh must be closed and consistently oriented unless --shell is given. "
+                  "mesh file, or a scene file (.toml) to report its bodies; a mesh must be closed and "
+                  "consistently oriented unless --shell is given. "
                   "Precision: OBJ, OFF, ASCII PLY and ASCII STL are read exactly (every digit written, "
                   "each coordinate the nearest double); binary STL holds float32 by its format; binary "
                   "PLY and the other formats assimp reads (3MF, glTF, DAE, ...) are read as float32");
@@ -203,9 +295,26 @@ Runner add_inertia_command(CLI::App& app) {
                               "thin-walled part: mass on the surface (surface density = density x "
                               "thickness); open meshes are allowed");
   cmd->add_option("--thickness", o->thickness, "wall thickness (m) for --shell with --density")->needs(shell);
-  cmd->add_flag("--json", o->json,
-                "print JSON: mass, volume, surface_area, center_of_mass, inertia (3x3 rows), "
-                "principal_moments, principal_axes (3x3 rows; columns are the axes), warnings");
+  cmd->add_option("--about", o->about,
+                  "also the inertia tensor about this point X,Y,Z (m, file axes) instead of the centre "
+                  "of mass: I_p = I_c + m (|d|^2 E - d d^T), d = c - p")
+      ->delimiter(',')
+      ->expected(3);
+  cmd->add_option("--axis", o->axis,
+                  "the moment of inertia about the line along X,Y,Z (file axes) through the centre of "
+                  "mass (or --about), and the radius of gyration sqrt(I/m)")
+      ->delimiter(',')
+      ->expected(3);
+  cmd->add_option("--frame", o->frame,
+                  "axes of the printed tensor: reference (the file's, default) or principal (diagonal: "
+                  "the principal moments)")
+      ->check(CLI::IsMember({"reference", "principal"}));
+  cmd->add_option("--body", o->body, "with a scene file: only this body (default: every body)");
+  cmd->add_flag(
+      "--json", o->json,
+      "print JSON: mass, volume, surface_area, center_of_mass, inertia (3x3 rows), "
+      "principal_moments, principal_axes (3x3 rows; columns are the axes), warnings; frame, and about, "
+      "axis_moment, radius_of_gyration when asked; name and a list of objects for a scene");
   cmd->callback([o, shape] {
     if (o->file.empty() == (shape->count() == 0)) {
       throw CLI::ValidationError("inertia", "give either a mesh FILE or --shape NAME --size ...");
@@ -213,14 +322,25 @@ Runner add_inertia_command(CLI::App& app) {
   });
 
   return [o] {
-    const Report r = measure(*o);
-    r.mp.validate({}, o->file.empty() ? o->shape : o->file);
-    for (const auto& w : r.warnings) fmt::print(stderr, "tumble: warning: {}\n", w);
-    const PrincipalAxes pa = r.mp.principal_axes();
+    const bool scene = !o->file.empty() && is_scene_file(o->file);
+    if (!scene && !o->body.empty()) throw InvalidArgument("--body names a body of a scene file (.toml)");
+    const std::vector<Report> reports = scene ? measure_scene(*o) : std::vector<Report>{measure(*o)};
+    std::vector<std::string> json;
+    for (const Report& r : reports) {
+      r.mp.validate({}, o->file.empty() ? o->shape : o->file);
+      for (const auto& w : r.warnings) fmt::print(stderr, "tumble: warning: {}\n", w);
+      const PrincipalAxes pa = r.mp.principal_axes();
+      const Derived d = derive(*o, r, pa);
+      if (o->json) {
+        json.push_back(json_object(r, pa, d, o->frame));
+      } else {
+        print_human(r, pa, d, o->frame);
+      }
+    }
+    // A scene gives a list (one object per body); a shape or mesh one object.
     if (o->json) {
-      print_json(r, pa);
-    } else {
-      print_human(r, pa);
+      const std::string body = fmt::format("{}", fmt::join(json, ",\n"));
+      fmt::print("{}\n", scene ? "[" + body + "]" : body);
     }
     return 0;
   };

@@ -11,7 +11,9 @@
 int main(int argc, char** argv) {
   CLI::App app{
       "tumble: rigid-body dynamics after Jia's Tutorial on Rigid Body Dynamics.\n"
-      "Run 'tumble COMMAND --help' for the options and an example of each command.",
+      "Run 'tumble COMMAND --help' for the options and an example of each command. The documentation "
+      "(README.md; scene-format.md: every scene key and output field; NOTATION.md: frames and symbols) "
+      "and the examples are installed in " TUMBLE_DOC_DIR " (docs/ and examples/ in the source tree).",
       "tumble"};
   app.set_version_flag("--version", std::string("tumble ") + TUMBLE_VERSION);
   app.require_subcommand(1);

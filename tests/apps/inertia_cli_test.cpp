@@ -2,6 +2,7 @@
 // gets one clear line and a non-zero exit status.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -39,6 +40,75 @@ TEST(InertiaCli, BoxJsonMatchesClosedForm) {
   // z × y = −x (det U = +1): U = [[0, 0, −1], [0, 1, 0], [1, 0, 0]].
   EXPECT_EQ(U, (std::vector<double>{0, 0, -1, 0, 1, 0, 1, 0, 0}));
   EXPECT_EQ(json_numbers(r.output, "center_of_mass"), (std::vector<double>{0, 0, 0}));
+}
+
+TEST(InertiaCli, AboutAPointAndAnAxisFollowTheParallelAxisTheorem) {
+  // The box of 6 kg about its corner (a/2, b/2, c/2): I_xx = m(b² + c²)/12 + m(b² + c²)/4 = m(b² + c²)/3,
+  // I_xy = −m (a/2)(b/2); the x axis through the corner has the moment I_xx and k = sqrt(I_xx/m).
+  const auto r =
+      run_tumble("inertia --shape box --size 0.1,0.2,0.3 --mass 6 --about 0.05,0.1,0.15 --axis 1,0,0 --json");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const double m = 6.0, Ixx = m * (0.04 + 0.09) / 3;
+  const auto I = json_numbers(r.output, "inertia");
+  ASSERT_EQ(I.size(), 9u);
+  EXPECT_NEAR(I[0], Ixx, 1e-15);
+  EXPECT_NEAR(I[1], -m * 0.05 * 0.1, 1e-16);
+  EXPECT_NEAR(I[5], -m * 0.1 * 0.15, 1e-16);
+  EXPECT_NEAR(json_numbers(r.output, "axis_moment").at(0), Ixx, 1e-15);
+  EXPECT_NEAR(json_numbers(r.output, "radius_of_gyration").at(0), std::sqrt(Ixx / m), 1e-15);
+  EXPECT_EQ(json_numbers(r.output, "about"), (std::vector<double>{0.05, 0.1, 0.15}));
+  // The body diagonal through the centre: all three moments are equal along it for a cube, and for
+  // this box n·I·n with n = (a, b, c)/|(a, b, c)|.
+  const auto d = run_tumble("inertia --shape box --size 0.1,0.2,0.3 --mass 6 --axis 0.1,0.2,0.3 --json");
+  ASSERT_EQ(d.status, 0) << d.output;
+  const double n2 = 0.01 + 0.04 + 0.09;
+  const double In = (0.01 * m * 0.13 + 0.04 * m * 0.10 + 0.09 * m * 0.05) / 12 / n2;
+  EXPECT_NEAR(json_numbers(d.output, "axis_moment").at(0), In, 1e-15);
+}
+
+TEST(InertiaCli, WithoutAMaterialTheDensityIsOne) {
+  // The mass is then the volume, and the tensor the closed form at ρ = 1.
+  const auto r = run_tumble("inertia --shape box --size 1,2,3 --json");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(json_numbers(r.output, "mass").at(0), 6.0);
+  EXPECT_EQ(json_numbers(r.output, "volume").at(0), 6.0);
+  EXPECT_NEAR(json_numbers(r.output, "inertia").at(0), 6.0 * (4 + 9) / 12, 1e-14);
+  const auto human = run_tumble("inertia --shape box --size 1,2,3");
+  EXPECT_NE(human.output.find("unit density (1 kg/m^3): the mass is the volume"), std::string::npos)
+      << human.output;
+}
+
+TEST(InertiaCli, ThePrincipalFrameMakesTheTensorDiagonal) {
+  // The T-handle mesh (off-centre): in principal axes the tensor is diag(λ₁, λ₂, λ₃), to the
+  // rounding of Uᵀ I U (a few ε of the largest moment).
+  const auto r = run_tumble(std::string("inertia ") + TUMBLE_SOURCE_DIR +
+                            "/examples/meshes/t_handle.stl --density 2700 --frame principal --json");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto I = json_numbers(r.output, "inertia");
+  const auto L = json_numbers(r.output, "principal_moments");
+  ASSERT_EQ(I.size(), 9u);
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      EXPECT_NEAR(I[static_cast<size_t>(3 * i + j)], i == j ? L.at(static_cast<size_t>(i)) : 0.0,
+                  1e-15 * L[2]);
+    }
+  }
+}
+
+TEST(InertiaCli, ASceneReportsEachBodyAsTheSceneBuildsIt) {
+  const std::string scene = std::string(TUMBLE_SOURCE_DIR) + "/examples/t_handle.toml";
+  const auto r = run_tumble("inertia " + scene + " --json");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(r.output.front(), '[') << "a list, one object per body";
+  EXPECT_NE(r.output.find("\"name\": \"handle\""), std::string::npos) << r.output;
+  // The same mass as the mesh at the scene's density (2700 kg/m^3).
+  const auto mesh = run_tumble(std::string("inertia ") + TUMBLE_SOURCE_DIR +
+                               "/examples/meshes/t_handle.stl --density 2700 --json");
+  EXPECT_EQ(json_numbers(r.output, "mass"), json_numbers(mesh.output, "mass"));
+  const auto missing = run_tumble("inertia " + scene + " --body wheel");
+  EXPECT_EQ(missing.status, 1);
+  EXPECT_NE(missing.output.find("has no body named 'wheel'; its bodies are: handle"), std::string::npos)
+      << missing.output;
 }
 
 TEST(InertiaCli, ShellSphereAndHumanOutput) {
@@ -105,7 +175,7 @@ TEST(InertiaCli, BadInputGetsOneClearLine) {
   expect_error("inertia --shape box --size 0.1,0.2 --density 1000", "takes --size with 3 number(s)");
   expect_error("inertia --shape blob --size 1 --density 1", "unknown shape 'blob'");
   expect_error("inertia --shape sphere --size -1 --density 1000", "sphere radius is -1 m");
-  expect_error("inertia --shape sphere --size 1", "--density RHO");
+  expect_error("inertia --shape sphere --size 1 --frame body", "--frame");
   expect_error("inertia --shape sphere --size 1 --density 1 --mass 2", "excludes");
   expect_error("inertia --shape sphere --size 1 --density nan", "density nan kg/m^3 is invalid");
   expect_error("inertia --shape sphere --size 1 --shell --density 1", "--thickness");
