@@ -128,8 +128,15 @@ Report measure(const InertiaOptions& o) {
   } else {
     LoadedMesh loaded = load_mesh(o.file, MeshLoadOptions{.scale = o.scale, .part = o.part});
     const TriangleMesh& mesh = loaded.mesh;
-    const MeshMassResult result = o.shell ? shell_mass_properties(mesh, shell_thickness(o), spec, o.file)
-                                          : solid_mass_properties(mesh, spec, o.file);
+    const MeshMassResult result = [&] {
+      try {
+        return o.shell ? shell_mass_properties(mesh, shell_thickness(o), spec, o.file)
+                       : solid_mass_properties(mesh, spec, o.file);
+      } catch (const NotASolidError& e) {
+        throw NotASolidError(std::string(e.what()) +
+                             ": add --shell (with --thickness T and --density, or with --mass)");
+      }
+    }();
     r.source = fmt::format("{} ({}, {} vertices, {} triangles{}{}; {}: {})", o.file,
                            o.shell ? "thin shell" : "closed mesh", mesh.vertices.size(),
                            mesh.triangles.size(),

@@ -30,6 +30,14 @@ class MeshError : public Error {
   using Error::Error;
 };
 
+/// A mesh that bounds no solid because it is a sheet — open (holes) or enclosing no volume — so that
+/// shell mass properties would apply. Callers add how to ask for them where they are (a command-line
+/// flag, a scene key).
+class NotASolidError : public MeshError {
+ public:
+  using MeshError::MeshError;
+};
+
 /// A file that cannot be read or parsed.
 class FileError : public Error {
  public:

@@ -271,6 +271,8 @@ MassProperties solid(const TableReader& t, const Material& mat, const Pose& pose
     return r.properties;
   } catch (const SceneError&) {
     throw;
+  } catch (const NotASolidError& e) {
+    t.fail_at("mesh", std::string(e.what()) + ": add thickness = T (m) to this body to make it a thin shell");
   } catch (const Error& e) {
     t.fail_at(t.has("mesh") ? "mesh" : (mat.kind == Material::Kind::polynomial ? mat.key : "shape"),
               e.what());

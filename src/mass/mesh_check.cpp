@@ -250,7 +250,7 @@ std::string describe_solid_defects(const MeshReport& r) {
     }
     out.push_back(fmt::format(
         "the mesh has {} (an open surface), first: {}{}; close the holes in a mesh editor, or "
-        "treat it as a thin-walled part (shell mass properties, --shell)",
+        "treat it as a thin-walled part (shell mass properties)",
         plural(r.boundary_edge_count, "boundary edge", "boundary edges"), list, more(r.boundary_edge_count)));
   }
   if (r.non_manifold_edge_count > 0) {

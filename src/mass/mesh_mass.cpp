@@ -17,8 +17,10 @@ MeshMassResult solid_mass_properties(const TriangleMesh& mesh, const MassSpec& s
   }
   const MeshReport report = check_mesh(mesh);
   if (!report.solid()) {
-    throw MeshError(
-        fmt::format("{}: cannot compute solid mass properties: {}", name, describe_solid_defects(report)));
+    const std::string what =
+        fmt::format("{}: cannot compute solid mass properties: {}", name, describe_solid_defects(report));
+    if (report.boundary_edge_count > 0) throw NotASolidError(what);  // a shell would do
+    throw MeshError(what);
   }
   MeshMassResult result;
   result.surface_area = report.surface_area;
@@ -28,9 +30,10 @@ MeshMassResult solid_mass_properties(const TriangleMesh& mesh, const MassSpec& s
   // for any mesh with fewer than ~10⁹ triangles of ordinary proportions.
   const double L = report.diagonal;
   if (!(std::abs(unit.mass) > 1e-12 * L * L * L)) {
-    throw MeshError(fmt::format(
+    throw NotASolidError(fmt::format(
         "{}: the closed mesh encloses zero volume ({:.3g} m^3 for a bounding-box diagonal of {:.6g} "
-        "m): it is flat or folded onto itself; use shell mass properties (--shell) for a sheet",
+        "m): it is flat or folded onto itself; treat a sheet as a thin-walled part (shell mass "
+        "properties)",
         name, unit.mass, L));
   }
   if (unit.mass < 0.0) {

@@ -111,6 +111,19 @@ TEST(InertiaCli, ASceneReportsEachBodyAsTheSceneBuildsIt) {
       << missing.output;
 }
 
+TEST(InertiaCli, AnOpenMeshSuggestsTheShellFlags) {
+  const auto dir = std::filesystem::temp_directory_path() / ("tumble_open_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "open.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\n";
+  const auto r = run_tumble("inertia " + (dir / "open.obj").string() + " --density 1000");
+  std::filesystem::remove_all(dir);
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("3 boundary edges"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("add --shell (with --thickness T and --density, or with --mass)"),
+            std::string::npos)
+      << r.output;
+}
+
 TEST(InertiaCli, ShellSphereAndHumanOutput) {
   const auto r = run_tumble("inertia --shape sphere --size 0.5 --shell --mass 3");
   ASSERT_EQ(r.status, 0) << r.output;

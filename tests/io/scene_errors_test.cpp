@@ -137,6 +137,10 @@ TEST(SceneErrors, MissingOrBrokenMeshes) {
   const std::string open =
       error_of(kSim + "[[bodies]]\nname = \"a\"\nmesh = \"open.obj\"\ndensity = 1.0\n", scene);
   EXPECT_EQ(open.substr(0, scene.string().size() + 20), scene.string() + ":5:8: body 'a': open");
+  // The fix is said in the scene's terms (the key), not the command line's (--shell).
+  EXPECT_NE(open.find("add thickness = T (m) to this body to make it a thin shell"), std::string::npos)
+      << open;
+  EXPECT_EQ(open.find("--shell"), std::string::npos) << open;
 }
 
 TEST(SceneErrors, DuplicateAndBadNames) {

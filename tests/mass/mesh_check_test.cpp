@@ -59,7 +59,8 @@ TEST(MeshCheck, OpenMeshNamesItsBoundaryEdgesAndTheirTriangles) {
   EXPECT_CONTAINS(msg,
                   "the mesh has 3 boundary edges (an open surface), first: edge (0,2) of "
                   "triangle 0, edge (3,0) of triangle 1, edge (2,3) of triangle 2; close the holes");
-  EXPECT_CONTAINS(msg, "--shell");
+  EXPECT_CONTAINS(msg, "thin-walled part (shell mass properties)");
+  EXPECT_THROW(solid_mass_properties(open, MassSpec::density(1.0), "part.stl"), NotASolidError);
 }
 
 TEST(MeshCheck, ManyBoundaryEdgesAreCountedAndTheFirstFiveListed) {
