@@ -10,10 +10,8 @@
 #include "tumble/integrate/integrator.hpp"
 
 namespace tumble {
+namespace scene {
 namespace {
-
-using scene::Domain;
-using scene::TableReader;
 
 void read_simulation(const TableReader& root, Scene& scene) {
   const auto sim = root.table("simulation", "[simulation]",
@@ -30,7 +28,7 @@ void read_simulation(const TableReader& root, Scene& scene) {
   if (const auto name = sim->string("integrator")) {
     const auto names = integrator_names();
     if (std::find(names.begin(), names.end(), *name) == names.end()) {
-      const auto close = scene::closest(*name, names);
+      const auto close = closest(*name, names);
       sim->fail_at("integrator", fmt::format("unknown integrator \"{}\"; {}choose one of: {}", *name,
                                              close ? fmt::format("did you mean \"{}\"? ", *close) : "",
                                              fmt::join(names, ", ")));
@@ -49,27 +47,34 @@ void read_simulation(const TableReader& root, Scene& scene) {
 
 }  // namespace
 
-Scene parse_scene(const std::string& text, const std::filesystem::path& path) {
+toml::table parse_toml(const std::string& text, const std::string& file) {
+  try {
+    return toml::parse(text, file);
+  } catch (const toml::parse_error& e) {
+    fail(file, e.source(), fmt::format("TOML syntax error: {}", e.description()));
+  }
+}
+
+Scene read_scene(const toml::table& root, const std::string& text, const std::filesystem::path& path) {
   Scene scene;
   scene.path = path;
   scene.text = text;
-  const std::string file = path.string();
-  toml::table root;
-  try {
-    root = toml::parse(text, file);
-  } catch (const toml::parse_error& e) {
-    scene::fail(file, e.source(), fmt::format("TOML syntax error: {}", e.description()));
-  }
-  const TableReader r(root, "scene", file, {"simulation", "world", "bodies", "particles", "forces"});
+  const TableReader r(root, "scene", path.string(), {"simulation", "world", "bodies", "particles", "forces"});
   read_simulation(r, scene);
-  scene::NameTable names;
-  scene::read_bodies(r, path.parent_path(), names, scene);
-  scene::read_particles(r, names, scene);
+  NameTable names;
+  read_bodies(r, path.parent_path(), names, scene);
+  read_particles(r, names, scene);
   if (scene.model.bodies.empty() && scene.model.particles.empty()) {
     r.fail_here("the scene has nothing to simulate: add [[bodies]] or [[particles]]");
   }
-  scene::read_forces(r, scene);
+  read_forces(r, scene);
   return scene;
+}
+
+}  // namespace scene
+
+Scene parse_scene(const std::string& text, const std::filesystem::path& path) {
+  return scene::read_scene(scene::parse_toml(text, path.string()), text, path);
 }
 
 Scene load_scene(const std::filesystem::path& path) {

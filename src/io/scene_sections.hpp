@@ -9,6 +9,12 @@
 
 namespace tumble::scene {
 
+/// The TOML of a scene file; a syntax error is a SceneError at its file:line:column.
+toml::table parse_toml(const std::string& text, const std::string& file);
+/// The Scene of a parsed scene file `text` read from `path`: parse_scene() is parse_toml() then this.
+/// Apart so that bench/scene_setup can time the two stages.
+Scene read_scene(const toml::table& root, const std::string& text, const std::filesystem::path& path);
+
 /// Names of bodies and particles seen so far → where they were defined ("line:column"), so that a
 /// duplicate can say where the first one is. Bodies and particles share one namespace: both are rows
 /// of the same trajectory.
