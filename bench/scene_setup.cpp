@@ -7,23 +7,29 @@
 // (sizes, densities or masses, positions, unit quaternions, velocities, angular velocities), names
 // box_0 … box_N-1, uniform gravity. Each repetition loads it through the calls `tumble run` makes
 // (apps/tumble/run_command.cpp) and times the stages apart:
-//   read     the file into memory (load_scene's first step)
-//   parse    toml++ (scene::parse_toml, as parse_scene calls it)
+//   read     the file into memory (scene::read_file, as load_scene calls it)
+//   parse    toml++ (scene::parse_toml, as load_scene calls it)
 //   build    the Scene from the TOML: validation, mass properties, RigidBody, initial states, forces
+//   free     the TOML tree (toml++), destroyed as load_scene returns
 //   prepare  settings validated, CSV writer opened, DriftMonitor, simulate() up to its first sample
+//   set-up   all of the above: process start to first step, less the program's start and the sample
 //   sample   the initial sample: invariants and the CSV rows (written before the first step too)
-// `load_scene` is the public entry point timed whole (read + parse + build), and `tumble run` is the
-// program itself (--duration 0, so that it stops before the first step; process start to exit) when
-// it sits beside this one. Figures are µs per body, min and median of the repetitions.
+// `load_scene` is the public entry point timed whole (read + parse + build + free), and `tumble run`
+// is the program itself (--duration 0, so that it stops before the first step; process start to
+// exit) when it sits beside this one. Figures are µs per body: min and median of the wall-clock
+// time, and min of the CPU time (the machine may be shared; a busy neighbour inflates that least).
 #include <fmt/format.h>
+#include <sys/resource.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdlib>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <random>
-#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -78,67 +84,112 @@ std::string scene_text(long n) {
   return fmt::to_string(out);
 }
 
-struct Stages {
-  std::vector<double> read, parse, build, prepare, sample, staged_total, load_scene, program;
+/// Wall-clock and CPU time. The machine is shared: the CPU time (this process's, page faults
+/// included) is what a busy neighbour inflates least.
+struct Times {
+  double wall = 0, cpu = 0;
 };
 
-/// One load through the stages, as `tumble run` makes them; adds seconds to each.
-void time_stages(const std::filesystem::path& scene_path, const std::filesystem::path& out, Stages& st) {
-  const auto t0 = Clock::now();
-  std::string text;
-  {
-    std::ifstream in(scene_path, std::ios::binary);
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    text = buffer.str();
+double process_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+/// Times from one lap() to the next.
+class Stopwatch {
+ public:
+  Times lap() {
+    const Clock::time_point wall = Clock::now();
+    const double cpu = process_cpu_seconds();
+    const Times t{std::chrono::duration<double>(wall - wall_).count(), cpu - cpu_};
+    wall_ = wall;
+    cpu_ = cpu;
+    return t;
   }
-  st.read.push_back(seconds_since(t0));
 
-  auto t = Clock::now();
-  const toml::table root = scene::parse_toml(text, scene_path.string());
-  st.parse.push_back(seconds_since(t));
+ private:
+  Clock::time_point wall_ = Clock::now();
+  double cpu_ = process_cpu_seconds();
+};
 
-  t = Clock::now();
-  const Scene scene = scene::read_scene(root, text, scene_path);
-  st.build.push_back(seconds_since(t));
+/// What is timed; `setup` is read to prepare, before the initial sample.
+enum Stage { read, parse, build, free_toml, prepare, sample, setup, whole_load_scene, program, stage_count };
+constexpr std::array<const char*, stage_count> kStageNames = {"read",
+                                                              "parse (toml++)",
+                                                              "build",
+                                                              "free the TOML (toml++)",
+                                                              "prepare",
+                                                              "initial sample (CSV)",
+                                                              "set-up",
+                                                              "load_scene",
+                                                              "tumble run (process)"};
+
+/// The times of every stage over the repetitions.
+using Series = std::array<std::vector<Times>, stage_count>;
+
+/// One load through the stages, as `tumble run` makes them. The TOML is freed where load_scene frees
+/// it, before returning.
+void time_stages(const std::filesystem::path& scene_path, const std::filesystem::path& out, Series& series) {
+  Stopwatch total, lap;
+  std::string text = scene::read_file(scene_path);
+  series[read].push_back(lap.lap());
+  std::optional<toml::table> root = scene::parse_toml(text, scene_path.string());
+  series[parse].push_back(lap.lap());
+  Scene scene = scene::read_scene(*root, std::move(text), scene_path);
+  series[build].push_back(lap.lap());
+  root.reset();
+  series[free_toml].push_back(lap.lap());
 
   // run_command.cpp: settings, writer, drift monitor, then simulate() until its first sample.
-  t = Clock::now();
   RunSettings settings = scene.settings;
   settings.duration = 0;  // simulate() returns after the initial sample: nothing is integrated
   validate(settings);
-  const TrajectoryInfo info{scene.text, scene_path.string(), "bench", settings};
+  const TrajectoryInfo info{std::move(scene.text), scene_path.string(), "bench", settings};
   const auto writer = make_csv_writer(out, diagnostics_path(out), scene.model, info);
   DriftMonitor monitor(scene.model, scene.initial, scene.conserved, scene.drift_threshold, settings);
-  Clock::time_point sample_start{}, sample_end{};
   simulate(scene.model, scene.initial, settings, [&](const SystemState& state) {
-    sample_start = Clock::now();
+    series[prepare].push_back(lap.lap());
+    series[setup].push_back(total.lap());
     writer->write(scene.model, state, monitor.observe(state));
-    sample_end = Clock::now();
+    series[sample].push_back(lap.lap());
     return true;
   });
-  st.prepare.push_back(std::chrono::duration<double>(sample_start - t).count());
-  st.sample.push_back(std::chrono::duration<double>(sample_end - sample_start).count());
-  st.staged_total.push_back(std::chrono::duration<double>(sample_end - t0).count());
 }
 
-/// `tumble run` as a process, stopped before its first step; nullopt without the program.
-std::optional<double> time_program(const std::filesystem::path& tumble, const std::filesystem::path& scene,
-                                   const std::filesystem::path& out) {
+/// `tumble run` as a process, stopped before its first step (the CPU time is its own and its
+/// shell's); nullopt without the program.
+std::optional<Times> time_program(const std::filesystem::path& tumble, const std::filesystem::path& scene,
+                                  const std::filesystem::path& out) {
   if (!std::filesystem::exists(tumble)) return std::nullopt;
   const std::string command = fmt::format("'{}' run '{}' -o '{}' --duration 0 --quiet", tumble.string(),
                                           scene.string(), out.string());
+  auto children_cpu = [] {
+    rusage u{};
+    getrusage(RUSAGE_CHILDREN, &u);
+    auto seconds = [](const timeval& t) {
+      return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec);
+    };
+    return seconds(u.ru_utime) + seconds(u.ru_stime);
+  };
+  const double cpu0 = children_cpu();
   const auto t0 = Clock::now();
   if (std::system(command.c_str()) != 0) return std::nullopt;
-  return seconds_since(t0);
+  return Times{seconds_since(t0), children_cpu() - cpu0};
 }
 
-void print_row(long n, const char* stage, std::vector<double> seconds) {
-  if (seconds.empty()) return;
-  std::sort(seconds.begin(), seconds.end());
-  const double per_body = 1e6 / static_cast<double>(n);
-  fmt::print("{:>7} {:<22} {:>12.3f} {:>14.3f}\n", n, stage, seconds.front() * per_body,
-             seconds[seconds.size() / 2] * per_body);
+void print_row(long n, const char* name, const std::vector<Times>& times) {
+  if (times.empty()) return;
+  std::vector<double> wall, cpu;
+  for (const Times& t : times) {
+    wall.push_back(t.wall);
+    cpu.push_back(t.cpu);
+  }
+  std::sort(wall.begin(), wall.end());
+  std::sort(cpu.begin(), cpu.end());
+  const double us = 1e6 / static_cast<double>(n);
+  fmt::print("{:>7} {:<24} {:>10.3f} {:>10.3f} {:>10.3f}\n", n, name, wall.front() * us,
+             wall[wall.size() / 2] * us, cpu.front() * us);
 }
 
 }  // namespace
@@ -157,30 +208,24 @@ int main(int argc, char** argv) {
       "machine: {}, {} hardware threads\nscenes in {}; `tumble run`: {}\n\n",
       repetitions, bench::cpu_model(), std::thread::hardware_concurrency(), dir.string(),
       std::filesystem::exists(tumble) ? tumble.string() + " run SCENE --duration 0 --quiet" : "not found");
-  fmt::print("{:>7} {:<22} {:>12} {:>14}\n", "N", "stage", "min us/body", "median us/body");
+  fmt::print("{:>7} {:<24} {:>10} {:>10} {:>10}\n", "", "", "wall", "wall", "CPU");
+  fmt::print("{:>7} {:<24} {:>10} {:>10} {:>10}\n", "N", "stage (us per body)", "min", "median", "min");
   for (long n : {1000L, 10000L, 100000L}) {
     if (n > max_n) continue;
     const std::filesystem::path scene_path = dir / fmt::format("boxes_{}.toml", n);
     const std::string text = scene_text(n);
     std::ofstream(scene_path, std::ios::binary) << text;
     const std::filesystem::path out = dir / fmt::format("boxes_{}.csv", n);
-    Stages st;
+    Series series;
     for (int r = 0; r < repetitions; ++r) {
-      time_stages(scene_path, out, st);
-      const auto t = Clock::now();
+      time_stages(scene_path, out, series);
+      Stopwatch load;
       const Scene scene = load_scene(scene_path);
-      st.load_scene.push_back(seconds_since(t));
-      if (const auto s = time_program(tumble, scene_path, out)) st.program.push_back(*s);
+      series[whole_load_scene].push_back(load.lap());
+      if (const auto t = time_program(tumble, scene_path, out)) series[program].push_back(*t);
     }
-    print_row(n, "read", st.read);
-    print_row(n, "parse (toml++)", st.parse);
-    print_row(n, "build", st.build);
-    print_row(n, "prepare", st.prepare);
-    print_row(n, "sample (initial CSV)", st.sample);
-    print_row(n, "total of the stages", st.staged_total);
-    print_row(n, "load_scene", st.load_scene);
-    print_row(n, "tumble run (process)", st.program);
-    fmt::print("{:>7} {:<22} {:>12.0f}\n", n, "scene file bytes/body",
+    for (int s = 0; s < stage_count; ++s) print_row(n, kStageNames[s], series[s]);
+    fmt::print("{:>7} {:<24} {:>10.0f}\n", n, "scene file, bytes/body",
                static_cast<double>(text.size()) / static_cast<double>(n));
     std::filesystem::remove(out);
     std::filesystem::remove(diagnostics_path(out));
