@@ -16,10 +16,13 @@
 //   sample   the initial sample: invariants and the CSV rows (written before the first step too)
 // `load_scene` is the public entry point timed whole (read + parse + build + free), and `tumble run`
 // is the program itself (--duration 0, so that it stops before the first step; process start to
-// exit) when it sits beside this one. Figures are µs per body: min and median of the wall-clock
-// time, and min of the CPU time (the machine may be shared; a busy neighbour inflates that least).
+// exit) when it sits beside this one. Every repetition runs in a fresh process (fork), as the
+// program does. Figures are µs per body: min and median of the wall-clock time, and min of the CPU
+// time (the machine may be shared; a busy neighbour inflates that least).
 #include <fmt/format.h>
 #include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -28,8 +31,10 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <optional>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -114,32 +119,68 @@ class Stopwatch {
 };
 
 /// What is timed; `setup` is read to prepare, before the initial sample.
-enum Stage { read, parse, build, free_toml, prepare, sample, setup, whole_load_scene, program, stage_count };
-constexpr std::array<const char*, stage_count> kStageNames = {"read",
-                                                              "parse (toml++)",
-                                                              "build",
-                                                              "free the TOML (toml++)",
-                                                              "prepare",
-                                                              "initial sample (CSV)",
-                                                              "set-up",
-                                                              "load_scene",
-                                                              "tumble run (process)"};
+namespace stage {
+enum Id { read, parse, build, free_toml, prepare, sample, setup, load_scene, program, count };
+}
+constexpr std::array<const char*, stage::count> kStageNames = {"read",
+                                                               "parse (toml++)",
+                                                               "build",
+                                                               "free the TOML (toml++)",
+                                                               "prepare",
+                                                               "initial sample (CSV)",
+                                                               "set-up",
+                                                               "load_scene",
+                                                               "tumble run (process)"};
 
-/// The times of every stage over the repetitions.
-using Series = std::array<std::vector<Times>, stage_count>;
+/// The times of the stages in one repetition, and over all of them.
+using Lap = std::array<Times, stage::count>;
+using Series = std::array<std::vector<Times>, stage::count>;
+
+/// Runs `measure` in a child process and returns what it measured. Each repetition thus starts with a
+/// fresh heap, as `tumble run` does: the first touch of every page (costly on a virtual machine) and
+/// malloc's consolidation of the TOML's millions of freed blocks are part of the set-up, and a process
+/// that had loaded the scene before would hide them.
+Lap in_fresh_process(const std::function<Lap()>& measure) {
+  int fds[2];
+  if (pipe(fds) != 0) throw std::runtime_error("pipe failed");
+  const pid_t pid = fork();
+  if (pid == 0) {
+    close(fds[0]);
+    int status = 0;
+    try {
+      const Lap lap = measure();
+      if (write(fds[1], &lap, sizeof lap) != static_cast<ssize_t>(sizeof lap)) status = 1;
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "scene_setup: {}\n", e.what());
+      status = 1;
+    }
+    _exit(status);
+  }
+  close(fds[1]);
+  Lap lap{};
+  const ssize_t got = read(fds[0], &lap, sizeof lap);
+  close(fds[0]);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  if (pid < 0 || got != static_cast<ssize_t>(sizeof lap) || status != 0) {
+    throw std::runtime_error("the measuring child process failed");
+  }
+  return lap;
+}
 
 /// One load through the stages, as `tumble run` makes them. The TOML is freed where load_scene frees
 /// it, before returning.
-void time_stages(const std::filesystem::path& scene_path, const std::filesystem::path& out, Series& series) {
+Lap time_stages(const std::filesystem::path& scene_path, const std::filesystem::path& out) {
+  Lap series;
   Stopwatch total, lap;
   std::string text = scene::read_file(scene_path);
-  series[read].push_back(lap.lap());
+  series[stage::read] = lap.lap();
   std::optional<toml::table> root = scene::parse_toml(text, scene_path.string());
-  series[parse].push_back(lap.lap());
+  series[stage::parse] = lap.lap();
   Scene scene = scene::read_scene(*root, std::move(text), scene_path);
-  series[build].push_back(lap.lap());
+  series[stage::build] = lap.lap();
   root.reset();
-  series[free_toml].push_back(lap.lap());
+  series[stage::free_toml] = lap.lap();
 
   // run_command.cpp: settings, writer, drift monitor, then simulate() until its first sample.
   RunSettings settings = scene.settings;
@@ -149,12 +190,22 @@ void time_stages(const std::filesystem::path& scene_path, const std::filesystem:
   const auto writer = make_csv_writer(out, diagnostics_path(out), scene.model, info);
   DriftMonitor monitor(scene.model, scene.initial, scene.conserved, scene.drift_threshold, settings);
   simulate(scene.model, scene.initial, settings, [&](const SystemState& state) {
-    series[prepare].push_back(lap.lap());
-    series[setup].push_back(total.lap());
+    series[stage::prepare] = lap.lap();
+    series[stage::setup] = total.lap();
     writer->write(scene.model, state, monitor.observe(state));
-    series[sample].push_back(lap.lap());
+    series[stage::sample] = lap.lap();
     return true;
   });
+  return series;
+}
+
+/// load_scene() alone.
+Lap time_load_scene(const std::filesystem::path& scene_path) {
+  Lap series;
+  Stopwatch load;
+  const Scene scene = load_scene(scene_path);
+  series[stage::load_scene] = load.lap();
+  return series;
 }
 
 /// `tumble run` as a process, stopped before its first step (the CPU time is its own and its
@@ -218,13 +269,13 @@ int main(int argc, char** argv) {
     const std::filesystem::path out = dir / fmt::format("boxes_{}.csv", n);
     Series series;
     for (int r = 0; r < repetitions; ++r) {
-      time_stages(scene_path, out, series);
-      Stopwatch load;
-      const Scene scene = load_scene(scene_path);
-      series[whole_load_scene].push_back(load.lap());
-      if (const auto t = time_program(tumble, scene_path, out)) series[program].push_back(*t);
+      const Lap stages = in_fresh_process([&] { return time_stages(scene_path, out); });
+      for (int s = stage::read; s <= stage::setup; ++s) series[s].push_back(stages[s]);
+      series[stage::load_scene].push_back(
+          in_fresh_process([&] { return time_load_scene(scene_path); })[stage::load_scene]);
+      if (const auto t = time_program(tumble, scene_path, out)) series[stage::program].push_back(*t);
     }
-    for (int s = 0; s < stage_count; ++s) print_row(n, kStageNames[s], series[s]);
+    for (int s = 0; s < stage::count; ++s) print_row(n, kStageNames[s], series[s]);
     fmt::print("{:>7} {:<24} {:>10.0f}\n", n, "scene file, bytes/body",
                static_cast<double>(text.size()) / static_cast<double>(n));
     std::filesystem::remove(out);
