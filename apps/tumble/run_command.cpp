@@ -101,7 +101,8 @@ int run(const RunOptions& o) {
         "--diagnostics names a CSV file; HDF5 output keeps the diagnostics in its "
         "'diagnostics' group: drop --diagnostics or use --format csv");
   }
-  const TrajectoryInfo info{scene.text, o.scene, TUMBLE_VERSION, settings, o.fields};
+  // The writer keeps the scene's text (HDF5 stores it); the run needs it no more, so it is not copied.
+  const TrajectoryInfo info{std::move(scene.text), o.scene, TUMBLE_VERSION, settings, o.fields};
   const std::unique_ptr<TrajectoryWriter> writer =
       hdf5 ? make_hdf5_writer(out, scene.model, info)
            : make_csv_writer(

@@ -1,12 +1,19 @@
 #include "tumble/dynamics/rigid_body.hpp"
 
 #include "tumble/dynamics/state.hpp"
+#include "tumble/error.hpp"
 
 namespace tumble {
 
 RigidBody RigidBody::from_mass_properties(const MassProperties& mp, std::string name) {
-  mp.validate({}, "body '" + name + "'");
-  const PrincipalAxes pa = mp.principal_axes();
+  const PrincipalAxes pa = [&] {
+    try {
+      return mp.validated_principal_axes();
+    } catch (const InvalidMassProperties& e) {
+      // Named here, not by validate()'s `what`: a scene makes 10^5 bodies and that string for each.
+      throw InvalidMassProperties("body '" + name + "': " + e.what());
+    }
+  }();
   return RigidBody(std::move(name), mp.mass, pa.Lambda, mp.center_of_mass, pa.U);
 }
 

@@ -7,11 +7,11 @@
 namespace tumble {
 
 size_t Model::body_index(const std::string& name) const {
-  std::vector<std::string> names;
   for (size_t i = 0; i < bodies.size(); ++i) {
     if (bodies[i].name() == name) return i;
-    names.push_back("'" + bodies[i].name() + "'");
   }
+  std::vector<std::string> names;  // for the message only
+  for (const RigidBody& b : bodies) names.push_back("'" + b.name() + "'");
   throw InvalidArgument(fmt::format("no body named '{}'; the bodies are {}", name,
                                     names.empty() ? "none" : fmt::format("{}", fmt::join(names, ", "))));
 }

@@ -3,17 +3,15 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <fstream>
-#include <sstream>
 
 #include "scene_sections.hpp"
 #include "tumble/integrate/integrator.hpp"
 
 namespace tumble {
+namespace scene {
 namespace {
-
-using scene::Domain;
-using scene::TableReader;
 
 void read_simulation(const TableReader& root, Scene& scene) {
   const auto sim = root.table("simulation", "[simulation]",
@@ -30,7 +28,7 @@ void read_simulation(const TableReader& root, Scene& scene) {
   if (const auto name = sim->string("integrator")) {
     const auto names = integrator_names();
     if (std::find(names.begin(), names.end(), *name) == names.end()) {
-      const auto close = scene::closest(*name, names);
+      const auto close = closest(std::string(*name), names);
       sim->fail_at("integrator", fmt::format("unknown integrator \"{}\"; {}choose one of: {}", *name,
                                              close ? fmt::format("did you mean \"{}\"? ", *close) : "",
                                              fmt::join(names, ", ")));
@@ -39,7 +37,7 @@ void read_simulation(const TableReader& root, Scene& scene) {
   }
   if (const auto f = sim->string("formulation")) {
     try {
-      s.formulation = parse_formulation(*f);
+      s.formulation = parse_formulation(std::string(*f));
     } catch (const InvalidArgument&) {
       sim->fail_at("formulation",
                    fmt::format("formulation must be \"world\", \"mixed\" or \"body\", found \"{}\"", *f));
@@ -49,39 +47,59 @@ void read_simulation(const TableReader& root, Scene& scene) {
 
 }  // namespace
 
-Scene parse_scene(const std::string& text, const std::filesystem::path& path) {
-  Scene scene;
-  scene.path = path;
-  scene.text = text;
-  const std::string file = path.string();
-  toml::table root;
-  try {
-    root = toml::parse(text, file);
-  } catch (const toml::parse_error& e) {
-    scene::fail(file, e.source(), fmt::format("TOML syntax error: {}", e.description()));
-  }
-  const TableReader r(root, "scene", file, {"simulation", "world", "bodies", "particles", "forces"});
-  read_simulation(r, scene);
-  scene::NameTable names;
-  scene::read_bodies(r, path.parent_path(), names, scene);
-  scene::read_particles(r, names, scene);
-  if (scene.model.bodies.empty() && scene.model.particles.empty()) {
-    r.fail_here("the scene has nothing to simulate: add [[bodies]] or [[particles]]");
-  }
-  scene::read_forces(r, scene);
-  return scene;
-}
-
-Scene load_scene(const std::filesystem::path& path) {
+std::string read_file(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     throw FileError(
         fmt::format("cannot read scene file {}: {}", path.string(),
                     std::filesystem::exists(path) ? "permission denied or not a file" : "no such file"));
   }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_scene(text.str(), path);
+  // Straight into the string: through a std::ostringstream the text was copied twice more.
+  std::string text;
+  std::error_code no_size;  // a pipe or a device has none; the string then grows as it is read
+  if (const auto size = std::filesystem::file_size(path, no_size); !no_size) text.reserve(size);
+  std::array<char, 1 << 16> chunk;
+  while (in.read(chunk.data(), chunk.size()) || in.gcount() > 0) {
+    text.append(chunk.data(), static_cast<size_t>(in.gcount()));
+  }
+  return text;
+}
+
+toml::table parse_toml(const std::string& text, const std::string& file) {
+  try {
+    return toml::parse(text, file);
+  } catch (const toml::parse_error& e) {
+    fail(file, e.source(), fmt::format("TOML syntax error: {}", e.description()));
+  }
+}
+
+Scene read_scene(const toml::table& root, std::string text, const std::filesystem::path& path) {
+  Scene scene;
+  scene.path = path;
+  scene.text = std::move(text);
+  const std::string file = path.string();  // for messages; outlives every reader
+  const TableReader r(root, "scene", file, {"simulation", "world", "bodies", "particles", "forces"});
+  read_simulation(r, scene);
+  NameTable names;
+  read_bodies(r, path.parent_path(), names, scene);
+  read_particles(r, names, scene);
+  if (scene.model.bodies.empty() && scene.model.particles.empty()) {
+    r.fail_here("the scene has nothing to simulate: add [[bodies]] or [[particles]]");
+  }
+  read_forces(r, names, scene);
+  return scene;
+}
+
+}  // namespace scene
+
+Scene parse_scene(const std::string& text, const std::filesystem::path& path) {
+  return scene::read_scene(scene::parse_toml(text, path.string()), text, path);
+}
+
+Scene load_scene(const std::filesystem::path& path) {
+  std::string text = scene::read_file(path);
+  const toml::table root = scene::parse_toml(text, path.string());
+  return scene::read_scene(root, std::move(text), path);
 }
 
 }  // namespace tumble

@@ -8,17 +8,8 @@
 
 namespace tumble::scene {
 
-namespace {
-
-std::vector<std::string> keys_of(const toml::table& table) {
-  std::vector<std::string> keys;
-  for (auto&& [k, v] : table) keys.emplace_back(k.str());
-  return keys;
-}
-
-}  // namespace
-
-void register_name(const TableReader& table, const std::string& name, NameTable& names) {
+void register_name(const TableReader& table, std::string_view name, bool is_particle, size_t index,
+                   NameTable& names) {
   // Names become CSV fields and HDF5 strings; keeping them to these characters means no quoting or
   // escaping anywhere a trajectory is read.
   const bool ok = !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
@@ -29,46 +20,37 @@ void register_name(const TableReader& table, const std::string& name, NameTable&
     table.fail_at(
         "name", fmt::format("name \"{}\" is not allowed: use letters, digits, '_', '-' and '.' only", name));
   }
-  const toml::source_region& where = table.where("name");
   const auto [it, inserted] =
-      names.emplace(name, fmt::format("line {}, column {}", where.begin.line, where.begin.column));
+      names.try_emplace(name, NameEntry{table.where("name").begin, is_particle, index});
   if (!inserted) {
-    table.fail_at("name", fmt::format("duplicate name \"{}\" (first defined at {}): give every body and "
-                                      "particle its own name",
-                                      name, it->second));
+    table.fail_at("name",
+                  fmt::format("duplicate name \"{}\" (first defined at line {}, column {}): give every "
+                              "body and particle its own name",
+                              name, it->second.where.line, it->second.where.column));
   }
 }
 
 void read_bodies(const TableReader& root, const std::filesystem::path& directory, NameTable& names,
                  Scene& scene) {
   const auto bodies = root.tables("bodies");
+  names.reserve(names.size() + bodies.size());
+  scene.model.bodies.reserve(bodies.size());
+  scene.initial.bodies.reserve(bodies.size());
+  scene.body_info.reserve(bodies.size());
   for (size_t i = 0; i < bodies.size(); ++i) {
-    const std::vector<std::string> keys = {"name",
-                                           "shape",
-                                           "mesh",
-                                           "scale",
-                                           "thickness",
-                                           "parts",
-                                           "inertia",
-                                           "center_of_mass",
-                                           "density",
-                                           "mass",
-                                           "position",
-                                           "orientation",
-                                           "velocity",
-                                           "angular_velocity",
-                                           "angular_velocity_frame"};
     // The name first (any keys allowed), so that every other message can name the body.
-    const TableReader untitled(*bodies[i], fmt::format("[[bodies]] #{}", i + 1), root.file(),
-                               keys_of(*bodies[i]));
-    const std::string name = untitled.required_string("name", "the body a name, e.g. name = \"handle\"");
-    register_name(untitled, name, names);
-    const TableReader named(*bodies[i], fmt::format("body '{}'", name), root.file(),
-                            keys);  // messages name it
-    const BodyMass mass = read_body_mass(named, directory, scene);
+    const auto untitled =
+        TableReader::any_keys(*bodies[i], Context::numbered("[[bodies]] #", i + 1), root.file());
+    const std::string_view name = untitled.required_string("name", "the body a name, e.g. name = \"handle\"");
+    register_name(untitled, name, false, scene.model.bodies.size(), names);
+    const TableReader named(*bodies[i], Context::named("body", name), root.file(),
+                            {"name", "shape", "mesh", "scale", "thickness", "parts", "inertia",
+                             "center_of_mass", "density", "mass", "position", "orientation", "velocity",
+                             "angular_velocity", "angular_velocity_frame"});
+    BodyMass mass = read_body_mass(named, directory, scene);
     RigidBody rigid = [&] {
       try {
-        return RigidBody::from_mass_properties(mass.properties, name);
+        return RigidBody::from_mass_properties(mass.properties, std::string(name));
       } catch (const InvalidMassProperties& e) {
         named.fail_at(named.has("inertia") ? "inertia" : "name", e.what());
       }
@@ -81,20 +63,21 @@ void read_bodies(const TableReader& root, const std::filesystem::path& directory
     scene.initial.bodies.push_back(
         state_from_reference(rigid, position, orientation, velocity, omega, omega_frame));
     scene.model.add_body(std::move(rigid));
-    scene.body_info.push_back({mass.source, mass.properties});
+    scene.body_info.push_back({std::move(mass.source), mass.properties});
   }
 }
 
 void read_particles(const TableReader& root, NameTable& names, Scene& scene) {
   const auto particles = root.tables("particles");
+  names.reserve(names.size() + particles.size());
   for (size_t i = 0; i < particles.size(); ++i) {
-    const std::vector<std::string> keys = {"name", "mass", "position", "velocity"};
-    const TableReader untitled(*particles[i], fmt::format("[[particles]] #{}", i + 1), root.file(),
-                               keys_of(*particles[i]));
-    const std::string name = untitled.required_string("name", "the particle a name, e.g. name = \"p1\"");
-    register_name(untitled, name, names);
-    const TableReader p(*particles[i], fmt::format("particle '{}'", name), root.file(), keys);
-    scene.model.add_particle(Particle{name, p.required_number("mass", "kg", Domain::positive)});
+    const auto untitled =
+        TableReader::any_keys(*particles[i], Context::numbered("[[particles]] #", i + 1), root.file());
+    const std::string_view name = untitled.required_string("name", "the particle a name, e.g. name = \"p1\"");
+    register_name(untitled, name, true, scene.model.particles.size(), names);
+    const TableReader p(*particles[i], Context::named("particle", name), root.file(),
+                        {"name", "mass", "position", "velocity"});
+    scene.model.add_particle(Particle{std::string(name), p.required_number("mass", "kg", Domain::positive)});
     scene.initial.particles.push_back(
         ParticleState{p.vec3("position", Vec3::Zero(), "m"), p.vec3("velocity", Vec3::Zero(), "m/s")});
   }

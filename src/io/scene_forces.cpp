@@ -1,6 +1,9 @@
 // [world] gravity and [[forces]]: the force models of forces.hpp, and which invariants they conserve.
 #include <fmt/format.h>
 
+#include <array>
+#include <string_view>
+
 #include "scene_sections.hpp"
 #include "tumble/forces/forces.hpp"
 
@@ -8,40 +11,53 @@ namespace tumble::scene {
 namespace {
 
 /// The index of the body named by `key` in t.
-size_t body_index(const TableReader& t, const std::string& key, const Scene& scene) {
-  const std::string name = *t.string(key);
-  std::vector<std::string> names;
-  for (size_t i = 0; i < scene.model.bodies.size(); ++i) {
-    if (scene.model.bodies[i].name() == name) return i;
-    names.push_back(scene.model.bodies[i].name());
+size_t body_index(const TableReader& t, std::string_view key, const NameTable& names, const Scene& scene) {
+  const std::string_view name = *t.string(key);
+  if (const auto found = names.find(name); found != names.end()) {
+    if (!found->second.is_particle) return found->second.index;
+    t.fail_at(key, fmt::format("\"{}\" is a particle; this force acts on rigid bodies only", name));
   }
-  for (const Particle& p : scene.model.particles) {
-    if (p.name == name) {
-      t.fail_at(key, fmt::format("\"{}\" is a particle; this force acts on rigid bodies only", name));
-    }
-  }
-  const auto s = closest(name, names);
+  std::vector<std::string> bodies;
+  for (const RigidBody& b : scene.model.bodies) bodies.push_back(b.name());
+  const auto s = closest(std::string(name), bodies);
   t.fail_at(key, fmt::format("no body named \"{}\"; {}", name,
-                             s               ? fmt::format("did you mean \"{}\"?", *s)
-                             : names.empty() ? std::string("the scene has no [[bodies]]")
-                                             : fmt::format("the bodies are: {}", fmt::join(names, ", "))));
+                             s                ? fmt::format("did you mean \"{}\"?", *s)
+                             : bodies.empty() ? std::string("the scene has no [[bodies]]")
+                                              : fmt::format("the bodies are: {}", fmt::join(bodies, ", "))));
 }
 
-size_t required_body(const TableReader& t, const Scene& scene) {
+/// The index of the particle named by `key` in t.
+size_t particle_index(const TableReader& t, std::string_view key, const NameTable& names,
+                      const Scene& scene) {
+  const std::string_view name = *t.string(key);
+  if (const auto found = names.find(name); found != names.end() && found->second.is_particle) {
+    return found->second.index;
+  }
+  std::vector<std::string> particles;
+  for (const Particle& p : scene.model.particles) particles.push_back(p.name);
+  const auto s = closest(std::string(name), particles);
+  t.fail_at(key, fmt::format("no particle named \"{}\"; {}", name,
+                             s ? fmt::format("did you mean \"{}\"?", *s)
+                             : particles.empty()
+                                 ? std::string("the scene has no [[particles]]")
+                                 : fmt::format("the particles are: {}", fmt::join(particles, ", "))));
+}
+
+size_t required_body(const TableReader& t, const NameTable& names, const Scene& scene) {
   if (!t.has("body")) t.fail_here("missing 'body': name the body this force acts on");
-  return body_index(t, "body", scene);
+  return body_index(t, "body", names, scene);
 }
 
-Vec3 required_vec3(const TableReader& t, const std::string& key, const char* unit) {
+Vec3 required_vec3(const TableReader& t, std::string_view key, const char* unit) {
   const auto v = t.vec3(key, unit);
   if (!v) t.fail_here(fmt::format("missing '{}': give [x, y, z] ({})", key, unit));
   return *v;
 }
 
-Spring::End spring_end(const TableReader& spring, const std::string& key, const Scene& scene,
-                       bool& anchored) {
+Spring::End spring_end(const TableReader& spring, std::string_view key, const NameTable& names,
+                       const Scene& scene, bool& anchored) {
   const auto end =
-      spring.table(key, spring.context() + " end " + key, {"body", "point", "anchor", "particle"});
+      spring.table(key, spring.context().child(" end ", key), {"body", "point", "anchor", "particle"});
   if (!end) {
     spring.fail_here(
         fmt::format("missing '{}': give {} = {{ body = \"NAME\", point = [x, y, z] }}, "
@@ -51,18 +67,7 @@ Spring::End spring_end(const TableReader& spring, const std::string& key, const 
   end->at_most_one_of({"body", "anchor", "particle"});
   if (end->has("particle")) {
     if (end->has("point")) end->fail_at("point", "point goes with body; a particle is a point by itself");
-    const std::string name = *end->string("particle");
-    std::vector<std::string> names;
-    for (size_t i = 0; i < scene.model.particles.size(); ++i) {
-      if (scene.model.particles[i].name == name) return Spring::End{all_bodies, Vec3::Zero(), i};
-      names.push_back(scene.model.particles[i].name);
-    }
-    const auto s = closest(name, names);
-    end->fail_at("particle",
-                 fmt::format("no particle named \"{}\"; {}", name,
-                             s               ? fmt::format("did you mean \"{}\"?", *s)
-                             : names.empty() ? std::string("the scene has no [[particles]]")
-                                             : fmt::format("the particles are: {}", fmt::join(names, ", "))));
+    return Spring::End{all_bodies, Vec3::Zero(), particle_index(*end, "particle", names, scene)};
   }
   if (end->has("anchor")) {
     if (end->has("point"))
@@ -73,14 +78,14 @@ Spring::End spring_end(const TableReader& spring, const std::string& key, const 
   if (!end->has("body")) {
     end->fail_here("give body = \"NAME\" (with point), particle = \"NAME\" or anchor = [x, y, z] (world, m)");
   }
-  const size_t i = body_index(*end, "body", scene);
+  const size_t i = body_index(*end, "body", names, scene);
   // Default: the body's centre of mass (in its reference frame), where a spring exerts no torque.
   return Spring::End{i, end->vec3("point", scene.model.bodies[i].center_of_mass(), "m")};
 }
 
 }  // namespace
 
-void read_forces(const TableReader& root, Scene& scene) {
+void read_forces(const TableReader& root, const NameTable& names, Scene& scene) {
   Conservation& c = scene.conserved;
   c = Conservation{};
   auto external = [&c] {  // a force from outside the system: momenta change
@@ -95,22 +100,25 @@ void read_forces(const TableReader& root, Scene& scene) {
     }
   }
 
-  const std::vector<std::string> types = {"force", "torque", "damping", "drag", "spring", "gravity_gradient"};
+  constexpr std::array<std::string_view, 6> types = {"force", "torque", "damping",
+                                                     "drag",  "spring", "gravity_gradient"};
   const auto forces = root.tables("forces");
   for (size_t i = 0; i < forces.size(); ++i) {
-    const TableReader any(*forces[i], fmt::format("[[forces]] #{}", i + 1), root.file(),
+    const TableReader any(*forces[i], Context::numbered("[[forces]] #", i + 1), root.file(),
                           {"type", "body", "force", "frame", "point", "point_frame", "torque", "linear",
                            "angular", "a", "b", "stiffness", "rest_length", "damping", "mu", "center",
                            "torque_only"});
-    const std::string type = any.required_string(
-        "type", fmt::format("the kind: type = \"{}\"", fmt::join(types, "\" | \"")).c_str());
-    auto reader = [&](std::vector<std::string> keys) {
-      keys.push_back("type");
-      return TableReader(*forces[i], fmt::format("[[forces]] #{} ({})", i + 1, type), root.file(), keys);
+    if (!any.has("type")) {
+      any.fail_here(fmt::format("missing 'type': give the kind: type = \"{}\"", fmt::join(types, "\" | \"")));
+    }
+    const std::string_view type = *any.string("type");
+    // The keys of this type, then "type".
+    auto reader = [&](Keys keys) {
+      return TableReader(*forces[i], any.context().child(" (", type, ")"), root.file(), keys);
     };
     if (type == "force") {
-      const auto t = reader({"body", "force", "frame", "point", "point_frame"});
-      const size_t b = required_body(t, scene);
+      const auto t = reader({"body", "force", "frame", "point", "point_frame", "type"});
+      const size_t b = required_body(t, names, scene);
       const Vec3 f = required_vec3(t, "force", "N");
       const Frame frame = t.frame("frame", Frame::world);
       const Frame point_frame = t.frame("point_frame", Frame::body);
@@ -121,13 +129,13 @@ void read_forces(const TableReader& root, Scene& scene) {
       scene.model.add_force<PointForce>(b, f, frame, point, point_frame);
       c = Conservation{false, false, false};
     } else if (type == "torque") {
-      const auto t = reader({"body", "torque", "frame"});
-      const size_t b = required_body(t, scene);
+      const auto t = reader({"body", "torque", "frame", "type"});
+      const size_t b = required_body(t, names, scene);
       scene.model.add_force<PureTorque>(b, required_vec3(t, "torque", "N*m"), t.frame("frame", Frame::world));
       c = Conservation{false, false, false};
     } else if (type == "damping" || type == "drag") {
-      const auto t = reader({"body", "linear", "angular"});
-      const size_t b = t.has("body") ? body_index(t, "body", scene) : all_bodies;
+      const auto t = reader({"body", "linear", "angular", "type"});
+      const size_t b = t.has("body") ? body_index(t, "body", names, scene) : all_bodies;
       const bool damping = type == "damping";
       const double linear = t.number("linear", 0.0, damping ? "N*s/m" : "kg/m", Domain::non_negative);
       const double angular = t.number("angular", 0.0, damping ? "N*m*s" : "kg*m^2", Domain::non_negative);
@@ -139,10 +147,10 @@ void read_forces(const TableReader& root, Scene& scene) {
       }
       c = Conservation{false, false, false};
     } else if (type == "spring") {
-      const auto t = reader({"a", "b", "stiffness", "rest_length", "damping"});
+      const auto t = reader({"a", "b", "stiffness", "rest_length", "damping", "type"});
       bool anchored = false;
-      const Spring::End a = spring_end(t, "a", scene, anchored);
-      const Spring::End b = spring_end(t, "b", scene, anchored);
+      const Spring::End a = spring_end(t, "a", names, scene, anchored);
+      const Spring::End b = spring_end(t, "b", names, scene, anchored);
       const auto is_anchor = [](const Spring::End& e) {
         return e.body == all_bodies && e.particle == all_bodies;
       };
@@ -155,7 +163,7 @@ void read_forces(const TableReader& root, Scene& scene) {
       if (damping > 0) c.energy = false;
       if (anchored) external();  // between two bodies the pair of forces is internal and central
     } else if (type == "gravity_gradient") {
-      const auto t = reader({"mu", "center", "torque_only"});
+      const auto t = reader({"mu", "center", "torque_only", "type"});
       const double mu = t.required_number("mu", "m^3/s^2", Domain::positive);
       const Vec3 center = t.vec3("center", Vec3::Zero(), "m");
       const bool torque_only = t.boolean("torque_only").value_or(false);
@@ -167,7 +175,7 @@ void read_forces(const TableReader& root, Scene& scene) {
       // The torque without its force is not the gradient of the potential: nothing is conserved.
       if (torque_only) c = Conservation{false, false, false};
     } else {
-      const auto s = closest(type, types);
+      const auto s = closest(std::string(type), {types.begin(), types.end()});
       any.fail_at("type", fmt::format("unknown force type \"{}\"; {}", type,
                                       s ? fmt::format("did you mean \"{}\"?", *s)
                                         : fmt::format("choose \"{}\"", fmt::join(types, "\", \""))));

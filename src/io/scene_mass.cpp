@@ -3,7 +3,9 @@
 // a part is computed in its own frame and placed with its pose (MassProperties::transformed).
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
+#include <string_view>
 
 #include "scene_sections.hpp"
 #include "tumble/mass/density.hpp"
@@ -36,7 +38,7 @@ struct Material {
   enum class Kind { none, density, polynomial, mass } kind = Kind::none;
   double value = 0.0;  // density (kg/m³) or total mass (kg)
   Polynomial polynomial;
-  std::string key;  // "density" or "mass", for locating messages
+  std::string_view key;  // "density" or "mass", for locating messages
 
   std::string describe() const {
     switch (kind) {
@@ -56,7 +58,7 @@ struct Material {
 // The rules are exact for polynomial ρ of degree ≤ d − 2 with d ≤ kMaxDensityDegree (density.hpp).
 constexpr int kMaxPolynomialDegree = kMaxDensityDegree - 2;
 
-int exponent(const TableReader& t, const toml::node& n, const std::string& what) {
+int exponent(const TableReader& t, const toml::node& n, const ValueName& what) {
   const auto e = n.value_exact<int64_t>();
   if (!e || *e < 0 || *e > kMaxPolynomialDegree) {
     fail(t.file(), n.source(),
@@ -84,11 +86,12 @@ Polynomial read_polynomial(const TableReader& density) {
                        "found {}",
                        density.context(), m, type_name(term)));
     }
-    Polynomial::Term t{number_value(density, "polynomial", *a->get(0), fmt::format("polynomial[{}][0]", m),
-                                    "kg/m^3 per m^(i+j+k)", Domain::finite),
-                       exponent(density, *a->get(1), fmt::format("polynomial[{}][1]", m)),
-                       exponent(density, *a->get(2), fmt::format("polynomial[{}][2]", m)),
-                       exponent(density, *a->get(3), fmt::format("polynomial[{}][3]", m))};
+    const int row = static_cast<int>(m);
+    Polynomial::Term t{number_value(density, *a->get(0), {"polynomial", row, 0}, "kg/m^3 per m^(i+j+k)",
+                                    Domain::finite),
+                       exponent(density, *a->get(1), {"polynomial", row, 1}),
+                       exponent(density, *a->get(2), {"polynomial", row, 2}),
+                       exponent(density, *a->get(3), {"polynomial", row, 3})};
     if (t.i + t.j + t.k > kMaxPolynomialDegree) {
       fail(density.file(), term.source(),
            fmt::format("{}: polynomial term {} has degree {}; the quadrature is exact up to degree {}: "
@@ -112,7 +115,7 @@ Material read_material(const TableReader& t) {
   } else if (const toml::node* d = t.node("density")) {
     m.key = "density";
     if (d->is_table()) {
-      const TableReader poly(*d->as_table(), t.context() + " density", t.file(), {"polynomial"});
+      const TableReader poly(*d->as_table(), t.context().child(" density"), t.file(), {"polynomial"});
       m.kind = Material::Kind::polynomial;
       m.polynomial = read_polynomial(poly);
     } else {
@@ -123,6 +126,9 @@ Material read_material(const TableReader& t) {
   return m;
 }
 
+constexpr std::array<std::string_view, 7> kShapeTypes = {"box",     "sphere", "ellipsoid", "cylinder",
+                                                         "capsule", "cone",   "torus"};
+
 Shape read_shape(const TableReader& owner) {
   const toml::node* n = owner.node("shape");
   if (!n->is_table()) {
@@ -131,51 +137,49 @@ Shape read_shape(const TableReader& owner) {
                                        type_name(*n)));
   }
   const toml::table& table = *n->as_table();
-  const std::vector<std::string> types = {"box",     "sphere", "ellipsoid", "cylinder",
-                                          "capsule", "cone",   "torus"};
   const toml::node* type_node = table.get("type");
-  const std::string context = owner.context() + " shape";
+  const Context context = owner.context().child(" shape");
   if (!type_node || !type_node->is_string()) {
     fail(owner.file(), type_node ? type_node->source() : n->source(),
-         fmt::format("{}: shape needs type = \"{}\"", context, fmt::join(types, "\" | \"")));
+         fmt::format("{}: shape needs type = \"{}\"", context, fmt::join(kShapeTypes, "\" | \"")));
   }
-  const std::string type = type_node->as_string()->get();
-  auto reader = [&](std::vector<std::string> dims) {
-    dims.push_back("type");
-    return TableReader(table, context + " (" + type + ")", owner.file(), dims);
+  const std::string_view type = type_node->as_string()->get();
+  // The dimensions of this type, then "type".
+  auto reader = [&](Keys keys) {
+    return TableReader(table, context.child(" (", type, ")"), owner.file(), keys);
   };
   const char* m = "m";
   const Domain pos = Domain::positive;
   Shape shape;
   if (type == "box") {
-    const auto t = reader({"size"});
+    const auto t = reader({"size", "type"});
     const auto size = t.vec3("size", m, pos);
     if (!size) t.fail_here("missing 'size': give the edge lengths [x, y, z] (m)");
     shape = Box{*size};
   } else if (type == "sphere") {
-    shape = Sphere{reader({"radius"}).required_number("radius", m, pos)};
+    shape = Sphere{reader({"radius", "type"}).required_number("radius", m, pos)};
   } else if (type == "ellipsoid") {
-    const auto t = reader({"semi_axes"});
+    const auto t = reader({"semi_axes", "type"});
     const auto a = t.vec3("semi_axes", m, pos);
     if (!a) t.fail_here("missing 'semi_axes': give [a, b, c] (m)");
     shape = Ellipsoid{*a};
   } else if (type == "cylinder" || type == "capsule") {
-    const auto t = reader({"radius", "length"});
+    const auto t = reader({"radius", "length", "type"});
     const double r = t.required_number("radius", m, pos);
     const double l = t.required_number("length", m, pos);
     shape = type == "cylinder" ? Shape(Cylinder{r, l}) : Shape(Capsule{r, l});
   } else if (type == "cone") {
-    const auto t = reader({"radius", "height"});
+    const auto t = reader({"radius", "height", "type"});
     shape = Cone{t.required_number("radius", m, pos), t.required_number("height", m, pos)};
   } else if (type == "torus") {
-    const auto t = reader({"major_radius", "minor_radius"});
+    const auto t = reader({"major_radius", "minor_radius", "type"});
     shape = Torus{t.required_number("major_radius", m, pos), t.required_number("minor_radius", m, pos)};
   } else {
-    const auto s = closest(type, types);
+    const auto s = closest(std::string(type), {kShapeTypes.begin(), kShapeTypes.end()});
     fail(owner.file(), type_node->source(),
          fmt::format("{}: unknown shape type \"{}\"; {}", context, type,
                      s ? fmt::format("did you mean \"{}\"?", *s)
-                       : fmt::format("choose \"{}\"", fmt::join(types, "\", \""))));
+                       : fmt::format("choose \"{}\"", fmt::join(kShapeTypes, "\", \""))));
   }
   try {
     validate_shape(shape);
@@ -209,11 +213,15 @@ struct Pose {
   Vec3 t = Vec3::Zero();
 };
 
+/// A polynomial density, written in the body frame, as a field over a part placed there by `pose`.
+DensityField density_in_part(const Material& mat, const Pose& pose) {
+  return [&mat, pose](const Vec3& x) { return mat.polynomial(pose.R * x + pose.t); };
+}
+
 /// The solid of `shape` or `mesh` in table t (its own frame), with material `mat`; `pose` places it
 /// in the body frame, where a polynomial density is written.
 MassProperties solid(const TableReader& t, const Material& mat, const Pose& pose,
                      const std::filesystem::path& directory, std::string& source, Scene& scene) {
-  const DensityField rho_part = [&mat, pose](const Vec3& x) { return mat.polynomial(pose.R * x + pose.t); };
   // The rule of degree d is exact for ρ of degree d − 2 (density.hpp).
   const int degree = std::max(kMinDensityDegree, mat.polynomial.degree + 2);
   const MassSpec spec = mat.kind == Material::Kind::mass      ? MassSpec::mass(mat.value)
@@ -237,10 +245,10 @@ MassProperties solid(const TableReader& t, const Material& mat, const Pose& pose
       source = describe_shape(shape) + shell + ", " + mat.describe();
       if (is_shell) return shell_mass_properties(shape, thickness, spec);
       if (mat.kind == Material::Kind::polynomial)
-        return integrate_density(shape, rho_part, degree).properties;
+        return integrate_density(shape, density_in_part(mat, pose), degree).properties;
       return solid_mass_properties(shape, spec);
     }
-    const std::string file = *t.string("mesh");
+    const std::string file(*t.string("mesh"));
     const double scale = t.number("scale", 1.0, "", Domain::positive);
     const std::filesystem::path path = directory / file;
     TriangleMesh mesh;
@@ -262,7 +270,7 @@ MassProperties solid(const TableReader& t, const Material& mat, const Pose& pose
       return r.properties;
     }
     if (mat.kind == Material::Kind::polynomial) {
-      DensityResult r = integrate_density(mesh, rho_part, degree, file);
+      DensityResult r = integrate_density(mesh, density_in_part(mat, pose), degree, file);
       for (auto& w : r.warnings) scene.warnings.push_back(location(t.file(), t.where("mesh")) + ": " + w);
       return r.properties;
     }
@@ -288,21 +296,21 @@ MassProperties explicit_inertia(const TableReader& t, const Material& mat) {
   const toml::array* a = n.as_array();
   Mat3 I = Mat3::Zero();
   if (a && a->size() == 3 && (*a)[0].is_number()) {
-    for (size_t i = 0; i < 3; ++i) {
-      I(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)) =
-          number_value(t, "inertia", *a->get(i), fmt::format("inertia[{}]", i), "kg*m^2", Domain::positive);
+    for (int i = 0; i < 3; ++i) {
+      I(i, i) = number_value(t, *a->get(static_cast<size_t>(i)), {"inertia", i}, "kg*m^2", Domain::positive);
     }
   } else if (a && a->size() == 3) {
-    for (size_t i = 0; i < 3; ++i) {
-      const toml::array* row = (*a)[i].as_array();
+    for (int i = 0; i < 3; ++i) {
+      const toml::array* row = (*a)[static_cast<size_t>(i)].as_array();
       if (!row || row->size() != 3) {
-        fail(t.file(), (*a)[i].source(),
+        const toml::node& r = (*a)[static_cast<size_t>(i)];
+        fail(t.file(), r.source(),
              fmt::format("{}: inertia row {} must be an array of 3 numbers (kg*m^2), found {}", t.context(),
-                         i, type_name((*a)[i])));
+                         i, type_name(r)));
       }
-      for (size_t j = 0; j < 3; ++j) {
-        I(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = number_value(
-            t, "inertia", *row->get(j), fmt::format("inertia[{}][{}]", i, j), "kg*m^2", Domain::finite);
+      for (int j = 0; j < 3; ++j) {
+        I(i, j) =
+            number_value(t, *row->get(static_cast<size_t>(j)), {"inertia", i, j}, "kg*m^2", Domain::finite);
       }
     }
     if (!I.isApprox(I.transpose(), 1e-12)) {  // entries are typed in; a mismatch is a typo
@@ -357,7 +365,7 @@ BodyMass read_body_mass(const TableReader& body, const std::filesystem::path& di
   MassProperties total;
   int holes = 0;
   for (size_t i = 0; i < parts.size(); ++i) {
-    const TableReader part(*parts[i], fmt::format("{} part {}", body.context(), i + 1), body.file(),
+    const TableReader part(*parts[i], body.context().child_numbered(" part ", i + 1), body.file(),
                            {"shape", "mesh", "scale", "thickness", "inertia", "center_of_mass", "density",
                             "mass", "position", "orientation", "hole"});
     part.require_one_of({"shape", "mesh", "inertia"});

@@ -78,6 +78,15 @@ bool in_domain(double x, Domain d) {
 
 std::string with_unit(const char* unit) { return unit && *unit ? fmt::format(" ({})", unit) : ""; }
 
+/// Whether `key` is one of `allowed`. Lengths and first letters are compared before the text: they
+/// already tell most keys apart, and every key of every body table is checked.
+bool is_allowed(std::string_view key, Keys allowed) {
+  for (const std::string_view a : allowed) {
+    if (a.size() == key.size() && a.front() == key.front() && a == key) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 std::optional<std::string> closest(const std::string& word, const std::vector<std::string>& candidates) {
@@ -95,8 +104,61 @@ std::optional<std::string> closest(const std::string& word, const std::vector<st
   return std::nullopt;
 }
 
-double number_value(const TableReader& reader, const std::string& key, const toml::node& node,
-                    const std::string& what, const char* unit, Domain domain) {
+Context Context::numbered(std::string_view prefix, size_t number) {
+  Context c;
+  c.text_ = prefix;
+  c.number_ = number;
+  return c;
+}
+
+Context Context::named(std::string_view kind, std::string_view name) {
+  Context c;
+  c.text_ = kind;
+  c.name_ = name;
+  c.quoted_ = true;
+  return c;
+}
+
+Context Context::child(std::string_view text, std::string_view name, std::string_view after) const {
+  Context c;
+  c.parent_ = this;
+  c.text_ = text;
+  c.name_ = name;
+  c.after_ = after;
+  return c;
+}
+
+Context Context::child_numbered(std::string_view text, size_t number) const {
+  Context c;
+  c.parent_ = this;
+  c.text_ = text;
+  c.number_ = number;
+  return c;
+}
+
+std::string Context::str() const {
+  std::string s = parent_ ? parent_->str() : std::string();
+  s += text_;
+  if (number_) s += std::to_string(*number_);
+  if (quoted_) {
+    s += " '";
+    s += name_;
+    s += '\'';
+  } else {
+    s += name_;
+  }
+  s += after_;
+  return s;
+}
+
+std::string ValueName::str() const {
+  if (i < 0) return std::string(key);
+  if (j < 0) return fmt::format("{}[{}]", key, i);
+  return fmt::format("{}[{}][{}]", key, i, j);
+}
+
+double number_value(const TableReader& reader, const toml::node& node, const ValueName& what,
+                    const char* unit, Domain domain) {
   if (!node.is_number()) {
     fail(reader.file(), node.source(),
          fmt::format("{}: {} must be a number{}, found {}", reader.context(), what, with_unit(unit),
@@ -112,47 +174,49 @@ double number_value(const TableReader& reader, const std::string& key, const tom
          fmt::format("{}: {} is {}{}: it must be {}", reader.context(), what, x,
                      unit && *unit ? std::string(" ") + unit : "", domain_text(domain)));
   }
-  (void)key;
   return x;
 }
 
-TableReader::TableReader(const toml::table& table, std::string context, std::string file,
-                         std::vector<std::string> allowed)
-    : table_(&table), context_(std::move(context)), file_(std::move(file)) {
+TableReader::TableReader(const toml::table& table, Context context, const std::string& file, Keys allowed)
+    : TableReader(table, context, file) {
   for (auto&& [k, v] : table) {
-    const std::string key(k.str());
-    if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
-    const auto suggestion = closest(key, allowed);
-    fail(file_, k.source(),
-         fmt::format("{}: unknown key '{}'; {}", context_, key,
-                     suggestion ? fmt::format("did you mean '{}'?", *suggestion)
-                                : fmt::format("the keys here are: {}", fmt::join(allowed, ", "))));
+    if (!is_allowed(k.str(), allowed)) fail_unknown_key(k, allowed);
   }
 }
 
-const toml::source_region& TableReader::where(const std::string& key) const {
+TableReader TableReader::any_keys(const toml::table& table, Context context, const std::string& file) {
+  return TableReader(table, context, file);
+}
+
+void TableReader::fail_unknown_key(const toml::key& k, Keys allowed) const {
+  const std::vector<std::string> keys(allowed.begin(), allowed.end());
+  const std::string key(k.str());
+  const auto suggestion = closest(key, keys);
+  fail(file(), k.source(),
+       fmt::format("{}: unknown key '{}'; {}", context_, key,
+                   suggestion ? fmt::format("did you mean '{}'?", *suggestion)
+                              : fmt::format("the keys here are: {}", fmt::join(keys, ", "))));
+}
+
+const toml::source_region& TableReader::where(std::string_view key) const {
   const toml::node* n = node(key);
   return n ? n->source() : table_->source();
 }
 
-void TableReader::fail_at(const std::string& key, const std::string& message) const {
-  fail(file_, where(key), fmt::format("{}: {}", context_, message));
+void TableReader::fail_at(std::string_view key, const std::string& message) const {
+  fail(file(), where(key), fmt::format("{}: {}", context_, message));
 }
 
 void TableReader::fail_here(const std::string& message) const {
-  fail(file_, table_->source(), fmt::format("{}: {}", context_, message));
+  fail(file(), table_->source(), fmt::format("{}: {}", context_, message));
 }
 
-void TableReader::require_one_of(const std::vector<std::string>& keys) const {
-  at_most_one_of(keys);
-  for (const auto& k : keys) {
-    if (has(k)) return;
-  }
-  fail_here(fmt::format("missing {}: give one of them", fmt::join(keys, " or ")));
+void TableReader::require_one_of(Keys keys) const {
+  if (!at_most_one_of(keys)) fail_here(fmt::format("missing {}: give one of them", fmt::join(keys, " or ")));
 }
 
-void TableReader::at_most_one_of(const std::vector<std::string>& keys) const {
-  const std::string* first = nullptr;
+bool TableReader::at_most_one_of(Keys keys) const {
+  const std::string_view* first = nullptr;
   for (const auto& k : keys) {
     if (!has(k)) continue;
     if (first) {
@@ -160,39 +224,40 @@ void TableReader::at_most_one_of(const std::vector<std::string>& keys) const {
     }
     first = &k;
   }
+  return first != nullptr;
 }
 
-std::optional<double> TableReader::number(const std::string& key, const char* unit, Domain domain) const {
+std::optional<double> TableReader::number(std::string_view key, const char* unit, Domain domain) const {
   const toml::node* n = node(key);
   if (!n) return std::nullopt;
-  return number_value(*this, key, *n, key, unit, domain);
+  return number_value(*this, *n, key, unit, domain);
 }
 
-double TableReader::number(const std::string& key, double fallback, const char* unit, Domain domain) const {
+double TableReader::number(std::string_view key, double fallback, const char* unit, Domain domain) const {
   return number(key, unit, domain).value_or(fallback);
 }
 
-double TableReader::required_number(const std::string& key, const char* unit, Domain domain) const {
+double TableReader::required_number(std::string_view key, const char* unit, Domain domain) const {
   const auto x = number(key, unit, domain);
   if (!x)
     fail_here(fmt::format("missing '{}': give a {} number{}", key, domain_text(domain), with_unit(unit)));
   return *x;
 }
 
-std::optional<std::string> TableReader::string(const std::string& key) const {
+std::optional<std::string_view> TableReader::string(std::string_view key) const {
   const toml::node* n = node(key);
   if (!n) return std::nullopt;
   if (!n->is_string()) fail_at(key, fmt::format("{} must be a string, found {}", key, type_name(*n)));
-  return n->as_string()->get();
+  return std::string_view(n->as_string()->get());
 }
 
-std::string TableReader::required_string(const std::string& key, const char* what) const {
+std::string_view TableReader::required_string(std::string_view key, const char* what) const {
   const auto s = string(key);
   if (!s) fail_here(fmt::format("missing '{}': give {}", key, what));
   return *s;
 }
 
-std::optional<bool> TableReader::boolean(const std::string& key) const {
+std::optional<bool> TableReader::boolean(std::string_view key) const {
   const toml::node* n = node(key);
   if (!n) return std::nullopt;
   if (!n->is_boolean()) {
@@ -201,7 +266,7 @@ std::optional<bool> TableReader::boolean(const std::string& key) const {
   return n->as_boolean()->get();
 }
 
-std::optional<Vec3> TableReader::vec3(const std::string& key, const char* unit, Domain domain) const {
+std::optional<Vec3> TableReader::vec3(std::string_view key, const char* unit, Domain domain) const {
   const toml::node* n = node(key);
   if (!n) return std::nullopt;
   const toml::array* a = n->as_array();
@@ -210,18 +275,16 @@ std::optional<Vec3> TableReader::vec3(const std::string& key, const char* unit, 
             fmt::format("{} must be an array of 3 numbers{}, found {}", key, with_unit(unit), type_name(*n)));
   }
   Vec3 v;
-  for (size_t i = 0; i < 3; ++i) {
-    v(static_cast<Eigen::Index>(i)) =
-        number_value(*this, key, *a->get(i), fmt::format("{}[{}]", key, i), unit, domain);
-  }
+  for (int i = 0; i < 3; ++i)
+    v(i) = number_value(*this, *a->get(static_cast<size_t>(i)), {key, i}, unit, domain);
   return v;
 }
 
-Vec3 TableReader::vec3(const std::string& key, const Vec3& fallback, const char* unit) const {
+Vec3 TableReader::vec3(std::string_view key, const Vec3& fallback, const char* unit) const {
   return vec3(key, unit, Domain::finite).value_or(fallback);
 }
 
-std::optional<Quat> TableReader::quaternion(const std::string& key) const {
+std::optional<Quat> TableReader::quaternion(std::string_view key) const {
   const toml::node* n = node(key);
   if (!n) return std::nullopt;
   const toml::array* a = n->as_array();
@@ -229,9 +292,8 @@ std::optional<Quat> TableReader::quaternion(const std::string& key) const {
     fail_at(key, fmt::format("{} must be a unit quaternion [w, x, y, z], found {}", key, type_name(*n)));
   }
   Eigen::Vector4d wxyz;
-  for (size_t i = 0; i < 4; ++i) {
-    wxyz(static_cast<Eigen::Index>(i)) =
-        number_value(*this, key, *a->get(i), fmt::format("{}[{}]", key, i), "", Domain::finite);
+  for (int i = 0; i < 4; ++i) {
+    wxyz(i) = number_value(*this, *a->get(static_cast<size_t>(i)), {key, i}, "", Domain::finite);
   }
   const double norm = wxyz.norm();
   if (!(std::abs(norm - 1.0) <= kQuaternionNormSlack)) {
@@ -247,7 +309,7 @@ std::optional<Quat> TableReader::quaternion(const std::string& key) const {
   return Quat(wxyz(0), wxyz(1), wxyz(2), wxyz(3));
 }
 
-Frame TableReader::frame(const std::string& key, Frame fallback) const {
+Frame TableReader::frame(std::string_view key, Frame fallback) const {
   const auto s = string(key);
   if (!s) return fallback;
   if (*s == "world") return Frame::world;
@@ -255,24 +317,24 @@ Frame TableReader::frame(const std::string& key, Frame fallback) const {
   fail_at(key, fmt::format("{} must be \"world\" or \"body\", found \"{}\"", key, *s));
 }
 
-std::optional<TableReader> TableReader::table(const std::string& key, const std::string& context,
-                                              std::vector<std::string> allowed) const {
+std::optional<TableReader> TableReader::table(std::string_view key, Context context, Keys allowed) const {
   const toml::node* n = node(key);
   if (!n) return std::nullopt;
   if (!n->is_table()) fail_at(key, fmt::format("{} must be a table {{ ... }}, found {}", key, type_name(*n)));
-  return TableReader(*n->as_table(), context, file_, std::move(allowed));
+  return TableReader(*n->as_table(), context, file(), allowed);
 }
 
-std::vector<const toml::table*> TableReader::tables(const std::string& key) const {
+std::vector<const toml::table*> TableReader::tables(std::string_view key) const {
   std::vector<const toml::table*> out;
   const toml::node* n = node(key);
   if (!n) return out;
   const toml::array* a = n->as_array();
   if (!a)
     fail_at(key, fmt::format("{} must be an array of tables ([[{}]]), found {}", key, key, type_name(*n)));
+  out.reserve(a->size());
   for (const toml::node& element : *a) {
     if (!element.is_table()) {
-      fail(file_, element.source(),
+      fail(file(), element.source(),
            fmt::format("{}: each entry of {} must be a table, found {}", context_, key, type_name(element)));
     }
     out.push_back(element.as_table());

@@ -2,17 +2,32 @@
 // The sections of a scene file, each read by its own source file (scene.cpp, scene_bodies.cpp,
 // scene_forces.cpp) into the Scene under construction.
 #include <filesystem>
-#include <map>
 #include <string>
+#include <string_view>
+#include <unordered_map>
 
 #include "scene_reader.hpp"
 
 namespace tumble::scene {
 
-/// Names of bodies and particles seen so far → where they were defined ("line:column"), so that a
-/// duplicate can say where the first one is. Bodies and particles share one namespace: both are rows
-/// of the same trajectory.
-using NameTable = std::map<std::string, std::string>;
+/// The contents of a scene file; FileError if it cannot be read.
+std::string read_file(const std::filesystem::path& path);
+/// The TOML of a scene file; a syntax error is a SceneError at its file:line:column.
+toml::table parse_toml(const std::string& text, const std::string& file);
+/// The Scene of the scene file `text` from `path`, parsed into `root`. load_scene() is read_file(),
+/// parse_toml() and this, kept apart so that bench/scene_setup can time each stage.
+Scene read_scene(const toml::table& root, std::string text, const std::filesystem::path& path);
+
+/// A name of a body or particle, where it is defined (so that a duplicate can say where the first
+/// one is) and what it names.
+struct NameEntry {
+  toml::source_position where;
+  bool is_particle;
+  size_t index;  // in model.bodies or model.particles
+};
+/// The names seen so far. Bodies and particles share one namespace: both are rows of the same
+/// trajectory. The keys are views into the parsed TOML, which outlives the table.
+using NameTable = std::unordered_map<std::string_view, NameEntry>;
 
 /// The mass properties of one [[bodies]] table (shape, mesh, explicit inertia or parts) in its
 /// reference frame, and a description of where they came from. Mesh warnings go to scene.warnings.
@@ -28,10 +43,13 @@ void read_bodies(const TableReader& root, const std::filesystem::path& directory
                  Scene& scene);
 /// [[particles]].
 void read_particles(const TableReader& root, NameTable& names, Scene& scene);
-/// [world] gravity and [[forces]]; sets scene.conserved from the force models present.
-void read_forces(const TableReader& root, Scene& scene);
+/// [world] gravity and [[forces]], which name bodies and particles by `names`; sets scene.conserved
+/// from the force models present.
+void read_forces(const TableReader& root, const NameTable& names, Scene& scene);
 
-/// Checks a body or particle name (non-empty, letters, digits, '_', '-', '.', unique) and records it.
-void register_name(const TableReader& table, const std::string& name, NameTable& names);
+/// Checks a body or particle name (non-empty, letters, digits, '_', '-', '.', unique) and records it
+/// with its index. `name` must be a view into the parsed TOML.
+void register_name(const TableReader& table, std::string_view name, bool is_particle, size_t index,
+                   NameTable& names);
 
 }  // namespace tumble::scene

@@ -63,8 +63,14 @@ double MassProperties::radius_of_gyration(const Vec3& axis, const Vec3& point) c
 }
 
 void MassProperties::validate(const ValidityOptions& options, const std::string& what) const {
-  const std::string where = what.empty() ? std::string() : what + ": ";
-  auto fail = [&](const std::string& message) { throw InvalidMassProperties(where + message); };
+  validated_principal_axes(options, what);
+}
+
+PrincipalAxes MassProperties::validated_principal_axes(const ValidityOptions& options,
+                                                       const std::string& what) const {
+  auto fail = [&](const std::string& message) {
+    throw InvalidMassProperties(what.empty() ? message : what + ": " + message);
+  };
 
   if (!std::isfinite(mass) || !center_of_mass.allFinite() || !inertia.allFinite()) {
     fail("mass properties contain a non-finite number (NaN or infinity); check the input data");
@@ -85,7 +91,9 @@ void MassProperties::validate(const ValidityOptions& options, const std::string&
         "appear twice with the same value",
         asymmetry, inertia(0, 1), inertia(1, 0), inertia(0, 2), inertia(2, 0), inertia(1, 2), inertia(2, 1)));
   }
-  const Vec3 L = tumble::principal_axes(0.5 * (inertia + inertia.transpose())).Lambda;
+  // principal_axes() symmetrises I itself, so these are the axes of the symmetric part.
+  const PrincipalAxes axes = tumble::principal_axes(inertia);
+  const Vec3& L = axes.Lambda;
   if (!(L(0) > tol)) {
     fail(fmt::format(
         "inertia tensor is not positive definite: principal moments are {:.10g}, {:.10g}, {:.10g} "
@@ -99,6 +107,7 @@ void MassProperties::validate(const ValidityOptions& options, const std::string&
         "distribution has such moments — check signs of products of inertia and units",
         L(2), L(0), L(1), L(0) + L(1), L(2) - L(0) - L(1)));
   }
+  return axes;
 }
 
 MassProperties& MassProperties::operator+=(const MassProperties& part) {

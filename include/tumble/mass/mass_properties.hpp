@@ -94,6 +94,10 @@ struct MassProperties {
   /// definite, and λ₃ ≤ λ₁ + λ₂ (each principal moment at most the sum of the other two). The
   /// message names the condition and gives the numbers; `what` (e.g. a body name) prefixes it.
   void validate(const ValidityOptions& options = {}, const std::string& what = "") const;
+  /// validate() and principal_axes() for the price of one eigen-decomposition (validity is a
+  /// condition on the principal moments).
+  PrincipalAxes validated_principal_axes(const ValidityOptions& options = {},
+                                         const std::string& what = "") const;
 
   /// Combine two parts into one body: masses add, centres are mass-weighted, tensors are moved to the
   /// common centre with the parallel-axis term. Both must be in the same reference frame.
