@@ -102,7 +102,8 @@ int run(const RunOptions& o) {
         "'diagnostics' group: drop --diagnostics or use --format csv");
   }
   // The writer keeps the scene's text (HDF5 stores it); the run needs it no more, so it is not copied.
-  const TrajectoryInfo info{std::move(scene.text), o.scene, TUMBLE_VERSION, settings, o.fields};
+  const TrajectoryInfo info{std::move(scene.text), o.scene, TUMBLE_VERSION, settings,
+                            o.fields.empty() ? scene.output_fields : o.fields};
   const std::unique_ptr<TrajectoryWriter> writer =
       hdf5 ? make_hdf5_writer(out, scene.model, info)
            : make_csv_writer(
@@ -208,8 +209,8 @@ Runner add_run_command(CLI::App& app) {
                   "threads for fixed-step integrators (default 1; 0 = one per core); worth it from a few "
                   "thousand bodies; results are bit-identical for any count");
   std::string fields_help =
-      "per-body output fields, comma-separated, in the order wanted (default: position,orientation,"
-      "velocity,angular_velocity). Each field is a group of CSV columns and one HDF5 dataset:";
+      "per-body output fields, comma-separated, in the order wanted (default: the scene's [output] "
+      "fields, else position,orientation,velocity,angular_velocity). Each field is a group of CSV columns and one HDF5 dataset:";
   for (const BodyField& f : body_fields()) {
     fields_help += fmt::format("\n  {} ({}; {}, {}): {}", f.name,
                                fmt::join(f.columns.begin(), f.columns.begin() + f.width, ","), f.unit,

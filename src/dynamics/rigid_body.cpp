@@ -36,7 +36,9 @@ BodyState state_from_reference(const RigidBody& body, const Vec3& position, cons
   BodyState s;
   s.o = position + q_ref * body.center_of_mass();
   s.q = (q_ref * Quat(body.U())).normalized();
-  s.omega_w = omega_frame == Frame::world ? omega : Vec3(q_ref * omega);
+  // ^rω = U ^bω: principal components are first taken into reference axes.
+  const Vec3 omega_ref = omega_frame == Frame::principal ? Vec3(body.U() * omega) : omega;
+  s.omega_w = omega_frame == Frame::world ? omega : Vec3(q_ref * omega_ref);
   s.v = velocity + s.omega_w.cross(s.o - position);
   return s;
 }

@@ -9,7 +9,16 @@ namespace tumble {
 namespace {
 
 std::string vec(const Vec3& v) { return fmt::format("({}, {}, {})", v.x(), v.y(), v.z()); }
-const char* frame_name(Frame f) { return f == Frame::world ? "world" : "body"; }
+const char* frame_name(Frame f) {
+  return f == Frame::world ? "world" : f == Frame::principal ? "principal" : "reference";
+}
+
+/// A direction given in `frame` axes, in world axes: R_ref v (reference) or R v (principal).
+Vec3 in_world(Frame frame, const Vec3& v, const RigidBody& b, const BodyState& s) {
+  if (frame == Frame::world) return v;
+  if (frame == Frame::principal) return s.q * v;
+  return reference_state(b, s).orientation * v;
+}
 
 void check_body(size_t i, size_t n_bodies, const char* model) {
   if (i != all_bodies && i >= n_bodies) {
@@ -128,9 +137,12 @@ void PointForce::accumulate_block(const BodyBlock& block, BlockLoads& loads) con
   const size_t j = body_ - block.begin;
   const RigidBody& b = block.bodies[j];
   const BodyState s = block.state(j);
-  const ReferenceFrameState ref = reference_state(b, s);
-  const Vec3 f = force_frame_ == Frame::world ? force_ : Vec3(ref.orientation * force_);
-  const Vec3 x = point_frame_ == Frame::world ? point_ : point_position(b, s, point_);
+  const Vec3 f = in_world(force_frame_, force_, b, s);
+  // A body-fixed point: x_w = o + R x_b (principal coordinates, about the centre of mass) or the
+  // reference frame's point.
+  const Vec3 x = point_frame_ == Frame::world       ? point_
+                 : point_frame_ == Frame::principal ? Vec3(s.o + s.q * point_)
+                                                    : point_position(b, s, point_);
   loads.add_force_at(j, s.o, f, x);
 }
 void PointForce::check(size_t n_bodies, size_t) const { check_body(body_, n_bodies, "point force"); }
@@ -142,9 +154,7 @@ std::string PointForce::describe() const {
 void PureTorque::accumulate_block(const BodyBlock& block, BlockLoads& loads) const {
   if (!block.contains(body_)) return;
   const size_t j = body_ - block.begin;
-  const Vec3 tau = frame_ == Frame::world
-                       ? torque_
-                       : Vec3(reference_state(block.bodies[j], block.state(j)).orientation * torque_);
+  const Vec3 tau = in_world(frame_, torque_, block.bodies[j], block.state(j));
   loads.add(j, Vec3::Zero(), tau);
 }
 void PureTorque::check(size_t n_bodies, size_t) const { check_body(body_, n_bodies, "torque"); }

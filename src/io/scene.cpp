@@ -8,6 +8,7 @@
 
 #include "scene_sections.hpp"
 #include "tumble/integrate/integrator.hpp"
+#include "tumble/sim/output_fields.hpp"
 
 namespace tumble {
 namespace scene {
@@ -45,6 +46,26 @@ void read_simulation(const TableReader& root, Scene& scene) {
   }
 }
 
+/// [output] fields = ["position", ...]: what `tumble run` writes for each body unless --fields says.
+void read_output(const TableReader& root, Scene& scene) {
+  const auto out = root.table("output", "[output]", {"fields"});
+  if (!out || !out->has("fields")) return;
+  const toml::array* a = out->node("fields")->as_array();
+  if (!a) out->fail_at("fields", "fields must be a list of field names, e.g. [\"position\", \"euler_zyx\"]");
+  std::vector<std::string> names;
+  for (const toml::node& n : *a) {
+    const auto name = n.value<std::string>();
+    if (!name) out->fail_at("fields", "fields must be a list of strings, e.g. [\"position\", \"euler_zyx\"]");
+    names.push_back(*name);
+  }
+  try {
+    body_fields(names);  // unknown or repeated names, with the list of fields
+  } catch (const InvalidArgument& e) {
+    out->fail_at("fields", e.what());
+  }
+  scene.output_fields = std::move(names);
+}
+
 }  // namespace
 
 std::string read_file(const std::filesystem::path& path) {
@@ -78,8 +99,9 @@ Scene read_scene(const toml::table& root, std::string text, const std::filesyste
   scene.path = path;
   scene.text = std::move(text);
   const std::string file = path.string();  // for messages; outlives every reader
-  const TableReader r(root, "scene", file, {"simulation", "world", "bodies", "particles", "forces"});
+  const TableReader r(root, "scene", file, {"simulation", "output", "world", "bodies", "particles", "forces"});
   read_simulation(r, scene);
+  read_output(r, scene);
   NameTable names;
   read_bodies(r, path.parent_path(), names, scene);
   read_particles(r, names, scene);

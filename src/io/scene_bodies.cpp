@@ -46,7 +46,7 @@ void read_bodies(const TableReader& root, const std::filesystem::path& directory
     const TableReader named(*bodies[i], Context::named("body", name), root.file(),
                             {"name", "shape", "mesh", "scale", "thickness", "parts", "inertia",
                              "center_of_mass", "density", "mass", "position", "orientation", "velocity",
-                             "angular_velocity", "angular_velocity_frame"});
+                             "velocity_of", "angular_velocity", "angular_velocity_frame"});
     BodyMass mass = read_body_mass(named, directory, scene);
     RigidBody rigid = [&] {
       try {
@@ -56,12 +56,23 @@ void read_bodies(const TableReader& root, const std::filesystem::path& directory
       }
     }();
     const Vec3 position = named.vec3("position", Vec3::Zero(), "m");
-    const Quat orientation = named.quaternion("orientation").value_or(Quat::Identity());
+    const Quat orientation = named.rotation("orientation").value_or(Quat::Identity());
     const Vec3 velocity = named.vec3("velocity", Vec3::Zero(), "m/s");
     const Vec3 omega = named.vec3("angular_velocity", Vec3::Zero(), "rad/s");
     const Frame omega_frame = named.frame("angular_velocity_frame", Frame::world);
-    scene.initial.bodies.push_back(
-        state_from_reference(rigid, position, orientation, velocity, omega, omega_frame));
+    BodyState state = state_from_reference(rigid, position, orientation, velocity, omega, omega_frame);
+    // `velocity` is that of the reference origin unless velocity_of = "com" says it is the centre of
+    // mass's (an off-centre part spun "at rest" then stays in place).
+    const std::string_view velocity_of = named.string("velocity_of").value_or("origin");
+    if (velocity_of == "com") {
+      state.v = velocity;
+    } else if (velocity_of != "origin") {
+      named.fail_at("velocity_of",
+                    fmt::format("velocity_of must be \"origin\" (the reference frame's origin, the default) "
+                                "or \"com\" (the centre of mass), found \"{}\"",
+                                velocity_of));
+    }
+    scene.initial.bodies.push_back(state);
     scene.model.add_body(std::move(rigid));
     scene.body_info.push_back({std::move(mass.source), mass.properties});
   }

@@ -1,5 +1,7 @@
 #include "scene_reader.hpp"
 
+#include "tumble/math/rotations.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -309,12 +311,34 @@ std::optional<Quat> TableReader::quaternion(std::string_view key) const {
   return Quat(wxyz(0), wxyz(1), wxyz(2), wxyz(3));
 }
 
+std::optional<Quat> TableReader::rotation(std::string_view key) const {
+  const toml::node* n = node(key);
+  if (!n || !n->is_table()) return quaternion(key);
+  const TableReader t(*n->as_table(), context_.child(" ", key), *file_,
+                      {"euler_zyx", "euler_zxz", "axis", "angle"});
+  const bool zyx = t.has("euler_zyx"), zxz = t.has("euler_zxz"), axis = t.has("axis") || t.has("angle");
+  if (zyx + zxz + axis != 1) {
+    fail_at(key, fmt::format("{} as a table takes one of euler_zyx = [yaw, pitch, roll], euler_zxz = [phi, "
+                             "theta, psi] or axis = [x, y, z] with angle = a (rad); or give a unit "
+                             "quaternion [w, x, y, z]",
+                             key));
+  }
+  if (zyx) return Quat(from_euler_zyx(*t.vec3("euler_zyx", "rad")));
+  if (zxz) return Quat(from_euler_zxz(*t.vec3("euler_zxz", "rad")));
+  const Vec3 a = t.vec3("axis", Vec3::Zero(), "");
+  if (!(a.norm() > 0)) t.fail_at(t.has("axis") ? "axis" : "angle", "axis must be a non-zero vector [x, y, z]");
+  return Quat(Eigen::AngleAxisd(t.required_number("angle", "rad"), a.normalized()));
+}
+
 Frame TableReader::frame(std::string_view key, Frame fallback) const {
   const auto s = string(key);
   if (!s) return fallback;
   if (*s == "world") return Frame::world;
-  if (*s == "body") return Frame::body;
-  fail_at(key, fmt::format("{} must be \"world\" or \"body\", found \"{}\"", key, *s));
+  if (*s == "reference" || *s == "body") return Frame::reference;  // "body": the older name
+  if (*s == "principal") return Frame::principal;
+  fail_at(key, fmt::format("{} must be \"world\", \"reference\" (the body's own axes; \"body\" is the "
+                           "older name) or \"principal\" (its principal axes), found \"{}\"",
+                           key, *s));
 }
 
 std::optional<TableReader> TableReader::table(std::string_view key, Context context, Keys allowed) const {

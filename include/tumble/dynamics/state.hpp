@@ -9,10 +9,12 @@
 
 namespace tumble {
 
-/// Which axes a vector is given in.
+/// Which axes a vector is given in (docs/NOTATION.md).
 enum class Frame {
-  world,  ///< {w}
-  body,   ///< the body's reference frame axes (the user's axes for the body)
+  world,             ///< {w}
+  reference,         ///< the body's reference frame axes (the user's axes for the body)
+  principal,         ///< the body's principal axes {b} (moments ascending)
+  body = reference,  ///< the older name of `reference`
 };
 
 /// State of a rigid body, world quantities (the tutorial's {w} / {s}).
@@ -36,7 +38,8 @@ struct ReferenceFrameState {
 };
 
 /// From the pose of the reference frame, the velocity of its origin and ω in `omega_frame` axes
-/// (world, or the reference frame's own axes): o = p + R_ref c, R = R_ref U, v = v_p + ω × (o − p).
+/// (world, the reference frame's or the principal ones): o = p + R_ref c, R = R_ref U,
+/// v = v_p + ω × (o − p).
 BodyState state_from_reference(const RigidBody& body, const Vec3& position, const Quat& orientation,
                                const Vec3& velocity, const Vec3& omega, Frame omega_frame = Frame::world);
 

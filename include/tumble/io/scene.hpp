@@ -37,6 +37,8 @@ struct Scene {
   Conservation conserved;
   /// Relative drift of a conserved quantity beyond which a run warns ([simulation] drift_threshold).
   double drift_threshold = 1e-6;
+  /// Per-body output fields ([output] fields; sim/output_fields.hpp); empty: the defaults.
+  std::vector<std::string> output_fields;
   /// Things the user should know that are not errors (e.g. a mesh was inside-out and was flipped).
   std::vector<std::string> warnings;
 };
