@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <string>
 #include <vector>
@@ -177,6 +178,22 @@ TEST(EulerPoinsot, AgreesWithALongDoubleTaylorIntegrationOver100sAndHundredsOfFl
   RecordProperty("max_attitude_error_rad", std::to_string(err_R));
   std::printf("[ measured ] 100 s, %.0f flips: |dw|/|w| = %.2e, attitude = %.2e rad (reference %.1e)\n",
               T / ep.flip_interval(), err_w, err_R, ref_err);
+}
+
+TEST(EulerPoinsot, StateIsQAndOmegaBBitForBit) {
+  // state(t) shares one evaluation of sn, cn, dn between q and ω_b (splitting's drift uses it): it must
+  // give the same bits as q(t) and omega_b(t), in every regime, at small, negative and large t.
+  for (const Case& c : kCases) {
+    const EulerPoinsot ep(c.Lambda, some_rotation(), c.omega);
+    for (double t : {0.0, 1e-3, 0.4, -7.7, 29.0, 1e4 + 0.3, 1e6}) {
+      const EulerPoinsot::State s = ep.state(t);
+      const Quat q = ep.q(t);
+      const Vec3 w = ep.omega_b(t);
+      EXPECT_EQ(std::memcmp(s.q.coeffs().data(), q.coeffs().data(), 4 * sizeof(double)), 0)
+          << c.name << " " << t;
+      EXPECT_EQ(std::memcmp(s.omega_b.data(), w.data(), 3 * sizeof(double)), 0) << c.name << " " << t;
+    }
+  }
 }
 
 TEST(EulerPoinsot, AgreesWithTumblesRk4ToItsOwnErrorBound) {
