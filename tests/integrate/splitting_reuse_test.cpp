@@ -52,7 +52,7 @@ EulerPoinsot flow_from(const Model& model, Formulation F, const SystemCoordinate
 double summed_time(const std::string& method, double h, long steps) {
   if (method == "splitting") return static_cast<double>(steps) * h;  // one correctly rounded product
   const double w1 = 1.0 / (2.0 - std::cbrt(2.0)), w0 = 1.0 - 2.0 * w1;
-  const long double a = w1 * h, b = w0 * h;
+  const auto a = static_cast<long double>(w1 * h), b = static_cast<long double>(w0 * h);
   return static_cast<double>(static_cast<long double>(steps) * (a + b + a));
 }
 
