@@ -27,8 +27,13 @@
 // caller between steps, other moments, another formulation) sets up a fresh flow, and the step is then
 // what it was when every drift set one up, bit for bit (tests/integrate/splitting_reuse_test.cpp).
 // splitting4's substeps add signed lengths to τ (the middle one is negative); nothing else changes.
-//  - Cost: the set-up (0.70 µs) is saved, and q and ω_b share one evaluation of sn, cn, dn
-//    (EulerPoinsot::state).
+//  - Cost: the set-up (0.7 µs) is saved, and q and ω_b share one evaluation of sn, cn, dn
+//    (EulerPoinsot::state costs what q(t) alone did, 0.4–0.5 µs, where q(t) and ω_b(t) took 0.6–0.7):
+//    build/release/bin/euler_poinsot_bench. A torque-free body-step went from 1.5 µs to 0.6 µs
+//    (80× an RK4 body-step → 30×): `build/release/bin/batch_throughput out.csv 3 1000000
+//    splitting,splitting4,rk4 1,2`, free boxes under gravity, 1 thread, N = 10⁴: 6.8e5 → 1.7e6
+//    body-steps/s (splitting4 2.3e5 → 5.8e5), best median of four interleaved runs on a shared machine
+//    (docs/performance.md, bench/results/amd-epyc-avx512/splitting_reuse.txt).
 //  - Accuracy: nothing is rounded between steps. A fresh flow every step rounds q and ω every step, and
 //    the flips of a tumbling body amplify it: 2e-10 rad after 1e5 steps of the T-handle, against 0 for
 //    the kept flow, which is the exact flow from the first state evaluated at the summed time. Its own
