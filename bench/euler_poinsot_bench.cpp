@@ -1,6 +1,7 @@
 // Cost of one evaluation of the exact torque-free motion (EulerPoinsot) for a generic triaxial body:
-// ω_b(t) (one sn/cn/dn) and q(t) (sn/cn/dn + Carlson R_F, R_J + a few trigonometric functions), at
-// moderate and large t (the argument is reduced modulo the period: the cost must not grow with t).
+// ω_b(t) (one sn/cn/dn), q(t) (sn/cn/dn + Carlson R_F, R_J + a few trigonometric functions) and both
+// together (state(t), one sn/cn/dn), at moderate and large t (the argument is reduced modulo the
+// period: the cost must not grow with t), and the set-up.
 #include <benchmark/benchmark.h>
 
 #include "tumble/integrate/euler_poinsot.hpp"
@@ -33,6 +34,17 @@ void BM_Quaternion(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_Quaternion)->Arg(1)->Arg(1000000);
+
+// q(t) and ω_b(t) together, as splitting's drift takes them: one evaluation of sn, cn, dn for both.
+void BM_State(benchmark::State& state) {
+  const auto& ep = generic_body();
+  double t = static_cast<double>(state.range(0));
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(ep.state(t));
+    t += 1e-3;
+  }
+}
+BENCHMARK(BM_State)->Arg(1)->Arg(1000000);
 
 void BM_Construct(benchmark::State& state) {
   for (auto _ : state) {

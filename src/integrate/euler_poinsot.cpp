@@ -133,8 +133,12 @@ EulerPoinsot::EulerPoinsot(const Vec3& Lambda, const Quat& q0_in, const Vec3& om
 }
 
 Vec3 EulerPoinsot::omega_b(double t) const { return flow().omega_b(t); }
-Vec3 EulerPoinsot::omega_w(double t) const { return flow().q(t) * flow().omega_b(t); }
+Vec3 EulerPoinsot::omega_w(double t) const {
+  const State s = flow().state(t);
+  return s.q * s.omega_b;
+}
 Quat EulerPoinsot::q(double t) const { return flow().q(t); }
+EulerPoinsot::State EulerPoinsot::state(double t) const { return flow().state(t); }
 double EulerPoinsot::period_omega() const { return flow().period_omega(); }
 double EulerPoinsot::flip_interval() const { return flow().flip_interval(); }
 

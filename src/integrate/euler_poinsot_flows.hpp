@@ -40,6 +40,7 @@ class SteadyRotation {
       : q0_(q0), omega_b0_(omega_b0), omega_w_(q0 * omega_b0) {}
   Vec3 omega_b(double) const { return omega_b0_; }
   Quat q(double t) const { return (quat_exp<double>(t * omega_w_) * q0_).normalized(); }
+  EulerPoinsot::State state(double t) const { return {q(t), omega_b0_}; }
   double period_omega() const { return kInf; }
   double flip_interval() const { return kInf; }
 
@@ -59,6 +60,7 @@ class AxisymmetricRotation {
   AxisymmetricRotation(const Vec3& Lambda, int axis, const Quat& q0, const Vec3& omega_b0);
   Vec3 omega_b(double t) const;
   Quat q(double t) const;
+  EulerPoinsot::State state(double t) const { return {q(t), omega_b(t)}; }
   double period_omega() const { return n_ == 0.0 ? kInf : 2.0 * std::numbers::pi / std::abs(n_); }
   double flip_interval() const { return n_ == 0.0 ? kInf : std::numbers::pi / std::abs(n_); }
 
@@ -90,11 +92,18 @@ class TriaxialRotation {
   /// Requires w not along the intermediate axis (w₁ or w₃ non-zero). Sets `regime`.
   TriaxialRotation(const SortedBody& b, const Quat& q0, Regime& regime);
   Vec3 omega_b(double t) const { return P_.transpose() * omega_s(jacobi_(lambda_ * t + u0_)); }
-  Quat q(double t) const;
+  Quat q(double t) const { return q(t, jacobi_(lambda_ * t + u0_)); }
+  /// Both from one evaluation of sn, cn, dn (the same u = λt + u₀ as each alone: the same bits).
+  EulerPoinsot::State state(double t) const {
+    const JacobiValues v = jacobi_(lambda_ * t + u0_);
+    return {q(t, v), P_.transpose() * omega_s(v)};
+  }
   double period_omega() const { return 4.0 * jacobi_.K() / lambda_; }
   double flip_interval() const { return 2.0 * jacobi_.K() / lambda_; }
 
  private:
+  /// q(t) given v = sn, cn, dn, … at u = λt + u₀.
+  Quat q(double t, const JacobiValues& v) const;
   // ω_s from sn, cn, dn (pole 3: ω₁ ∝ cn, ω₃ ∝ dn; pole 1: ω₁ ∝ dn, ω₃ ∝ cn).
   Vec3 omega_s(const JacobiValues& v) const {
     return pole_ == 3 ? Vec3(A_(0) * v.cn, A_(1) * v.sn, A_(2) * v.dn)
@@ -165,6 +174,9 @@ class FreeRotation {
   }
   Quat q(double t) const {
     return std::visit([t](const auto& f) { return f.q(t); }, flow_);
+  }
+  EulerPoinsot::State state(double t) const {
+    return std::visit([t](const auto& f) { return f.state(t); }, flow_);
   }
   double period_omega() const {
     return std::visit([](const auto& f) { return f.period_omega(); }, flow_);

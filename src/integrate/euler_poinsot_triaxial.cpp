@@ -123,9 +123,8 @@ TriaxialRotation::TriaxialRotation(const SortedBody& b, const Quat& q0, Regime& 
   G_ = q0 * CP_.conjugate() * body_part(0.0, v0).conjugate();
 }
 
-Quat TriaxialRotation::q(double t) const {
+Quat TriaxialRotation::q(double t, const JacobiValues& v) const {
   const double u = lambda_ * t + u0_;
-  const JacobiValues v = jacobi_(u);
   const double phi = rate_ * t + kappa_ * (Pi(u, v) - Pi0_);
   return (G_ * body_part(phi, v) * CP_).normalized();
 }

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "../support/allocation_counter.hpp"
@@ -40,9 +41,11 @@ Bodies random_bodies(size_t n, unsigned seed) {
 }
 
 /// Gravity, and damping on every body (a model that reads velocities, so world v and ω are formed).
-void add_local_forces(Model& model) {
+/// Without the damping no body feels a torque: splitting then continues each body's free flow from
+/// step to step instead of setting up a new one (splitting.cpp), a path of its own to test.
+void add_local_forces(Model& model, bool damped = true) {
   model.add_force<UniformGravity>(Vec3(0.3, -0.2, -9.81));
-  model.add_force<ViscousDamping>(all_bodies, 0.05, 0.002);
+  if (damped) model.add_force<ViscousDamping>(all_bodies, 0.05, 0.002);
 }
 
 /// A system model (not local) that adds nothing: its presence alone makes steps staged.
@@ -72,11 +75,12 @@ bool same_body(const SystemCoordinates& a, size_t i, const SystemCoordinates& b,
 TEST(Batch, AStepAllocatesNothingAfterTheFirst) {
   // 20 bodies: three packs of up to 8, with padding lanes. Local forces (fused steps), then a spring
   // between two bodies and a particle (staged steps, the system part).
-  for (const bool staged : {false, true}) {
+  for (const auto& [staged, damped] :
+       {std::pair{false, true}, std::pair{true, true}, std::pair{false, false}}) {
     Bodies b = random_bodies(20, 7);
     Model model;
     for (const RigidBody& body : b.bodies) model.add_body(body);
-    add_local_forces(model);
+    add_local_forces(model, damped);
     if (staged) {
       model.add_particle(Particle{"p", 0.5});
       b.state.particles.push_back(ParticleState{Vec3(0, 0, 1), Vec3(0.1, 0, 0)});
@@ -90,7 +94,8 @@ TEST(Batch, AStepAllocatesNothingAfterTheFirst) {
       integrator->step(model, Formulation::mixed, x, 1e-4);  // binds the integrator, sizes its workspace
       test::CountAllocations counting;
       for (int k = 0; k < 10000; ++k) integrator->step(model, Formulation::mixed, x, 1e-4);
-      EXPECT_EQ(counting.count(), 0) << name << (staged ? " (staged)" : " (fused)");
+      EXPECT_EQ(counting.count(), 0) << name << (staged ? " (staged)" : " (fused)")
+                                     << (damped ? "" : ", no torque");
     }
   }
 }
@@ -99,19 +104,22 @@ TEST(Batch, ABodyStepsTheSameAloneAsAmongOthersBitForBit) {
   // 37 bodies (padding in the last pack); each body is also stepped alone (N = 1, one lane of a pack
   // used). Every integrator, every formulation.
   const Bodies b = random_bodies(37, 11);
-  Model all;
-  for (const RigidBody& body : b.bodies) all.add_body(body);
-  add_local_forces(all);
-  for (const std::string& name : kFixedStep) {
-    for (const Formulation F : kFormulations) {
-      const SystemCoordinates together = run_steps(all, b.state, name, F, 5);
-      for (const size_t i : {size_t{0}, size_t{9}, size_t{36}}) {
-        Model one;
-        one.add_body(b.bodies[i]);
-        add_local_forces(one);
-        const SystemCoordinates alone = run_steps(one, SystemState{0.0, {b.state.bodies[i]}, {}}, name, F, 5);
-        EXPECT_TRUE(same_body(together, i, alone, 0))
-            << name << ", " << formulation_name(F) << ", body " << i;
+  for (const bool damped : {true, false}) {
+    Model all;
+    for (const RigidBody& body : b.bodies) all.add_body(body);
+    add_local_forces(all, damped);
+    for (const std::string& name : kFixedStep) {
+      for (const Formulation F : kFormulations) {
+        const SystemCoordinates together = run_steps(all, b.state, name, F, 5);
+        for (const size_t i : {size_t{0}, size_t{9}, size_t{36}}) {
+          Model one;
+          one.add_body(b.bodies[i]);
+          add_local_forces(one, damped);
+          const SystemCoordinates alone =
+              run_steps(one, SystemState{0.0, {b.state.bodies[i]}, {}}, name, F, 5);
+          EXPECT_TRUE(same_body(together, i, alone, 0))
+              << name << ", " << formulation_name(F) << ", body " << i << (damped ? "" : ", no torque");
+        }
       }
     }
   }
@@ -119,19 +127,23 @@ TEST(Batch, ABodyStepsTheSameAloneAsAmongOthersBitForBit) {
 
 TEST(Batch, ResultsAreBitIdenticalForAnyThreadCount) {
   // 1000 bodies: 16 blocks, split differently among 1, 2 and 3 threads.
+  // Undamped, only the spring's two bodies can feel a torque: splitting keeps the others' free flows.
   const Bodies b = random_bodies(1000, 13);
-  Model model;
-  for (const RigidBody& body : b.bodies) model.add_body(body);
-  add_local_forces(model);
-  model.add_force<Spring>(Spring::End{3, Vec3::Zero()}, Spring::End{998, Vec3::Zero()}, 10.0, 0.5,
-                          0.1);  // couples two blocks
-  for (const std::string& name : kFixedStep) {
-    const SystemCoordinates one = run_steps(model, b.state, name, Formulation::mixed, 3, 1);
-    for (const int threads : {2, 3}) {
-      const SystemCoordinates many = run_steps(model, b.state, name, Formulation::mixed, 3, threads);
-      size_t differing = 0;
-      for (size_t i = 0; i < 1000; ++i) differing += same_body(one, i, many, i) ? 0 : 1;
-      EXPECT_EQ(differing, 0u) << name << " with " << threads << " threads";
+  for (const bool damped : {true, false}) {
+    Model model;
+    for (const RigidBody& body : b.bodies) model.add_body(body);
+    add_local_forces(model, damped);
+    model.add_force<Spring>(Spring::End{3, Vec3::Zero()}, Spring::End{998, Vec3::Zero()}, 10.0, 0.5,
+                            0.1);  // couples two blocks
+    for (const std::string& name : kFixedStep) {
+      const SystemCoordinates one = run_steps(model, b.state, name, Formulation::mixed, 3, 1);
+      for (const int threads : {2, 3}) {
+        const SystemCoordinates many = run_steps(model, b.state, name, Formulation::mixed, 3, threads);
+        size_t differing = 0;
+        for (size_t i = 0; i < 1000; ++i) differing += same_body(one, i, many, i) ? 0 : 1;
+        EXPECT_EQ(differing, 0u) << name << " with " << threads << " threads"
+                                 << (damped ? "" : ", no torque");
+      }
     }
   }
 }
@@ -140,18 +152,20 @@ TEST(Batch, FusedAndStagedStepsAreBitIdentical) {
   // The same system with and without a system model that adds nothing: fused steps without it, staged
   // steps with it. 300 bodies span several blocks.
   const Bodies b = random_bodies(300, 17);
-  Model fused, staged;
-  for (const RigidBody& body : b.bodies) fused.add_body(body), staged.add_body(body);
-  add_local_forces(fused);
-  add_local_forces(staged);
-  staged.add_force<NoForce>();
-  for (const std::string& name : kFixedStep) {
-    for (const Formulation F : kFormulations) {
-      const SystemCoordinates a = run_steps(fused, b.state, name, F, 4),
-                              c = run_steps(staged, b.state, name, F, 4);
-      size_t differing = 0;
-      for (size_t i = 0; i < 300; ++i) differing += same_body(a, i, c, i) ? 0 : 1;
-      EXPECT_EQ(differing, 0u) << name << ", " << formulation_name(F);
+  for (const bool damped : {true, false}) {
+    Model fused, staged;
+    for (const RigidBody& body : b.bodies) fused.add_body(body), staged.add_body(body);
+    add_local_forces(fused, damped);
+    add_local_forces(staged, damped);
+    staged.add_force<NoForce>();
+    for (const std::string& name : kFixedStep) {
+      for (const Formulation F : kFormulations) {
+        const SystemCoordinates a = run_steps(fused, b.state, name, F, 4),
+                                c = run_steps(staged, b.state, name, F, 4);
+        size_t differing = 0;
+        for (size_t i = 0; i < 300; ++i) differing += same_body(a, i, c, i) ? 0 : 1;
+        EXPECT_EQ(differing, 0u) << name << ", " << formulation_name(F) << (damped ? "" : ", no torque");
+      }
     }
   }
 }

@@ -73,6 +73,14 @@ class EulerPoinsot {
   /// Orientation at t, a unit quaternion (body → world).
   Quat q(double t) const;
   Mat3 R(double t) const { return q(t).toRotationMatrix(); }
+  /// The orientation and the body angular velocity at t together.
+  struct State {
+    Quat q;        ///< q(t)
+    Vec3 omega_b;  ///< omega_b(t)
+  };
+  /// q(t) and omega_b(t), bit for bit, for little more than the cost of q(t): the elliptic functions
+  /// at t, which both need, are evaluated once.
+  State state(double t) const;
 
   Regime regime() const { return regime_; }
   /// The period of ω_b(t): 4K/λ for a triaxial body (for spin exactly about the major or minor axis,
