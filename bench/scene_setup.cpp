@@ -20,6 +20,7 @@
 // program does. Figures are µs per body: min and median of the wall-clock time, and min of the CPU
 // time (the machine may be shared; a busy neighbour inflates that least).
 #include <fmt/format.h>
+#include <sys/mman.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -229,6 +230,21 @@ std::optional<Times> time_program(const std::filesystem::path& tumble, const std
   return Times{seconds_since(t0), children_cpu() - cpu0};
 }
 
+/// What writing to a page of fresh memory costs (the page fault): a loaded scene is a few KB of new
+/// memory per body, so this sets much of its cost (µs per page; 0.1–0.3 on bare metal, far more in
+/// some virtual machines).
+double first_touch_us_per_page() {
+  const size_t bytes = size_t{64} << 20, page = 4096;
+  void* memory = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (memory == MAP_FAILED) return 0.0;
+  auto* p = static_cast<volatile char*>(memory);
+  const auto t0 = Clock::now();
+  for (size_t i = 0; i < bytes; i += page) p[i] = 1;
+  const double us = 1e6 * seconds_since(t0) / static_cast<double>(bytes / page);
+  munmap(memory, bytes);
+  return us;
+}
+
 void print_row(long n, const char* name, const std::vector<Times>& times) {
   if (times.empty()) return;
   std::vector<double> wall, cpu;
@@ -256,8 +272,10 @@ int main(int argc, char** argv) {
   fmt::print(
       "scene set-up: N boxes, one [[bodies]] table each (shape, density or mass, position, orientation, "
       "velocity, angular velocity; 17-digit numbers), uniform gravity; {} repetitions, min and median\n"
-      "machine: {}, {} hardware threads\nscenes in {}; `tumble run`: {}\n\n",
-      repetitions, bench::cpu_model(), std::thread::hardware_concurrency(), dir.string(),
+      "machine: {}, {} hardware threads; first touch of fresh memory {:.2f} us per 4 KiB page\n"
+      "scenes in {}; `tumble run`: {}\n\n",
+      repetitions, bench::cpu_model(), std::thread::hardware_concurrency(), first_touch_us_per_page(),
+      dir.string(),
       std::filesystem::exists(tumble) ? tumble.string() + " run SCENE --duration 0 --quiet" : "not found");
   fmt::print("{:>7} {:<24} {:>10} {:>10} {:>10}\n", "", "", "wall", "wall", "CPU");
   fmt::print("{:>7} {:<24} {:>10} {:>10} {:>10}\n", "N", "stage (us per body)", "min", "median", "min");
