@@ -17,9 +17,12 @@
 // `load_scene` is the public entry point timed whole (read + parse + build + free), and `tumble run`
 // is the program itself (--duration 0, so that it stops before the first step; process start to
 // exit) when it sits beside this one. Every repetition runs in a fresh process (fork), as the
-// program does. Figures are µs per body: min and median of the wall-clock time, and min of the CPU
-// time (the machine may be shared; a busy neighbour inflates that least).
+// program does; rows marked "warm" load the scene a second time in the same process, on memory the
+// first load touched, which shows what fresh memory costs. Figures are µs per body: min and median of
+// the wall-clock time, and min of the CPU time (the machine may be shared; a busy neighbour inflates
+// that least).
 #include <fmt/format.h>
+#include <sys/mman.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -229,6 +232,21 @@ std::optional<Times> time_program(const std::filesystem::path& tumble, const std
   return Times{seconds_since(t0), children_cpu() - cpu0};
 }
 
+/// What writing to a page of fresh memory costs (the page fault): a loaded scene is a few KB of new
+/// memory per body, so this sets much of its cost (µs per page; 0.1–0.3 on bare metal, far more in
+/// some virtual machines).
+double first_touch_us_per_page() {
+  const size_t bytes = size_t{64} << 20, page = 4096;
+  void* memory = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (memory == MAP_FAILED) return 0.0;
+  auto* p = static_cast<volatile char*>(memory);
+  const auto t0 = Clock::now();
+  for (size_t i = 0; i < bytes; i += page) p[i] = 1;
+  const double us = 1e6 * seconds_since(t0) / static_cast<double>(bytes / page);
+  munmap(memory, bytes);
+  return us;
+}
+
 void print_row(long n, const char* name, const std::vector<Times>& times) {
   if (times.empty()) return;
   std::vector<double> wall, cpu;
@@ -239,7 +257,7 @@ void print_row(long n, const char* name, const std::vector<Times>& times) {
   std::sort(wall.begin(), wall.end());
   std::sort(cpu.begin(), cpu.end());
   const double us = 1e6 / static_cast<double>(n);
-  fmt::print("{:>7} {:<24} {:>10.3f} {:>10.3f} {:>10.3f}\n", n, name, wall.front() * us,
+  fmt::print("{:>7} {:<30} {:>10.3f} {:>10.3f} {:>10.3f}\n", n, name, wall.front() * us,
              wall[wall.size() / 2] * us, cpu.front() * us);
 }
 
@@ -256,11 +274,13 @@ int main(int argc, char** argv) {
   fmt::print(
       "scene set-up: N boxes, one [[bodies]] table each (shape, density or mass, position, orientation, "
       "velocity, angular velocity; 17-digit numbers), uniform gravity; {} repetitions, min and median\n"
-      "machine: {}, {} hardware threads\nscenes in {}; `tumble run`: {}\n\n",
-      repetitions, bench::cpu_model(), std::thread::hardware_concurrency(), dir.string(),
+      "machine: {}, {} hardware threads; first touch of fresh memory {:.2f} us per 4 KiB page\n"
+      "scenes in {}; `tumble run`: {}\n\n",
+      repetitions, bench::cpu_model(), std::thread::hardware_concurrency(), first_touch_us_per_page(),
+      dir.string(),
       std::filesystem::exists(tumble) ? tumble.string() + " run SCENE --duration 0 --quiet" : "not found");
-  fmt::print("{:>7} {:<24} {:>10} {:>10} {:>10}\n", "", "", "wall", "wall", "CPU");
-  fmt::print("{:>7} {:<24} {:>10} {:>10} {:>10}\n", "N", "stage (us per body)", "min", "median", "min");
+  fmt::print("{:>7} {:<30} {:>10} {:>10} {:>10}\n", "", "", "wall", "wall", "CPU");
+  fmt::print("{:>7} {:<30} {:>10} {:>10} {:>10}\n", "N", "stage (us per body)", "min", "median", "min");
   for (long n : {1000L, 10000L, 100000L}) {
     if (n > max_n) continue;
     const std::filesystem::path scene_path = dir / fmt::format("boxes_{}.toml", n);
@@ -276,7 +296,20 @@ int main(int argc, char** argv) {
       if (const auto t = time_program(tumble, scene_path, out)) series[stage::program].push_back(*t);
     }
     for (int s = 0; s < stage::count; ++s) print_row(n, kStageNames[s], series[s]);
-    fmt::print("{:>7} {:<24} {:>10.0f}\n", n, "scene file, bytes/body",
+    // The same stages in a process whose heap already holds the memory (the first load warms it): the
+    // difference is what fresh memory costs.
+    Series warm;
+    for (int r = 0; r < repetitions; ++r) {
+      const Lap stages = in_fresh_process([&] {
+        time_stages(scene_path, out);
+        return time_stages(scene_path, out);
+      });
+      for (int s = stage::read; s <= stage::setup; ++s) warm[s].push_back(stages[s]);
+    }
+    for (const int s : {stage::parse, stage::build, stage::free_toml, stage::setup}) {
+      print_row(n, fmt::format("{}, warm", kStageNames[s]).c_str(), warm[s]);
+    }
+    fmt::print("{:>7} {:<30} {:>10.0f}\n", n, "scene file, bytes/body",
                static_cast<double>(text.size()) / static_cast<double>(n));
     std::filesystem::remove(out);
     std::filesystem::remove(diagnostics_path(out));
