@@ -206,6 +206,8 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
   const double tiny = 1e-9 * h;
   SystemCoordinates x_prev;
   const bool chunks = events.empty() && integrator->fuses_steps(model);
+  double t_last_sample = t0;
+  long steps_since_sample = 0;
   while (x.t < t_end - tiny) {
     const double t_sample = std::min(t0 + static_cast<double>(k_out) * dt_out, t_end);
     if (chunks) {
@@ -220,6 +222,8 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
         const double t_start = x.t;
         integrator->steps(model, settings.formulation, x, h, count);
         step += count;
+        steps_since_sample += count;
+        x.t = t_last_sample + static_cast<double>(steps_since_sample) * h;  // the clock on its grid
         if (stats) {
           *stats = {step, 0,
                     integrator->evaluations_counted().value_or(step * integrator->evaluations_per_step())};
@@ -245,7 +249,11 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
       *stats = {step, 0,
                 integrator->evaluations_counted().value_or(step * integrator->evaluations_per_step())};
     }
-    if (x.t >= t_sample - tiny) x.t = t_sample;  // remove the rounding of the accumulated time
+    // The clock on the grid t_sample_prev + n h (one rounding), not a running sum whose roundings add
+    // up (1e-12 s per 1e3 steps): the remaining interval before a sample, and the times integrators
+    // that keep a flow across steps evaluate it at, stay exact.
+    ++steps_since_sample;
+    x.t = x.t >= t_sample - tiny ? t_sample : t_last_sample + static_cast<double>(steps_since_sample) * h;
     check(x, step, step_h);
     if (!events.empty()) {
       const auto hits = find_hits(events, g_prev, settings.formulation, x, x_prev.t, step_h, [&](double tau) {
@@ -259,7 +267,11 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
     }
     const bool stop = stop_requested && stop_requested();
     if (x.t == t_sample || stop) {
-      if (x.t == t_sample) ++k_out;
+      if (x.t == t_sample) {
+        ++k_out;
+        t_last_sample = t_sample;
+        steps_since_sample = 0;
+      }
       to_state(settings.formulation, x, state);  // reuses the storage: no allocation per sample
       if (on_sample && !on_sample(state)) return state;
       if (stop) return state;

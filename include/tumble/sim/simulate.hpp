@@ -12,6 +12,7 @@ struct RunSettings {
   double duration = 1.0;         ///< s
   double timestep = 1e-3;        ///< s; the last step before a sample time is what remains of the
                                  ///< interval (shorter, or longer by rounding only), to land on it.
+                                 ///< The clock is t_last_sample + n·h (one rounding), not a running sum.
                                  ///< For adaptive integrators: the first trial step.
   double output_interval = 0.0;  ///< s between samples; 0 = every step. The final time is always sampled.
   Formulation formulation = Formulation::mixed;
