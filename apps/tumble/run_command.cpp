@@ -210,7 +210,8 @@ Runner add_run_command(CLI::App& app) {
                   "thousand bodies; results are bit-identical for any count");
   std::string fields_help =
       "per-body output fields, comma-separated, in the order wanted (default: the scene's [output] "
-      "fields, else position,orientation,velocity,angular_velocity). Each field is a group of CSV columns and one HDF5 dataset:";
+      "fields, else position,orientation,velocity,angular_velocity). Each field is a group of CSV columns "
+      "and one HDF5 dataset:";
   for (const BodyField& f : body_fields()) {
     fields_help += fmt::format("\n  {} ({}; {}, {}): {}", f.name,
                                fmt::join(f.columns.begin(), f.columns.begin() + f.width, ","), f.unit,

@@ -99,7 +99,8 @@ Scene read_scene(const toml::table& root, std::string text, const std::filesyste
   scene.path = path;
   scene.text = std::move(text);
   const std::string file = path.string();  // for messages; outlives every reader
-  const TableReader r(root, "scene", file, {"simulation", "output", "world", "bodies", "particles", "forces"});
+  const TableReader r(root, "scene", file,
+                      {"simulation", "output", "world", "bodies", "particles", "forces"});
   read_simulation(r, scene);
   read_output(r, scene);
   NameTable names;

@@ -326,7 +326,8 @@ std::optional<Quat> TableReader::rotation(std::string_view key) const {
   if (zyx) return Quat(from_euler_zyx(*t.vec3("euler_zyx", "rad")));
   if (zxz) return Quat(from_euler_zxz(*t.vec3("euler_zxz", "rad")));
   const Vec3 a = t.vec3("axis", Vec3::Zero(), "");
-  if (!(a.norm() > 0)) t.fail_at(t.has("axis") ? "axis" : "angle", "axis must be a non-zero vector [x, y, z]");
+  if (!(a.norm() > 0))
+    t.fail_at(t.has("axis") ? "axis" : "angle", "axis must be a non-zero vector [x, y, z]");
   return Quat(Eigen::AngleAxisd(t.required_number("angle", "rad"), a.normalized()));
 }
 

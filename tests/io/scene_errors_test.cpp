@@ -60,10 +60,11 @@ TEST(SceneErrors, WrongTypesAndLengths) {
   EXPECT_EQ(error_of(kSim + "[[bodies]]\nname = \"a\"\nshape = { type = \"box\", size = [1, 1, 1] }\ndensity "
                             "= \"heavy\"\n"),
             "bad.toml:6:11: body 'a': density must be a number (kg/m^3), found the string \"heavy\"");
-  EXPECT_EQ(error_of(kSim + "[[bodies]]\nname = \"a\"\nmass = 1\ninertia = [1, 1, 1]\nangular_velocity_frame "
-                            "= \"bdy\"\n"),
-            "bad.toml:7:26: body 'a': angular_velocity_frame must be \"world\", \"reference\" (the body's own "
-            "axes; \"body\" is the older name) or \"principal\" (its principal axes), found \"bdy\"");
+  EXPECT_EQ(
+      error_of(kSim + "[[bodies]]\nname = \"a\"\nmass = 1\ninertia = [1, 1, 1]\nangular_velocity_frame "
+                      "= \"bdy\"\n"),
+      "bad.toml:7:26: body 'a': angular_velocity_frame must be \"world\", \"reference\" (the body's own "
+      "axes; \"body\" is the older name) or \"principal\" (its principal axes), found \"bdy\"");
 }
 
 TEST(SceneErrors, NonFiniteNumbers) {
