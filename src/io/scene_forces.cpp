@@ -121,7 +121,7 @@ void read_forces(const TableReader& root, const NameTable& names, Scene& scene) 
       const size_t b = required_body(t, names, scene);
       const Vec3 f = required_vec3(t, "force", "N");
       const Frame frame = t.frame("frame", Frame::world);
-      const Frame point_frame = t.frame("point_frame", Frame::body);
+      const Frame point_frame = t.frame("point_frame", Frame::reference);
       if (point_frame == Frame::world && !t.has("point")) {
         t.fail_here("point_frame = \"world\" needs point = [x, y, z] (world, m)");
       }

@@ -157,10 +157,11 @@ TEST(RunCli, ChosenFieldsDescribeTheSameMotion) {
     // would change |Λ ^bω| by tens of percent on this body).
     EXPECT_NEAR(Lambda.cwiseProduct(w_b).norm(), L0, 1e-8 * L0) << i;
     EXPECT_NEAR(w_b.dot(Lambda.cwiseProduct(w_b)), T0, 1e-8 * T0) << i;
-    // A free body: the centre of mass moves uniformly; no force, so its velocity keeps every bit, and
-    // o(t) = o(0) + v t to the rounding of the sum (|o| ≲ 0.1 m, t ≤ 6 s).
+    // A free body: the centre of mass moves uniformly (here it rests); no force, so its velocity keeps
+    // every bit, and o(t) = o(0) + v t to the rounding of the sum (|o| ≲ 0.1 m, t ≤ 6 s).
     const double t = 0.5 * static_cast<double>(i - 1);
     for (size_t k = 0; k < 3; ++k) {
+      EXPECT_EQ(first[7 + k], 0.0) << "the scene gives velocity_of = \"com\": at rest";
       EXPECT_EQ(v[7 + k], first[7 + k]) << i;
       EXPECT_NEAR(v[4 + k], first[4 + k] + t * first[7 + k], 1e-15) << i;
     }

@@ -2,11 +2,14 @@
 // initial state in the frames the format documents, the run settings, and the conservation flags.
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include <numbers>
 
 #include "../support/scene_files.hpp"
 #include "tumble/forces/forces.hpp"
 #include "tumble/io/scene.hpp"
+#include "tumble/math/rotations.hpp"
 #include "tumble/sim/diagnostics.hpp"
 #include "tumble/sim/simulate.hpp"
 
@@ -50,6 +53,76 @@ name = "box"
 shape = { type = "box", size = [0.1, 0.2, 0.3] }
 density = 1000
 )");
+}
+
+// A body whose reference frame is neither at its centre of mass nor along its principal axes: explicit
+// inertia with products, c off the origin. Used by the frame and velocity tests below.
+const std::string kSkewBody = R"(
+[[bodies]]
+name = "part"
+mass = 2.0
+inertia = [[0.3, -0.02, 0.01], [-0.02, 0.4, 0.0], [0.01, 0.0, 0.5]]
+center_of_mass = [0.1, -0.2, 0.05]
+position = [1.0, 2.0, 3.0]
+orientation = [0.8, 0.0, 0.6, 0.0]
+)";
+
+TEST(SceneFile, AngularVelocityInPrincipalAxesIsOmegaB) {
+  // angular_velocity_frame = "principal": the components are ^bω, the body's Euler ω₁ ω₂ ω₃ — a spin
+  // about the intermediate axis needs no hand-copied column of U. ω_w = R ^bω, to a few ulp.
+  const Scene s = parse(kSkewBody + "angular_velocity = [0.0, 5.0, 0.1]\nangular_velocity_frame = \"principal\"\n");
+  EXPECT_LT((s.initial.bodies[0].omega_b() - Vec3(0.0, 5.0, 0.1)).norm(), 4e-15 * 5.0);
+  // "reference" (and its older name "body") are the reference frame's axes: ω_w = R_ref ^rω.
+  for (const char* frame : {"reference", "body"}) {
+    const Scene r = parse(kSkewBody + "angular_velocity = [0.0, 5.0, 0.1]\nangular_velocity_frame = \"" + frame + "\"\n");
+    const Quat q_ref(0.8, 0.0, 0.6, 0.0);
+    EXPECT_LT((r.initial.bodies[0].omega_w - q_ref * Vec3(0.0, 5.0, 0.1)).norm(), 4e-15 * 5.0) << frame;
+  }
+}
+
+TEST(SceneFile, VelocityOfTheCentreOfMass) {
+  // velocity_of = "com": an off-centre part spun "at rest" stays in place, with no hand-computed
+  // compensation; the default is the velocity of the reference origin, v = v_p + ω × (o − p).
+  const Scene com = parse(kSkewBody + "velocity = [0, 0, 0]\nvelocity_of = \"com\"\nangular_velocity = [0, 0, 10]\n");
+  EXPECT_EQ(com.initial.bodies[0].v, Vec3::Zero());
+  const Scene origin = parse(kSkewBody + "velocity = [0, 0, 0]\nangular_velocity = [0, 0, 10]\n");
+  const BodyState& b = origin.initial.bodies[0];
+  EXPECT_LT((b.v - Vec3(0, 0, 10).cross(b.o - Vec3(1.0, 2.0, 3.0))).norm(), 1e-15 * 10);
+  EXPECT_GT(b.v.norm(), 1.0) << "this part at 10 rad/s would drift at over 1 m/s";
+}
+
+TEST(SceneFile, OrientationAsEulerAnglesOrAxisAngle) {
+  // The same rotation four ways: a quaternion, ZYX and ZXZ angles, and axis–angle (rad), to rounding.
+  const Quat q(Eigen::AngleAxisd(0.7, Vec3(1.0, -2.0, 0.5).normalized()));
+  const Mat3 R = q.toRotationMatrix();
+  const Vec3 zyx = euler_zyx(R), zxz = euler_zxz(R);
+  const std::string shape = "[[bodies]]\nname = \"b\"\nshape = { type = \"sphere\", radius = 1.0 }\ndensity = 1\n";
+  auto orientation_of = [&](const std::string& line) { return parse(shape + line).initial.bodies[0].q; };
+  const std::string ways[] = {
+      fmt::format("orientation = [{:.17g}, {:.17g}, {:.17g}, {:.17g}]\n", q.w(), q.x(), q.y(), q.z()),
+      fmt::format("orientation = {{ euler_zyx = [{:.17g}, {:.17g}, {:.17g}] }}\n", zyx(0), zyx(1), zyx(2)),
+      fmt::format("orientation = {{ euler_zxz = [{:.17g}, {:.17g}, {:.17g}] }}\n", zxz(0), zxz(1), zxz(2)),
+      fmt::format("orientation = {{ axis = [1.0, -2.0, 0.5], angle = 0.7 }}\n"),
+  };
+  for (const std::string& way : ways) {
+    // A sphere's principal frame is its reference frame (U = I), so q is the orientation given.
+    EXPECT_LT((orientation_of(way).toRotationMatrix() - R).cwiseAbs().maxCoeff(), 1e-15) << way;
+  }
+  EXPECT_THROW(parse(shape + "orientation = { euler_zyx = [0, 0, 0], angle = 1 }\n"), SceneError);
+  EXPECT_THROW(parse(shape + "orientation = { axis = [0, 0, 0], angle = 1 }\n"), SceneError);
+}
+
+TEST(SceneFile, OutputFieldsAreChosenInTheScene) {
+  const std::string body = "[[bodies]]\nname = \"b\"\nshape = { type = \"sphere\", radius = 1.0 }\ndensity = 1\n";
+  const Scene s = parse("[output]\nfields = [\"euler_zyx\", \"com_position\"]\n" + body);
+  EXPECT_EQ(s.output_fields, (std::vector<std::string>{"euler_zyx", "com_position"}));
+  try {
+    parse("[output]\nfields = [\"euler\"]\n" + body);
+    FAIL() << "an unknown field was accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("test.toml:4:10: [output]: unknown output field 'euler'"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(SceneFile, TubeFromPartsWithAHoleIsTheClosedForm) {
