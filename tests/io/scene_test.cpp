@@ -70,11 +70,13 @@ orientation = [0.8, 0.0, 0.6, 0.0]
 TEST(SceneFile, AngularVelocityInPrincipalAxesIsOmegaB) {
   // angular_velocity_frame = "principal": the components are ^bω, the body's Euler ω₁ ω₂ ω₃ — a spin
   // about the intermediate axis needs no hand-copied column of U. ω_w = R ^bω, to a few ulp.
-  const Scene s = parse(kSkewBody + "angular_velocity = [0.0, 5.0, 0.1]\nangular_velocity_frame = \"principal\"\n");
+  const Scene s =
+      parse(kSkewBody + "angular_velocity = [0.0, 5.0, 0.1]\nangular_velocity_frame = \"principal\"\n");
   EXPECT_LT((s.initial.bodies[0].omega_b() - Vec3(0.0, 5.0, 0.1)).norm(), 4e-15 * 5.0);
   // "reference" (and its older name "body") are the reference frame's axes: ω_w = R_ref ^rω.
   for (const char* frame : {"reference", "body"}) {
-    const Scene r = parse(kSkewBody + "angular_velocity = [0.0, 5.0, 0.1]\nangular_velocity_frame = \"" + frame + "\"\n");
+    const Scene r =
+        parse(kSkewBody + "angular_velocity = [0.0, 5.0, 0.1]\nangular_velocity_frame = \"" + frame + "\"\n");
     const Quat q_ref(0.8, 0.0, 0.6, 0.0);
     EXPECT_LT((r.initial.bodies[0].omega_w - q_ref * Vec3(0.0, 5.0, 0.1)).norm(), 4e-15 * 5.0) << frame;
   }
@@ -83,7 +85,8 @@ TEST(SceneFile, AngularVelocityInPrincipalAxesIsOmegaB) {
 TEST(SceneFile, VelocityOfTheCentreOfMass) {
   // velocity_of = "com": an off-centre part spun "at rest" stays in place, with no hand-computed
   // compensation; the default is the velocity of the reference origin, v = v_p + ω × (o − p).
-  const Scene com = parse(kSkewBody + "velocity = [0, 0, 0]\nvelocity_of = \"com\"\nangular_velocity = [0, 0, 10]\n");
+  const Scene com =
+      parse(kSkewBody + "velocity = [0, 0, 0]\nvelocity_of = \"com\"\nangular_velocity = [0, 0, 10]\n");
   EXPECT_EQ(com.initial.bodies[0].v, Vec3::Zero());
   const Scene origin = parse(kSkewBody + "velocity = [0, 0, 0]\nangular_velocity = [0, 0, 10]\n");
   const BodyState& b = origin.initial.bodies[0];
@@ -96,7 +99,8 @@ TEST(SceneFile, OrientationAsEulerAnglesOrAxisAngle) {
   const Quat q(Eigen::AngleAxisd(0.7, Vec3(1.0, -2.0, 0.5).normalized()));
   const Mat3 R = q.toRotationMatrix();
   const Vec3 zyx = euler_zyx(R), zxz = euler_zxz(R);
-  const std::string shape = "[[bodies]]\nname = \"b\"\nshape = { type = \"sphere\", radius = 1.0 }\ndensity = 1\n";
+  const std::string shape =
+      "[[bodies]]\nname = \"b\"\nshape = { type = \"sphere\", radius = 1.0 }\ndensity = 1\n";
   auto orientation_of = [&](const std::string& line) { return parse(shape + line).initial.bodies[0].q; };
   const std::string ways[] = {
       fmt::format("orientation = [{:.17g}, {:.17g}, {:.17g}, {:.17g}]\n", q.w(), q.x(), q.y(), q.z()),
@@ -113,14 +117,16 @@ TEST(SceneFile, OrientationAsEulerAnglesOrAxisAngle) {
 }
 
 TEST(SceneFile, OutputFieldsAreChosenInTheScene) {
-  const std::string body = "[[bodies]]\nname = \"b\"\nshape = { type = \"sphere\", radius = 1.0 }\ndensity = 1\n";
+  const std::string body =
+      "[[bodies]]\nname = \"b\"\nshape = { type = \"sphere\", radius = 1.0 }\ndensity = 1\n";
   const Scene s = parse("[output]\nfields = [\"euler_zyx\", \"com_position\"]\n" + body);
   EXPECT_EQ(s.output_fields, (std::vector<std::string>{"euler_zyx", "com_position"}));
   try {
     parse("[output]\nfields = [\"euler\"]\n" + body);
     FAIL() << "an unknown field was accepted";
   } catch (const SceneError& e) {
-    EXPECT_NE(std::string(e.what()).find("test.toml:4:10: [output]: unknown output field 'euler'"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("test.toml:4:10: [output]: unknown output field 'euler'"),
+              std::string::npos)
         << e.what();
   }
 }
