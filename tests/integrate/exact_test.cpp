@@ -129,9 +129,10 @@ TEST(Exact, TheCentreOfMassFollowsTheParabolaUnderUniformGravity) {
     // in double, so they agree to a few ulp of the largest term (|v₀ t| ≲ 250 m: ~1e-13 m).
     for (const Vec3& o : {s.bodies[0].o, s.particles[0].x}) {
       for (int k = 0; k < 3; ++k) {
-        const long double t = s.t;
         using LD = long double;
-        const LD x = LD{o0[k]} + LD{v0[k]} * t + 0.5L * LD{g[k]} * t * t;
+        const auto t = static_cast<LD>(s.t);
+        const LD x = static_cast<LD>(o0[k]) + static_cast<LD>(v0[k]) * t +
+                     0.5L * static_cast<LD>(g[k]) * t * t;
         EXPECT_NEAR(o[k], static_cast<double>(x), 2e-13) << "t = " << s.t;
       }
     }

@@ -82,6 +82,26 @@ TEST(SceneFile, AngularVelocityInPrincipalAxesIsOmegaB) {
   }
 }
 
+TEST(SceneFile, ATorqueInPrincipalAxesSpinsUpAboutThatAxis) {
+  // From rest, a constant torque τ along principal axis 1 gives ^bω = τ t / λ₁ along it (ω × Λω = 0 on
+  // a principal axis), a ramp RK4 integrates exactly: to rounding. In the reference axes the same
+  // numbers would point elsewhere on this body (U ≠ I).
+  const Scene s = parse(kSkewBody + R"(
+[[forces]]
+type = "torque"
+body = "part"
+torque = [0.2, 0.0, 0.0]
+frame = "principal"
+)");
+  RunSettings settings;
+  settings.duration = 0.01;
+  settings.timestep = 1e-3;
+  const SystemState end = simulate(s.model, s.initial, settings);
+  const double lambda1 = s.model.bodies[0].Lambda()(0);
+  EXPECT_LT((end.bodies[0].omega_b() - Vec3(0.2 * 0.01 / lambda1, 0, 0)).norm(),
+            1e-14 * 0.2 * 0.01 / lambda1);
+}
+
 TEST(SceneFile, VelocityOfTheCentreOfMass) {
   // velocity_of = "com": an off-centre part spun "at rest" stays in place, with no hand-computed
   // compensation; the default is the velocity of the reference origin, v = v_p + ω × (o − p).
