@@ -65,17 +65,10 @@ class Exact final : public Integrator {
   /// may have been moved by rounding (simulate() snaps the time of a sample onto its grid).
   bool on_trajectory(const Model& model, Formulation F, const SystemCoordinates& x, double h) const {
     if (model_ != &model || F != formulation_ || flows_.size() != model.bodies.size() ||
-        x.bodies.size() != last_.size() || x.particles.size() != last_particles_.size() ||
         !(std::abs(x.t - last_t_) <= 1e-9 * std::max(std::abs(h), std::abs(last_h_)))) {
       return false;
     }
-    for (size_t k = 0; k < BodyColumns::kCount; ++k) {
-      if (std::memcmp(x.bodies[k], last_[k], x.bodies.size() * sizeof(double)) != 0) return false;
-    }
-    for (size_t p = 0; p < last_particles_.size(); ++p) {
-      if (x.particles[p].x != last_particles_[p].x || x.particles[p].v != last_particles_[p].v) return false;
-    }
-    return true;
+    return same_variables(x, last_, last_particles_);
   }
 
   void anchor(const Model& model, Formulation F, const SystemCoordinates& x) {

@@ -121,17 +121,7 @@ class Strang {
     t_ = x.t;
     cached_ = true;
   }
-  bool same(const SystemCoordinates& x) const {
-    if (x.t != t_ || x.bodies.size() != state_.size() || x.particles.size() != particles_.size())
-      return false;
-    for (size_t k = 0; k < BodyColumns::kCount; ++k) {
-      if (std::memcmp(x.bodies[k], state_[k], x.bodies.size() * sizeof(double)) != 0) return false;
-    }
-    for (size_t i = 0; i < particles_.size(); ++i) {
-      if (x.particles[i].x != particles_[i].x || x.particles[i].v != particles_[i].v) return false;
-    }
-    return true;
-  }
+  bool same(const SystemCoordinates& x) const { return x.t == t_ && same_variables(x, state_, particles_); }
 
   /// K(τ): v += τ f/m and L_w += τ τ_w with the pose frozen, in the formulation's variables.
   static void kick(Formulation F, Coordinates<double>& c, double tau, const Vec3& f_w, const Vec3& tau_w,

@@ -1,5 +1,7 @@
 #include "tumble/integrate/system_coordinates.hpp"
 
+#include <cstring>
+
 #include <fmt/format.h>
 
 #include <cmath>
@@ -56,6 +58,22 @@ std::string first_non_finite(const Model& model, const SystemCoordinates& x) {
     }
   }
   return {};
+}
+
+}  // namespace tumble
+
+namespace tumble {
+
+bool same_variables(const SystemCoordinates& x, const BodyColumns& bodies,
+                    const std::vector<ParticleState>& particles) {
+  if (x.bodies.size() != bodies.size() || x.particles.size() != particles.size()) return false;
+  for (size_t k = 0; k < BodyColumns::kCount; ++k) {
+    if (std::memcmp(x.bodies[k], bodies[k], bodies.size() * sizeof(double)) != 0) return false;
+  }
+  for (size_t i = 0; i < particles.size(); ++i) {
+    if (x.particles[i].x != particles[i].x || x.particles[i].v != particles[i].v) return false;
+  }
+  return true;
 }
 
 }  // namespace tumble

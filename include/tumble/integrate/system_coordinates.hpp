@@ -20,6 +20,12 @@ SystemState to_state(Formulation formulation, const SystemCoordinates& x);
 /// The same into `state`, reusing its storage.
 void to_state(Formulation formulation, const SystemCoordinates& x, SystemState& state);
 
+/// Whether x holds exactly these variables, bit for bit (the time is not compared): how integrators that
+/// keep something between steps (splitting's loads and flows, exact's anchor) notice that the state they
+/// are handed is not the one they produced.
+bool same_variables(const SystemCoordinates& x, const BodyColumns& bodies,
+                    const std::vector<ParticleState>& particles);
+
 /// The first body or particle of x that is not finite, as "body 'name'" or "particle 'name'"; empty
 /// when everything is finite.
 std::string first_non_finite(const Model& model, const SystemCoordinates& x);
