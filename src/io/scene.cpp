@@ -100,14 +100,16 @@ Scene read_scene(const toml::table& root, std::string text, const std::filesyste
   scene.text = std::move(text);
   const std::string file = path.string();  // for messages; outlives every reader
   const TableReader r(root, "scene", file,
-                      {"simulation", "output", "world", "bodies", "particles", "forces"});
+                      {"simulation", "output", "world", "bodies", "body_tables", "particles", "forces"});
   read_simulation(r, scene);
   read_output(r, scene);
   NameTable names;
+  std::deque<std::string> table_names;  // the names of [[body_tables]] rows, viewed by `names`
   read_bodies(r, path.parent_path(), names, scene);
+  read_body_tables(r, path.parent_path(), names, table_names, scene);
   read_particles(r, names, scene);
   if (scene.model.bodies.empty() && scene.model.particles.empty()) {
-    r.fail_here("the scene has nothing to simulate: add [[bodies]] or [[particles]]");
+    r.fail_here("the scene has nothing to simulate: add [[bodies]], [[body_tables]] or [[particles]]");
   }
   read_forces(r, names, scene);
   return scene;

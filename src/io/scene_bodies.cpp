@@ -8,25 +8,32 @@
 
 namespace tumble::scene {
 
-void register_name(const TableReader& table, std::string_view name, bool is_particle, size_t index,
-                   NameTable& names) {
+bool valid_name(std::string_view name) {
   // Names become CSV fields and HDF5 strings; keeping them to these characters means no quoting or
   // escaping anywhere a trajectory is read.
-  const bool ok = !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
+  return !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
     return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
            c == '-' || c == '.';
   });
-  if (!ok) {
+}
+
+void register_name(const TableReader& table, std::string_view name, bool is_particle, size_t index,
+                   NameTable& names) {
+  if (!valid_name(name)) {
     table.fail_at(
         "name", fmt::format("name \"{}\" is not allowed: use letters, digits, '_', '-' and '.' only", name));
   }
   const auto [it, inserted] =
       names.try_emplace(name, NameEntry{table.where("name").begin, is_particle, index});
   if (!inserted) {
+    const toml::source_position first = it->second.where;
     table.fail_at("name",
-                  fmt::format("duplicate name \"{}\" (first defined at line {}, column {}): give every "
-                              "body and particle its own name",
-                              name, it->second.where.line, it->second.where.column));
+                  fmt::format("duplicate name \"{}\" (first defined {}): give every body and particle "
+                              "its own name",
+                              name,
+                              first.line == 0
+                                  ? std::string("in a [[body_tables]] file")
+                                  : fmt::format("at line {}, column {}", first.line, first.column)));
   }
 }
 

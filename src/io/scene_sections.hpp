@@ -1,6 +1,7 @@
 #pragma once
 // The sections of a scene file, each read by its own source file (scene.cpp, scene_bodies.cpp,
 // scene_forces.cpp) into the Scene under construction.
+#include <deque>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -21,7 +22,7 @@ Scene read_scene(const toml::table& root, std::string text, const std::filesyste
 /// A name of a body or particle, where it is defined (so that a duplicate can say where the first
 /// one is) and what it names.
 struct NameEntry {
-  toml::source_position where;
+  toml::source_position where;  // line 0: a row of a [[body_tables]] file
   bool is_particle;
   size_t index;  // in model.bodies or model.particles
 };
@@ -41,12 +42,18 @@ BodyMass read_body_mass(const TableReader& body, const std::filesystem::path& di
 /// `directory`.
 void read_bodies(const TableReader& root, const std::filesystem::path& directory, NameTable& names,
                  Scene& scene);
+/// [[body_tables]]: bodies from CSV files, a row each (scene_body_table.cpp). Their names are stored
+/// in `name_storage` (a deque: the views in `names` stay valid as it grows).
+void read_body_tables(const TableReader& root, const std::filesystem::path& directory, NameTable& names,
+                      std::deque<std::string>& name_storage, Scene& scene);
 /// [[particles]].
 void read_particles(const TableReader& root, NameTable& names, Scene& scene);
 /// [world] gravity and [[forces]], which name bodies and particles by `names`; sets scene.conserved
 /// from the force models present.
 void read_forces(const TableReader& root, const NameTable& names, Scene& scene);
 
+/// Whether a body or particle name is non-empty and only letters, digits, '_', '-' and '.'.
+bool valid_name(std::string_view name);
 /// Checks a body or particle name (non-empty, letters, digits, '_', '-', '.', unique) and records it
 /// with its index. `name` must be a view into the parsed TOML.
 void register_name(const TableReader& table, std::string_view name, bool is_particle, size_t index,

@@ -159,7 +159,8 @@ TEST(SceneErrors, MissingPiecesAndBadReferences) {
   EXPECT_EQ(error_of("[[particles]]\nname = \"p\"\nmass = 1\n"),
             "bad.toml:1:1: scene: missing [simulation]: give at least duration = T (s)");
   EXPECT_EQ(error_of(kSim),
-            "bad.toml:1:1: scene: the scene has nothing to simulate: add [[bodies]] or [[particles]]");
+            "bad.toml:1:1: scene: the scene has nothing to simulate: add [[bodies]], [[body_tables]] or "
+            "[[particles]]");
   EXPECT_EQ(error_of(kSim + "[[bodies]]\nname = \"a\"\nshape = { type = \"box\", size = [1, 1, 1] }\n"),
             "bad.toml:3:1: body 'a': missing the material: give density = RHO (kg/m^3) or mass = M (kg)");
   EXPECT_EQ(error_of(kSim + "[[bodies]]\nname = \"handle\"\nmass = 1\ninertia = [1, 1, 1]\n"
