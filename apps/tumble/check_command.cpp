@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
+#include "run_plan_report.hpp"
 #include "scene_summary.hpp"
 #include "tumble/integrate/integrator.hpp"
 #include "tumble/io/scene.hpp"
@@ -15,7 +16,8 @@ Runner add_check_command(CLI::App& app) {
       "Validate a scene file without simulating: report the first problem as file:line:column, or "
       "print a summary (each body's mass, centre of mass, principal moments and axes and initial "
       "centre-of-mass velocity; the forces; the "
-      "initial energy and momenta; which of them the forces conserve).\n\nExample:\n"
+      "initial energy and momenta; which of them the forces conserve; the run's steps, samples, output size "
+      "and an estimate of its time, from timing its first few steps).\n\nExample:\n"
       "  tumble check examples/t_handle.toml");
   cmd->add_option("scene", *file, "scene file (TOML; see docs/scene-format.md)")->required();
   return [file] {
@@ -25,6 +27,9 @@ Runner add_check_command(CLI::App& app) {
       make_integrator(scene.settings.integrator)->check(scene.model);
     print_scene_warnings(scene);
     print_scene_summary(stdout, scene);
+    const RunPlan plan = plan_of(scene, scene.settings, {});
+    fmt::print("  plan         {}\n", describe(plan, estimate_seconds(scene, scene.settings, plan),
+                                               scene.model.bodies.size() + scene.model.particles.size()));
     return 0;
   };
 }

@@ -77,10 +77,17 @@ Shape make_shape(const std::string& name, const std::vector<double>& s) {
 /// area for a shell) and the tensor the shape's own second moments, which scale with any density.
 bool unit_density(const InertiaOptions& o) { return !o.density && !o.mass; }
 
+/// The wall of a shell given without --thickness (with --mass, or with neither mass nor density): its
+/// value only sets the volume, which is then reported as unknown. The thinnest wall there is fits
+/// inside every shape (the check that a wall fits, and the warning about a wall as thick as a mesh's
+/// finest edge, are for walls the user gave); a power of two, so that ρ = 1/t is exact.
+constexpr double kUnknownWall = 0x1p-1022;
+
 MassSpec mass_spec(const InertiaOptions& o) {
   if (o.density) return MassSpec::density(*o.density);
   if (o.mass) return MassSpec::mass(*o.mass);
-  return MassSpec::density(1.0);
+  // Nothing given: unit density for a solid, unit surface density (ρ·t = 1 kg/m²) for a shell.
+  return MassSpec::density(o.shell && !o.thickness ? 1.0 / kUnknownWall : 1.0);
 }
 
 double shell_thickness(const InertiaOptions& o) {
@@ -89,7 +96,7 @@ double shell_thickness(const InertiaOptions& o) {
     throw InvalidArgument(
         "--shell with --density needs the wall thickness: add --thickness T (m), or give --mass");
   }
-  return 1.0;  // with a total mass (or unit surface density) the thickness only sets the volume
+  return kUnknownWall;
 }
 
 /// Every body of a scene file (or the one named by --body), as the scene builds it: its parts, holes,

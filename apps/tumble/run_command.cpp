@@ -9,6 +9,7 @@
 #include "interrupt.hpp"
 #include "plural.hpp"
 #include "progress.hpp"
+#include "run_plan_report.hpp"
 #include "scene_summary.hpp"
 #include "tumble/integrate/integrator.hpp"
 #include "tumble/io/scene.hpp"
@@ -38,6 +39,7 @@ struct RunOptions {
   bool quiet = false;
   bool progress = false;
   bool strict = false;
+  bool force = false;
 };
 
 bool is_hdf5_name(const std::filesystem::path& p) {
@@ -86,6 +88,14 @@ int run(const RunOptions& o) {
   print_scene_warnings(scene);
 
   const bool hdf5 = o.format.empty() ? is_hdf5_name(o.output) : o.format == "hdf5";
+  // Runs of a day or 100 GB are refused before anything is written; timing a few steps costs little
+  // beside a run of 10⁹ body-steps, and is skipped for shorter ones.
+  const RunPlan plan = plan_of(scene, settings, o.fields);
+  const double rows = static_cast<double>(scene.model.bodies.size() + scene.model.particles.size());
+  const std::optional<double> seconds =
+      plan.steps && *plan.steps * rows > 1e9 ? estimate_seconds(scene, settings, plan) : std::nullopt;
+  if (const auto warning = enforce(plan, seconds, hdf5, o.force))
+    fmt::print(stderr, "tumble: warning: {}\n", *warning);
   std::filesystem::path out = o.output;
   if (out.empty()) {
     out = std::filesystem::path(o.scene).stem();
@@ -224,6 +234,9 @@ Runner add_run_command(CLI::App& app) {
   cmd->add_flag("--strict", o->strict,
                 "exit with status 3 (after writing every file) if a conserved quantity drifted past the "
                 "drift threshold; without it such a run warns and exits 0");
+  cmd->add_flag("--force", o->force,
+                "run even if it would take more than a day or write more than 100 GB (`tumble check` "
+                "prints the steps, samples, output size and time a run would take)");
   auto* quiet =
       cmd->add_flag("--quiet,-q", o->quiet, "no progress bar and no summary; errors and warnings only");
   cmd->add_flag("--progress", o->progress,

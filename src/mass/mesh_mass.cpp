@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <fmt/format.h>
+#include <limits>
 
 #include "mesh_integrals.hpp"
 #include "tumble/error.hpp"
@@ -75,6 +76,28 @@ MeshMassResult shell_mass_properties(const TriangleMesh& mesh, double thickness,
         "{}: the surface has zero area (every triangle is degenerate), so it cannot carry mass", name));
   }
   result.surface_area = unit.mass;
+  // The thin-wall model needs the wall thin against every feature of the surface; the shortest edge is
+  // the finest feature the mesh can tell, so a wall as thick as that is past what the model represents.
+  double shortest = std::numeric_limits<double>::infinity();
+  std::size_t shortest_triangle = 0;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const auto& f = mesh.triangles[t];
+    for (int e = 0; e < 3; ++e) {
+      const double length = (mesh.vertices[f[(e + 1) % 3]] - mesh.vertices[f[e]]).norm();
+      if (length > 0 && length < shortest) {
+        shortest = length;
+        shortest_triangle = t;
+      }
+    }
+  }
+  if (thickness >= shortest) {
+    result.warnings.push_back(fmt::format(
+        "{}: shell thickness {} m is at least the mesh's shortest edge, {:.6g} m (triangle {}): the "
+        "thin-wall "
+        "model needs the wall thin against every feature of the surface; for a thick wall subtract an "
+        "inner solid as a hole",
+        name, thickness, shortest, shortest_triangle));
+  }
   unit.volume = unit.mass * thickness;  // thin-wall limit: material volume = area · t
   result.properties = spec.apply(unit, thickness);
   return result;

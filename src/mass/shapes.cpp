@@ -235,11 +235,35 @@ MassProperties solid_mass_properties(const Shape& shape, const MassSpec& spec) {
   return spec.apply(solid_unit(shape));
 }
 
+double inradius(const Shape& shape) {
+  validate_shape(shape);
+  return std::visit(
+      Overloaded{
+          [](const Box& s) { return 0.5 * s.size.minCoeff(); },
+          [](const Sphere& s) { return s.radius; },
+          [](const Ellipsoid& s) { return s.semi_axes.minCoeff(); },
+          [](const Cylinder& s) { return std::min(s.radius, 0.5 * s.length); },
+          [](const Capsule& s) { return s.radius; },
+          // The sphere inscribed in the cone touches its base and its side: the inradius of the
+          // triangle through its axis, r·h / (r + √(r² + h²)) (area over half the perimeter).
+          [](const Cone& s) { return s.radius * s.height / (s.radius + std::hypot(s.radius, s.height)); },
+          [](const Torus& s) { return s.minor_radius; },
+      },
+      shape);
+}
+
 MassProperties shell_mass_properties(const Shape& shape, double thickness, const MassSpec& spec) {
   validate_shape(shape);
   if (!std::isfinite(thickness) || !(thickness > 0.0)) {
     throw InvalidArgument(
         fmt::format("shell thickness {} m is invalid: give a positive wall thickness", thickness));
+  }
+  // A wall thicker than this has no inside left: a 5 m wall on a 1 m sphere is not a shell.
+  if (const double r = inradius(shape); thickness > r) {
+    throw InvalidArgument(fmt::format(
+        "shell thickness {} m does not fit inside the {}: its walls can be at most {} m thick (the radius "
+        "of the largest sphere inside it); for a thick-walled body subtract an inner solid as a hole",
+        thickness, shape_name(shape), r));
   }
   MassProperties unit = shell_unit(shape);
   unit.volume = unit.mass * thickness;  // thin-wall limit: material volume = area · t

@@ -6,6 +6,7 @@
 #include <tuple>
 
 #include "tumble/error.hpp"
+#include "tumble/sim/run_plan.hpp"
 
 namespace tumble {
 namespace {
@@ -86,6 +87,18 @@ void validate(const RunSettings& s) {
   require(std::isfinite(s.output_interval) && s.output_interval >= 0,
           fmt::format("output interval {} s is invalid: give a time >= 0 (0 = every step)",
                       s.output_interval));
+  // The clock is t₀ + n·h and samples are t₀ + k·Δ: past 2⁵³ steps or samples n·h no longer advances
+  // (e.g. timestep = 5e-324, or duration = 1e300), and the run would never end.
+  const double dt_out = s.output_interval > 0 ? s.output_interval : s.timestep;
+  require(
+      s.duration / s.timestep <= kMaxCount,
+      fmt::format("timestep {} s is too small for duration {} s: {:.3g} steps, more than 2^53, where a step "
+                  "no longer advances the clock; give a larger timestep or a shorter duration",
+                  s.timestep, s.duration, s.duration / s.timestep));
+  require(s.duration / dt_out <= kMaxCount,
+          fmt::format("output interval {} s is too small for duration {} s: {:.3g} samples, more than 2^53; "
+                      "give a larger output interval (0 = every step)",
+                      s.output_interval, s.duration, s.duration / dt_out));
   require(s.threads >= 0 && s.threads <= 4096,
           fmt::format("threads = {} is invalid: give a count from 1 to 4096, or 0 for one per core",
                       s.threads));

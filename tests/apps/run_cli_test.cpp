@@ -394,5 +394,57 @@ TEST(RunCli, HelpExplainsWithExamples) {
   }
 }
 
+TEST(RunCli, RunsThatWouldNotEndAreRefusedBeforeWritingAnything) {
+  test::TempDir dir("run_plan");
+  const auto out = dir / "x.csv";
+  const std::string scene = example("t_handle.toml");
+  struct Case {
+    std::string options, message;
+  };
+  const std::vector<Case> cases = {
+      {"--duration 1e300",
+       "tumble: error: timestep 0.001 s is too small for duration 1e+300 s: 1e+303 steps, more than 2^53, "
+       "where a "
+       "step no longer advances the clock; give a larger timestep or a shorter duration"},
+      {"--timestep 5e-324",
+       "tumble: error: timestep 5e-324 s is too small for duration 20 s: inf steps, more than 2^53, where a "
+       "step "
+       "no longer advances the clock; give a larger timestep or a shorter duration"},
+      {"--output-interval 1e-300",
+       "tumble: error: output interval 1e-300 s is too small for duration 20 s: 2e+301 samples, more than "
+       "2^53; "
+       "give a larger output interval (0 = every step)"},
+      // 10¹² steps of rk4: weeks on any machine (the estimate times the first steps here).
+      {"--duration 1e9", "tumble: error: this run would take about "},
+      // 10¹¹ samples, each a 15-column row: terabytes.
+      {"--duration 1e8 --timestep 0.01 --output-interval 0.001", "tumble: error: this run would "},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.options);
+    const auto r = run_tumble("run " + scene + " -o " + out.string() + " " + c.options);
+    EXPECT_EQ(r.status, 1) << r.output;
+    EXPECT_EQ(r.output.rfind(c.message, 0), 0u) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(out));
+    EXPECT_FALSE(has_temporaries(dir.path()));
+  }
+  // Few samples, but 10¹² steps: refused for its time alone, with what to change.
+  const auto slow =
+      run_tumble("run " + scene + " -o " + out.string() + " --duration 1e9 --output-interval 1e7");
+  EXPECT_NE(slow.output.find("(1000000000000 steps, 101 samples): shorten the duration or enlarge the "
+                             "timestep, or give --force to run it anyway"),
+            std::string::npos)
+      << slow.output;
+}
+
+TEST(CheckCli, StatesTheRunsStepsSamplesSizeAndTime) {
+  // t_handle: 20 s at h = 1e-3 with samples every 0.01 s, one body.
+  const auto r = run_tumble("check " + example("t_handle.toml"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("  plan         20000 steps, 2001 samples of 1 row; output about "),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find(" on this machine (one thread)"), std::string::npos) << r.output;
+}
+
 }  // namespace
 }  // namespace tumble

@@ -160,6 +160,14 @@ TEST(MeshCheck, ShellAcceptsOpenMeshes) {
   EXPECT_NEAR(r.surface_area, 1.0 + std::sqrt(3.0) / 2, 1e-15);  // two right triangles + slanted face
 }
 
+TEST(MeshCheck, AShellAsThickAsTheMeshsFinestEdgeIsWarnedAbout) {
+  // The unit tetrahedron's shortest edges are 1 m (its legs); its slanted ones are √2.
+  EXPECT_TRUE(shell_mass_properties(tetrahedron(), 0.999, MassSpec::density(1.0)).warnings.empty());
+  const MeshMassResult thick = shell_mass_properties(tetrahedron(), 1.0, MassSpec::density(1.0), "tet");
+  ASSERT_EQ(thick.warnings.size(), 1u);
+  EXPECT_CONTAINS(thick.warnings[0], "tet: shell thickness 1 m is at least the mesh's shortest edge, 1 m");
+}
+
 TEST(MeshCheck, SeveralDefectsAreAllReported) {
   TriangleMesh mesh = tetrahedron();
   mesh.triangles.pop_back();

@@ -130,7 +130,8 @@ void expect_shell_is_derivative(const Shape& shell, const std::function<Shape(do
   const double dm = (plus.mass - minus.mass) / (2 * eps);
   // d/dε of the inertia about the (fixed, by symmetry) centre.
   const Mat3 dI = (plus.inertia - minus.inertia) / (2 * eps);
-  const MassProperties s = shell_mass_properties(shell, 1.0, unit);
+  // Surface density ρ·t = 16 · 0.0625 = 1 exactly, with a wall that fits inside every shape here.
+  const MassProperties s = shell_mass_properties(shell, 0.0625, MassSpec::density(16.0));
   EXPECT_NEAR(s.mass, dm, 1e-7 * dm) << what;
   EXPECT_LT(rel_diff(s.inertia, dI), 1e-7) << what;
   EXPECT_NEAR(surface_area(shell), s.mass, 1e-14 * s.mass) << what;
@@ -162,6 +163,31 @@ TEST(Shapes, ShellsAreTheThinWallLimitOfSolids) {
       "torus");
 }
 
+TEST(Shapes, AShellWallMustFitInsideItsShape) {
+  // The largest sphere inside each shape. The cone's touches the base and the side: in the section
+  // through the axis it is the incircle of the triangle (base 2r, height h), radius = area / half
+  // perimeter = r·h / (r + √(r² + h²)); for r = 3, h = 4 that is 12 / 8 = 1.5 exactly.
+  EXPECT_EQ(inradius(Box{Vec3(0.3, 0.1, 0.7)}), 0.05);
+  EXPECT_EQ(inradius(Sphere{2.0}), 2.0);
+  EXPECT_EQ(inradius(Cylinder{0.5, 0.4}), 0.2);
+  EXPECT_EQ(inradius(Cylinder{0.1, 0.4}), 0.1);
+  EXPECT_EQ(inradius(Capsule{0.25, 3.0}), 0.25);
+  EXPECT_EQ(inradius(Cone{3.0, 4.0}), 1.5);
+  EXPECT_EQ(inradius(Torus{0.5, 0.15}), 0.15);
+  // A wall of exactly the inradius fits; a thicker one is refused, saying how thick it may be.
+  EXPECT_NO_THROW(shell_mass_properties(Sphere{1.0}, 1.0, MassSpec::density(1.0)));
+  try {
+    shell_mass_properties(Sphere{1.0}, 5.0, MassSpec::density(1.0));
+    ADD_FAILURE() << "a 5 m wall on a 1 m sphere was accepted";
+  } catch (const InvalidArgument& e) {
+    EXPECT_EQ(
+        std::string(e.what()),
+        "shell thickness 5 m does not fit inside the sphere: its walls can be at most 1 m thick (the radius "
+        "of the largest sphere inside it); for a thick-walled body subtract an inner solid as a hole");
+  }
+  EXPECT_THROW(shell_mass_properties(Cone{3.0, 4.0}, 1.6, MassSpec::density(1.0)), InvalidArgument);
+}
+
 TEST(Shapes, ConeShellMatchesRingIntegrals) {
   // Lateral surface z ∈ [0, h], radius ρ(z) = r(1 − z/h), ring area 2πρ·(s/h)dz with s the slant;
   // each ring has I_zz = ρ² dm and transverse (ρ²/2 + z²) dm. Plus the base disk at z = 0.
@@ -176,7 +202,7 @@ TEST(Shapes, ConeShellMatchesRingIntegrals) {
   const double m = A + Ab, zc = Az / m;
   const double Izz = Arr + Ab * r * r / 2;
   const double Ixx = Arr / 2 + Azz + Ab * r * r / 4 - m * zc * zc;
-  const MassProperties shell = shell_mass_properties(Cone{r, h}, 1.0, MassSpec::density(1.0));
+  const MassProperties shell = shell_mass_properties(Cone{r, h}, 0.0625, MassSpec::density(16.0));  // ρt = 1
   EXPECT_NEAR(shell.mass, m, kQuadrature * m);
   EXPECT_NEAR(shell.center_of_mass.z(), zc, kQuadrature * h);
   EXPECT_NEAR(shell.inertia(2, 2), Izz, kQuadrature * Izz);

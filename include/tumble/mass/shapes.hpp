@@ -53,7 +53,11 @@ MassProperties solid_mass_properties(const Shape& shape, const MassSpec& spec);
 /// t → 0 (for thick walls, subtract an inner solid from an outer one). Every shape but the ellipsoid,
 /// whose surface integrals are elliptic, has a closed form; the ellipsoid throws InvalidArgument
 /// (use a tessellated mesh with shell mass properties instead). `volume` is area·t.
+/// Throws InvalidArgument when the thickness is not positive or exceeds inradius(shape).
 MassProperties shell_mass_properties(const Shape& shape, double thickness, const MassSpec& spec);
+
+/// The radius of the largest sphere inside the shape (m): the thickest wall a shell of it can have.
+double inradius(const Shape& shape);
 
 /// Surface area of the shape (m²).
 double surface_area(const Shape& shape);

@@ -1,0 +1,37 @@
+#pragma once
+// What a run will do, known before it starts: how many steps and samples, and how many bytes its
+// outputs will take. `tumble check` states it and `tumble run` refuses runs that would not end in a
+// day or would fill a disk (unless --force), so that `duration = 1e300` or an output interval of
+// 1e-300 s is a message, not a process that runs until it is killed.
+#include <cstddef>
+#include <optional>
+
+#include "tumble/sim/simulate.hpp"
+
+namespace tumble {
+
+struct RunPlan {
+  /// Steps of a fixed-step integrator: ⌈Δ/h⌉ per output interval Δ (the last step of each is
+  /// shortened to land on the sample time), so ⌈duration/h⌉ when Δ is a multiple of h; nullopt for
+  /// adaptive integrators, whose count depends on the tolerances.
+  std::optional<double> steps;
+  /// Samples written, the initial and the final state included: ⌈duration/Δ⌉ + 1 (Δ = h when the
+  /// output interval is 0).
+  double samples = 0;
+  /// Rows of the trajectory: samples × (bodies + particles).
+  double rows = 0;
+  /// Bytes of the outputs: the trajectory (CSV: the widest rows, 17 significant digits; HDF5: 8 bytes
+  /// a value) and the diagnostics (one row per sample). An upper estimate for CSV.
+  double csv_bytes = 0, hdf5_bytes = 0;
+};
+
+/// The plan of a run of `settings` (validated) for `bodies` and `particles`, `columns` values a body
+/// row (the output fields' columns, sim/output_fields.hpp).
+RunPlan plan_run(const RunSettings& settings, std::size_t bodies, std::size_t particles, std::size_t columns);
+
+/// Runs whose counts no clock or file could hold: more steps or samples than a double counts exactly
+/// (2⁵³), which is also where a step stops advancing the clock t₀ + n·h. validate(RunSettings)
+/// refuses them.
+inline constexpr double kMaxCount = 9007199254740992.0;  // 2⁵³
+
+}  // namespace tumble
