@@ -173,12 +173,11 @@ void commit_together(StagedFile& first, StagedFile& second) {
   try {
     second.commit();
   } catch (const FileError& e) {
-    if (staged) {
-      if (had_older) {
-        std::filesystem::rename(backup, first.target(), ec);
-      } else {
-        std::filesystem::remove(first.target(), ec);
-      }
+    if (!staged) throw;  // written through: nothing to undo
+    if (had_older) {
+      std::filesystem::rename(backup, first.target(), ec);
+    } else {
+      std::filesystem::remove(first.target(), ec);
     }
     throw FileError(fmt::format("{}; {} was not replaced either", e.what(), first.final_path().string()));
   }
