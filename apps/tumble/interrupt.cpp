@@ -1,32 +1,73 @@
 #include "interrupt.hpp"
 
+#include <atomic>
 #include <csignal>
+#include <exception>
 
 namespace tumble::cli {
 namespace {
 
-volatile std::sig_atomic_t g_requested = 0;
-struct sigaction g_previous_int, g_previous_term;
+// Lock-free atomics: safe to touch from a handler, and from whichever thread the kernel picks to run
+// it (OpenMP's threads too).
+std::atomic<int> g_count{0};           // signals received since the guard was installed
+std::atomic<int> g_first{0};           // the first one's number
+std::atomic<bool> g_deferring{false};  // a Deferral exists
+std::atomic<int> g_deferred{0};        // the second signal, held by a Deferral
+static_assert(std::atomic<int>::is_always_lock_free && std::atomic<bool>::is_always_lock_free);
 
-extern "C" void on_signal(int) { g_requested = 1; }  // async-signal-safe: only sets the flag
+constexpr int kSignals[] = {SIGINT, SIGTERM, SIGHUP};
+struct sigaction g_previous[3];
+
+/// Ends the process as the signal's default action does (the shell sees "killed by SIGINT").
+void terminate_by(int sig) {
+  struct sigaction action = {};
+  action.sa_handler = SIG_DFL;
+  sigemptyset(&action.sa_mask);
+  sigaction(sig, &action, nullptr);
+  raise(sig);  // inside the handler the signal is blocked: delivered, fatally, as the handler returns
+}
+
+extern "C" void on_signal(int sig) {  // async-signal-safe: atomics, sigaction and raise only
+  const int n = g_count.fetch_add(1) + 1;
+  if (n == 1) {
+    g_first.store(sig);
+    return;
+  }
+  if (n == 2 && g_deferring.load()) {
+    g_deferred.store(sig);
+    return;
+  }
+  terminate_by(sig);
+}
 
 }  // namespace
 
 InterruptGuard::InterruptGuard() {
-  g_requested = 0;
+  g_count = 0;
+  g_first = 0;
+  g_deferred = 0;
   struct sigaction action = {};
   action.sa_handler = on_signal;
   sigemptyset(&action.sa_mask);
-  action.sa_flags = SA_RESETHAND;  // the second signal gets the default action: terminate
-  sigaction(SIGINT, &action, &g_previous_int);
-  sigaction(SIGTERM, &action, &g_previous_term);
+  for (int s : kSignals) sigaddset(&action.sa_mask, s);  // one handler at a time per thread
+  action.sa_flags = SA_RESTART;
+  for (int i = 0; i < 3; ++i) sigaction(kSignals[i], &action, &g_previous[i]);
 }
 
 InterruptGuard::~InterruptGuard() {
-  sigaction(SIGINT, &g_previous_int, nullptr);
-  sigaction(SIGTERM, &g_previous_term, nullptr);
+  for (int i = 0; i < 3; ++i) sigaction(kSignals[i], &g_previous[i], nullptr);
 }
 
-bool InterruptGuard::requested() const { return g_requested != 0; }
+bool InterruptGuard::requested() const { return g_count.load() != 0; }
+
+int InterruptGuard::signal() const { return g_first.load(); }
+
+InterruptGuard::Deferral::Deferral() { g_deferring = true; }
+
+InterruptGuard::Deferral::~Deferral() {
+  g_deferring = false;
+  const int sig = g_deferred.exchange(0);
+  if (sig != 0 && std::uncaught_exceptions() == 0) terminate_by(sig);
+}
 
 }  // namespace tumble::cli

@@ -1,7 +1,10 @@
 #pragma once
-// Ctrl-C (SIGINT) and SIGTERM during a run: the first one asks the run to stop after its current step,
-// writing the state reached, so the files written so far are completed and kept valid; a second one terminates at once
-// (the handler resets itself), leaving only temporaries behind, never a half-written final file.
+// Ctrl-C (SIGINT), SIGTERM and SIGHUP (the terminal closed) during a run: the first one asks the run to
+// stop after its current step, writing the state reached, so the files written so far are completed
+// and kept valid; a second one terminates at once, leaving only temporaries behind (removed by the
+// next run that writes the same file), never a half-written final file. While the files are being
+// moved into place (a Deferral exists) a second signal waits until they are; a third one ends the
+// process even then.
 namespace tumble::cli {
 
 class InterruptGuard {
@@ -12,6 +15,18 @@ class InterruptGuard {
   InterruptGuard& operator=(const InterruptGuard&) = delete;
   /// True once a signal arrived.
   bool requested() const;
+  /// The first signal that arrived (SIGINT, SIGTERM or SIGHUP), 0 if none.
+  int signal() const;
+
+  /// While it exists, a second signal is held until it goes; then the process ends by that signal
+  /// (unless an exception is on its way out: the run is ending with an error message anyway).
+  class Deferral {
+   public:
+    Deferral();
+    ~Deferral();
+    Deferral(const Deferral&) = delete;
+    Deferral& operator=(const Deferral&) = delete;
+  };
 };
 
 }  // namespace tumble::cli

@@ -2,11 +2,36 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <exception>
+#include <string>
+#include <system_error>
 
 #include "commands.hpp"
 #include "tumble/error.hpp"
+
+namespace {
+
+/// One line on stderr; never throws (stderr may be gone: a closed terminal, a full disk).
+void say(const std::string& line) { std::fputs((line + "\n").c_str(), stderr); }
+
+/// Standard output flushed and closed after a command: a write that failed there (a full disk, a
+/// closed pipe) must not pass for success. Returns the exit status.
+int finish_stdout(int status) {
+  errno = 0;
+  const bool flushed = std::fflush(stdout) == 0 && !std::ferror(stdout);
+  int error = flushed ? 0 : errno;
+  errno = 0;
+  if (std::fclose(stdout) != 0 && flushed) error = errno;
+  if (flushed && error == 0) return status;
+  say(fmt::format("tumble: error: writing to standard output failed: {}; what was printed is incomplete",
+                  std::strerror(error != 0 ? error : EIO)));
+  return status != 0 ? status : 1;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -27,15 +52,18 @@ int main(int argc, char** argv) {
     return app.exit(e);
   }
   try {
-    if (app.got_subcommand("run")) return run();
-    if (app.got_subcommand("check")) return check();
-    if (app.got_subcommand("inertia")) return inertia();
+    if (app.got_subcommand("run")) return finish_stdout(run());
+    if (app.got_subcommand("check")) return finish_stdout(check());
+    if (app.got_subcommand("inertia")) return finish_stdout(inertia());
   } catch (const tumble::Error& e) {
-    fmt::print(stderr, "tumble: error: {}\n", e.what());
+    say(std::string("tumble: error: ") + e.what());
+    return 1;
+  } catch (const std::system_error& e) {  // the system refused: a full disk, a closed terminal
+    say(std::string("tumble: error: ") + e.what());
     return 1;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "tumble: internal error: {}\n", e.what());
+    say(std::string("tumble: internal error: ") + e.what());
     return 2;
   }
-  return 0;
+  return finish_stdout(0);
 }

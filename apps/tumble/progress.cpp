@@ -60,23 +60,25 @@ void Progress::draw(double t) {
   // pipe the updates are separate lines instead.
   const char* begin = terminal_ ? "\r\x1b[K" : "";
   const char* end = terminal_ ? "" : "\n";
-  fmt::print(stderr, "{}[{}{}] {:3.0f}%  t = {:.4g} / {:.4g} s  elapsed {}{}{}", begin,
-             std::string(filled, '#'), std::string(width - filled, '.'), 100 * fraction, t, t_end_,
-             duration_text(elapsed), remaining, end);
+  std::fputs(fmt::format("{}[{}{}] {:3.0f}%  t = {:.4g} / {:.4g} s  elapsed {}{}{}", begin,
+                         std::string(filled, '#'), std::string(width - filled, '.'), 100 * fraction, t,
+                         t_end_, duration_text(elapsed), remaining, end)
+                 .c_str(),
+             stderr);
   std::fflush(stderr);
   shown_ = true;
 }
 
 void Progress::message(const std::string& line) {
-  if (shown_ && terminal_) fmt::print(stderr, "\r\x1b[K");
-  fmt::print(stderr, "{}\n", line);
+  if (shown_ && terminal_) std::fputs("\r\x1b[K", stderr);
+  std::fputs(fmt::format("{}\n", line).c_str(), stderr);
   if (shown_ && terminal_) draw(last_t_);
 }
 
 void Progress::finish() {
   if (!shown_ && mode_ != ProgressMode::always) return;
   draw(last_t_);
-  if (terminal_) fmt::print(stderr, "\n");
+  if (terminal_) std::fputs("\n", stderr);
 }
 
 }  // namespace tumble::cli

@@ -1,6 +1,8 @@
 // `tumble run`: simulate a scene file and write its trajectory (CSV or HDF5) and diagnostics.
 #include <fmt/format.h>
 
+#include <cstdio>
+
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -45,6 +47,28 @@ struct RunOptions {
 bool is_hdf5_name(const std::filesystem::path& p) {
   const std::string ext = p.extension().string();
   return ext == ".h5" || ext == ".hdf5" || ext == ".hdf";
+}
+
+/// An output file and how the command line named it, for messages.
+struct NamedOutput {
+  std::string label;  // "-o x.csv"
+  std::filesystem::path path;
+  std::string fix;  // "give another output name, e.g. -o s.csv"
+};
+
+/// Refuses an output that is one of the run's inputs (the scene file, a mesh it reads), compared by
+/// file identity (device and inode: hard links and any spelling of the path count).
+void refuse_inputs_as_outputs(const std::vector<NamedOutput>& outputs, const Scene& scene) {
+  for (const NamedOutput& out : outputs) {
+    if (out.path == "-") continue;
+    for (size_t i = 0; i < scene.input_files.size(); ++i) {
+      const std::filesystem::path& in = scene.input_files[i];
+      if (!same_file(out.path, in)) continue;
+      throw InvalidArgument(fmt::format("{} is {} {}{}: writing it would destroy the run's input; {}",
+                                        out.label, i == 0 ? "the scene file" : "the mesh file", in.string(),
+                                        i == 0 ? "" : " that the scene reads", out.fix));
+    }
+  }
 }
 
 /// The file's settings with the command line's on top.
@@ -96,12 +120,10 @@ int run(const RunOptions& o) {
       plan.steps && *plan.steps * rows > 1e9 ? estimate_seconds(scene, settings, plan) : std::nullopt;
   if (const auto warning = enforce(plan, seconds, hdf5, o.force))
     fmt::print(stderr, "tumble: warning: {}\n", *warning);
+  const std::string stem = std::filesystem::path(o.scene).stem().string();
   std::filesystem::path out = o.output;
-  if (out.empty()) {
-    out = std::filesystem::path(o.scene).stem();
-    out += hdf5 ? ".h5" : ".csv";
-  }
-  if (std::filesystem::is_directory(out)) {
+  if (out.empty()) out = stem + (hdf5 ? ".h5" : ".csv");
+  if (out != "-" && std::filesystem::is_directory(out)) {
     throw InvalidArgument(
         fmt::format("-o {} is a directory: give a file name, e.g. {}", out.string(),
                     (out / std::filesystem::path(o.scene).stem()).string() + (hdf5 ? ".h5" : ".csv")));
@@ -111,14 +133,37 @@ int run(const RunOptions& o) {
         "--diagnostics names a CSV file; HDF5 output keeps the diagnostics in its "
         "'diagnostics' group: drop --diagnostics or use --format csv");
   }
+  // With -o - (standard output), a device such as /dev/null, or a FIFO, the trajectory is written
+  // through, and diagnostics only where --diagnostics says (never a file beside a device).
+  std::error_code no_status;
+  const bool written_through = out == "-" || (std::filesystem::exists(out, no_status) &&
+                                              !std::filesystem::is_regular_file(out, no_status));
+  const std::filesystem::path diagnostics = hdf5                     ? std::filesystem::path()
+                                            : !o.diagnostics.empty() ? std::filesystem::path(o.diagnostics)
+                                            : written_through        ? std::filesystem::path()
+                                                                     : diagnostics_path(out);
+  std::vector<NamedOutput> outputs{
+      {o.output.empty() ? fmt::format("the output {} (the scene's name)", out.string())
+                        : fmt::format("-o {}", out.string()),
+       out, fmt::format("give another output name, e.g. -o {}{}", stem, hdf5 ? ".h5" : ".csv")}};
+  if (!diagnostics.empty()) {
+    if (o.diagnostics.empty()) {
+      outputs.push_back(
+          {fmt::format("the diagnostics file {} (named after the output)", diagnostics.string()), diagnostics,
+           "give another output name with -o, or a diagnostics file with --diagnostics"});
+    } else {
+      outputs.push_back({fmt::format("--diagnostics {}", diagnostics.string()), diagnostics,
+                         fmt::format("give another file, e.g. --diagnostics {}.diagnostics.csv", stem)});
+    }
+  }
+  refuse_inputs_as_outputs(outputs, scene);
+  // Human messages go to stderr when the trajectory takes standard output.
+  std::FILE* const human = out == "-" || diagnostics == "-" ? stderr : stdout;
   // The writer keeps the scene's text (HDF5 stores it); the run needs it no more, so it is not copied.
   const TrajectoryInfo info{std::move(scene.text), o.scene, TUMBLE_VERSION, settings,
                             o.fields.empty() ? scene.output_fields : o.fields};
   const std::unique_ptr<TrajectoryWriter> writer =
-      hdf5 ? make_hdf5_writer(out, scene.model, info)
-           : make_csv_writer(
-                 out, o.diagnostics.empty() ? diagnostics_path(out) : std::filesystem::path(o.diagnostics),
-                 scene.model, info);
+      hdf5 ? make_hdf5_writer(out, scene.model, info) : make_csv_writer(out, diagnostics, scene.model, info);
 
   DriftMonitor monitor(scene.model, scene.initial, scene.conserved, threshold, settings);
   DriftExtremes extremes;
@@ -143,20 +188,29 @@ int run(const RunOptions& o) {
       },
       nullptr, [&] { return interrupt.requested(); });  // asked every step: Ctrl-C needs no wait for a sample
   progress.finish();
-  writer->commit(!interrupted);
+  {
+    // A second Ctrl-C now waits until both files are in place (interrupt.hpp).
+    const InterruptGuard::Deferral deferral;
+    writer->commit(!interrupted);
+  }
 
   const auto files = writer->outputs();
   if (interrupted) {
-    fmt::print(stderr, "tumble: interrupted at t = {:g} s of {:g} s; {} holds the {} samples up to then\n",
-               t_reached, scene.initial.t + settings.duration, files.front().string(), writer->samples());
-    return 130;  // 128 + SIGINT, as shells report an interrupted command
+    std::fputs(
+        fmt::format("tumble: interrupted at t = {:g} s of {:g} s; {} holds the {} samples up to then\n",
+                    t_reached, scene.initial.t + settings.duration,
+                    files.front() == "-" ? "standard output" : files.front().string(), writer->samples())
+            .c_str(),
+        stderr);
+    return 128 + interrupt.signal();  // 130 for SIGINT, as shells report an interrupted command
   }
   if (!o.quiet) {
     std::string what = count(scene.model.bodies.size(), "body", "bodies");
     if (!scene.model.particles.empty())
       what += " and " + count(scene.model.particles.size(), "particle", "particles");
-    fmt::print("ran {} for {:g} s ({}, {} formulation): {} samples of {}\n", o.scene, settings.duration,
-               settings.integrator, formulation_name(settings.formulation), writer->samples(), what);
+    fmt::print(human, "ran {} for {:g} s ({}, {} formulation): {} samples of {}\n", o.scene,
+               settings.duration, settings.integrator, formulation_name(settings.formulation),
+               writer->samples(), what);
     std::vector<std::string> drift;
     if (scene.conserved.energy && extremes.energy)
       drift.push_back(fmt::format("energy {:.2g}", *extremes.energy));
@@ -164,17 +218,20 @@ int run(const RunOptions& o) {
       drift.push_back(fmt::format("angular momentum {:.2g}", *extremes.angular_momentum));
     }
     if (!drift.empty())
-      fmt::print("largest relative drift of conserved quantities: {}\n", fmt::join(drift, ", "));
+      fmt::print(human, "largest relative drift of conserved quantities: {}\n", fmt::join(drift, ", "));
+    auto where = [](const std::filesystem::path& p) { return p == "-" ? "standard output" : p.string(); };
     if (hdf5) {
-      fmt::print("trajectory and diagnostics: {}\n", files.front().string());
+      fmt::print(human, "trajectory and diagnostics: {}\n", files.front().string());
+    } else if (files.size() == 1) {
+      fmt::print(human, "trajectory:  {}\ndiagnostics: none (give --diagnostics FILE)\n", where(files[0]));
     } else {
-      fmt::print("trajectory:  {}\ndiagnostics: {}\n", files[0].string(), files[1].string());
+      fmt::print(human, "trajectory:  {}\ndiagnostics: {}\n", where(files[0]), where(files[1]));
     }
   }
   if (monitor.warning()) {
     // Said again at the end, where it is not lost in the progress output: the files are complete, but
     // their numbers carry more integration error than the scene's threshold allows.
-    std::fflush(stdout);
+    std::fflush(human);
     fmt::print(stderr,
                "tumble: warning: the results carry integration error past the drift threshold ({}){}\n",
                *monitor.warning(), o.strict ? "; failing because of --strict" : "");
@@ -192,20 +249,27 @@ Runner add_run_command(CLI::App& app) {
       "Simulate a scene file and write the trajectory: one row per body per output sample with the pose "
       "of its reference frame (position, quaternion w,x,y,z), the velocity of its origin and the angular "
       "velocity, all in world axes; plus the energy, momenta and their drift from t = 0. Options given "
-      "here override the scene's [simulation] values. Ctrl-C stops within a few steps (at most 16), writes "
-      "the "
-      "state reached as a last sample and keeps what was written.\n\nExamples:\n"
+      "here override the scene's [simulation] values. Ctrl-C (or SIGTERM, SIGHUP) stops within a few steps "
+      "(at most 16), writes the state reached as a last sample and keeps what was written (exit status "
+      "128 + the signal).\n\nFiles are written under a temporary name and renamed when complete (the "
+      "trajectory and its diagnostics together); after an error nothing appears under their names. An "
+      "output that is the scene file or a mesh it reads (under any name) is refused. -o - writes CSV to "
+      "standard output (messages to stderr); a symlink is followed, a device (-o /dev/null) or FIFO is "
+      "written through, never replaced.\n\nExamples:\n"
       "  tumble run examples/t_handle.toml -o out/t_handle.csv\n"
       "  tumble run examples/satellite.toml -o out/satellite.h5 --integrator dopri45 --rtol 1e-10\n"
       "  tumble run examples/t_handle.toml --timestep 1e-4 --duration 5 --quiet");
   cmd->add_option("scene", o->scene, "scene file (TOML; see docs/scene-format.md)")->required();
   cmd->add_option("-o,--output", o->output,
                   "trajectory file; .h5/.hdf5 means HDF5 unless --format says otherwise (default: the "
-                  "scene's name with .csv or .h5, in the current directory); directories are created");
+                  "scene's name with .csv or .h5, in the current directory); directories are created. "
+                  "- is standard output (CSV); a symlink's target is replaced, the link kept; a device or "
+                  "FIFO is written through (CSV). Never one of the run's inputs");
   cmd->add_option("--format", o->format, "csv (two files: trajectory and diagnostics) or hdf5 (one file)")
       ->check(CLI::IsMember({"csv", "hdf5"}));
   cmd->add_option("--diagnostics", o->diagnostics,
-                  "CSV file for energy, momenta and drifts (default: OUTPUT with .diagnostics.csv)");
+                  "CSV file for energy, momenta and drifts (default: OUTPUT with .diagnostics.csv; none "
+                  "when OUTPUT is -, a device or a FIFO)");
   cmd->add_option("--integrator", o->integrator,
                   fmt::format("time integrator, one of: {}", fmt::join(integrator_names(), ", ")));
   cmd->add_option("--formulation", o->formulation,

@@ -11,6 +11,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <optional>
 
 #include "sample_rows.hpp"
 #include "staged_file.hpp"
@@ -20,44 +21,68 @@
 namespace tumble {
 namespace {
 
-/// A CSV file being written: a staged temporary and its stdio stream.
+/// A CSV file being written: a staged temporary (or a device, a FIFO, standard output: staged_file.hpp)
+/// and its stdio stream. The first failed write throws: a full disk stops the run at once.
 class CsvFile {
  public:
-  CsvFile(const std::filesystem::path& path, const std::string& header) : staged_(path) {
-    file_ = std::fopen(staged_.temporary().c_str(), "wb");
-    if (!file_) {
-      throw FileError(
-          fmt::format("cannot create {}: {}", staged_.temporary().string(), std::strerror(errno)));
+  CsvFile(const std::filesystem::path& path, const std::string& header, std::string_view what)
+      : staged_(path), what_(what) {
+    if (staged_.kind() == io::OutputKind::standard_output) {
+      file_ = stdout;
+    } else {
+      file_ = std::fopen(staged_.temporary().c_str(), "wb");
+      if (!file_) {
+        throw FileError(
+            fmt::format("cannot create {}: {}", staged_.temporary().string(), std::strerror(errno)));
+      }
     }
     write(header + "\n");
   }
   ~CsvFile() {
-    if (file_) std::fclose(file_);
+    if (file_ && file_ != stdout) std::fclose(file_);
   }
   CsvFile(const CsvFile&) = delete;
   CsvFile& operator=(const CsvFile&) = delete;
 
   void write(std::string_view text) {
-    if (std::fwrite(text.data(), 1, text.size(), file_) != text.size()) failed_ = true;
+    if (std::fwrite(text.data(), 1, text.size(), file_) != text.size()) fail(errno);
   }
-  /// Flushes and closes the temporary; throws FileError (and deletes it) if anything was lost.
+  /// Flushes and closes (standard output: flushes); throws FileError (and deletes a temporary) if
+  /// anything was lost.
   void close() {
-    const bool ok = !failed_ && std::fflush(file_) == 0 && !std::ferror(file_);
-    const int closed = std::fclose(file_);
-    file_ = nullptr;
-    if (!ok || closed != 0) {
-      staged_.abandon();
-      throw FileError(fmt::format("writing {} failed (disk full?): nothing was kept under that name",
-                                  staged_.final_path().string()));
+    errno = 0;
+    int error = std::fflush(file_) == 0 && !std::ferror(file_) ? 0 : (errno != 0 ? errno : EIO);
+    if (file_ != stdout) {
+      errno = 0;
+      if (std::fclose(file_) != 0 && error == 0) error = errno != 0 ? errno : EIO;
     }
+    file_ = nullptr;
+    if (error != 0) fail(error);
   }
-  void rename() { staged_.commit(); }
+  io::StagedFile& staged() { return staged_; }
   const std::filesystem::path& path() const { return staged_.final_path(); }
 
  private:
+  [[noreturn]] void fail(int error) {
+    staged_.abandon();
+    const std::string reason = std::strerror(error != 0 ? error : EIO);
+    switch (staged_.kind()) {
+      case io::OutputKind::standard_output:
+        throw FileError(fmt::format("writing the {} to standard output failed: {}", what_, reason));
+      case io::OutputKind::direct:
+        throw FileError(fmt::format("writing the {} to {} failed: {}", what_, path().string(), reason));
+      case io::OutputKind::staged:
+        break;
+    }
+    throw FileError(fmt::format(
+        "writing the {} to {} failed: {}; nothing was kept under that name: free some space or write "
+        "elsewhere",
+        what_, path().string(), reason));
+  }
+
   io::StagedFile staged_;
+  std::string_view what_;
   std::FILE* file_ = nullptr;
-  bool failed_ = false;
 };
 
 std::string header(const std::vector<std::string_view>& first, auto fields) {
@@ -81,8 +106,10 @@ class CsvWriter final : public TrajectoryWriter {
             const Model& model, std::vector<const BodyField*> fields)
       : names_(io::row_names(model)),
         fields_(std::move(fields)),
-        trajectory_(trajectory, header({"t", "body"}, fields_)),
-        diagnostics_(diagnostics, header({"t"}, all_system_fields())) {}
+        trajectory_(trajectory, header({"t", "body"}, fields_), "trajectory") {
+    if (!diagnostics.empty())
+      diagnostics_.emplace(diagnostics, header({"t"}, all_system_fields()), "diagnostics");
+  }
 
   void write(const Model& model, const SystemState& state, const DriftSample& d) override {
     buffer_.clear();
@@ -98,6 +125,10 @@ class CsvWriter final : public TrajectoryWriter {
     }
     trajectory_.write(std::string_view(buffer_.data(), buffer_.size()));
 
+    if (!diagnostics_) {
+      ++samples_;
+      return;
+    }
     buffer_.clear();
     fmt::format_to(out, "{:.17g}", state.t);
     for (const SystemField& f : system_fields()) {
@@ -111,20 +142,24 @@ class CsvWriter final : public TrajectoryWriter {
       }
     }
     fmt::format_to(out, "\n");
-    diagnostics_.write(std::string_view(buffer_.data(), buffer_.size()));
+    diagnostics_->write(std::string_view(buffer_.data(), buffer_.size()));
     ++samples_;
   }
 
   void commit(bool) override {
-    // Both files are complete before either gets its final name.
+    // Both files are complete before either gets its final name, and they get them together.
     trajectory_.close();
-    diagnostics_.close();
-    trajectory_.rename();
-    diagnostics_.rename();
+    if (!diagnostics_) {
+      trajectory_.staged().commit();
+      return;
+    }
+    diagnostics_->close();
+    io::commit_together(trajectory_.staged(), diagnostics_->staged());
   }
 
   std::vector<std::filesystem::path> outputs() const override {
-    return {trajectory_.path(), diagnostics_.path()};
+    if (!diagnostics_) return {trajectory_.path()};
+    return {trajectory_.path(), diagnostics_->path()};
   }
   long samples() const override { return samples_; }
 
@@ -132,7 +167,7 @@ class CsvWriter final : public TrajectoryWriter {
   std::vector<std::string> names_;
   std::vector<const BodyField*> fields_;
   CsvFile trajectory_;
-  CsvFile diagnostics_;
+  std::optional<CsvFile> diagnostics_;
   fmt::memory_buffer buffer_;
   long samples_ = 0;
 };
@@ -145,12 +180,24 @@ std::filesystem::path diagnostics_path(const std::filesystem::path& trajectory) 
   return p;
 }
 
+bool same_file(const std::filesystem::path& a, const std::filesystem::path& b) {
+  if (a == "-" || b == "-") return a == b;
+  std::error_code ec;
+  if (std::filesystem::equivalent(a, b, ec)) return true;  // same device and inode (links, "x/../")
+  // Not both existing yet: the same name once "." and ".." and symlinked directories are resolved.
+  const auto canonical_a = std::filesystem::weakly_canonical(std::filesystem::absolute(a), ec);
+  if (ec) return false;
+  const auto canonical_b = std::filesystem::weakly_canonical(std::filesystem::absolute(b), ec);
+  return !ec && canonical_a == canonical_b;
+}
+
 std::unique_ptr<TrajectoryWriter> make_csv_writer(const std::filesystem::path& trajectory,
                                                   const std::filesystem::path& diagnostics,
                                                   const Model& model, const TrajectoryInfo& info) {
-  if (std::filesystem::absolute(trajectory) == std::filesystem::absolute(diagnostics)) {
-    throw InvalidArgument(fmt::format(
-        "the trajectory and the diagnostics would both be {}: give different files", trajectory.string()));
+  if (!diagnostics.empty() && same_file(trajectory, diagnostics)) {
+    throw InvalidArgument(
+        fmt::format("the trajectory {} and the diagnostics {} are the same file: give different files",
+                    trajectory.string(), diagnostics.string()));
   }
   return std::make_unique<CsvWriter>(trajectory, diagnostics, model, body_fields(info.fields));
 }

@@ -19,7 +19,10 @@
 #include <fmt/format.h>
 
 #include <array>
+#include <cerrno>
+#include <cstring>
 
+#include "hdf5_file_driver.hpp"
 #include "sample_rows.hpp"
 #include "staged_file.hpp"
 #include "tumble/error.hpp"
@@ -59,14 +62,34 @@ class Handle {
   herr_t (*close_)(hid_t) = nullptr;
 };
 
+/// The reason of a failed write: the file driver's, else errno's (cleared after each success, so a
+/// value left there comes from the failed call).
+std::string reason(const io::Hdf5DriverState* driver) {
+  const int error = driver != nullptr && driver->error != 0 ? driver->error : errno;
+  return error != 0 ? std::strerror(error) : "HDF5 gave no reason";
+}
+
 /// Throws FileError for a negative HDF5 result.
 struct Checker {
   std::string path;
+  const io::Hdf5DriverState* driver = nullptr;
   hid_t operator()(hid_t id, const char* what) const {
-    if (id < 0) throw FileError(fmt::format("HDF5 could not {} in {}", what, path));
+    if (id < 0) {
+      throw FileError(
+          fmt::format("writing {} failed: HDF5 could not {} ({}); nothing was kept under that name", path,
+                      what, reason(driver)));
+    }
+    errno = 0;
     return id;
   }
 };
+
+/// Object creation properties without modification times: two runs of one scene write the same bytes.
+Handle untimed(hid_t property_class, const char* what, const Checker& check) {
+  Handle props(check(H5Pcreate(property_class), what), H5Pclose);
+  check(H5Pset_obj_track_times(props.get(), false), what);
+  return props;
+}
 
 Handle string_type() {
   Handle t(H5Tcopy(H5T_C_S1), H5Tclose);
@@ -76,27 +99,30 @@ Handle string_type() {
 }
 
 void string_attribute(hid_t loc, const char* name, const std::string& value, const Checker& check) {
+  const std::string what = fmt::format("write attribute {}", name);
   const Handle type = string_type();
   const Handle space(check(H5Screate(H5S_SCALAR), "create a dataspace"), H5Sclose);
-  const Handle attr(check(H5Acreate2(loc, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT), name),
+  const Handle attr(check(H5Acreate2(loc, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
+                          what.c_str()),
                     H5Aclose);
   const char* p = value.c_str();
-  check(H5Awrite(attr.get(), type.get(), &p), name);
+  check(H5Awrite(attr.get(), type.get(), &p), what.c_str());
 }
 
 template <class T>
 void number_attribute(hid_t loc, const char* name, T value, hid_t type, const Checker& check) {
+  const std::string what = fmt::format("write attribute {}", name);
   const Handle space(check(H5Screate(H5S_SCALAR), "create a dataspace"), H5Sclose);
-  const Handle attr(check(H5Acreate2(loc, name, type, space.get(), H5P_DEFAULT, H5P_DEFAULT), name),
+  const Handle attr(check(H5Acreate2(loc, name, type, space.get(), H5P_DEFAULT, H5P_DEFAULT), what.c_str()),
                     H5Aclose);
-  check(H5Awrite(attr.get(), type, &value), name);
+  check(H5Awrite(attr.get(), type, &value), what.c_str());
 }
 
 /// A dataset of shape (n, row...) growing along n, with rows buffered and appended in blocks.
 class Series {
  public:
   Series(hid_t loc, const char* name, std::vector<hsize_t> row_shape, const Checker& check)
-      : name_(name), row_shape_(std::move(row_shape)), check_(check) {
+      : name_(name), writing_("write " + name_), row_shape_(std::move(row_shape)), check_(check) {
     row_size_ = 1;
     for (hsize_t d : row_shape_) row_size_ *= d;
     // Chunks of ~64 Ki values (512 KiB): large enough to write fast, small enough for the chunk cache.
@@ -107,13 +133,14 @@ class Series {
       max.push_back(d);
       chunk.push_back(d);
     }
-    const Handle space(check(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), max.data()), name),
+    const Handle space(check(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), max.data()),
+                             "create a dataset"),
                        H5Sclose);
-    const Handle props(check(H5Pcreate(H5P_DATASET_CREATE), name), H5Pclose);
-    check(H5Pset_chunk(props.get(), static_cast<int>(chunk.size()), chunk.data()), name);
+    const Handle props = untimed(H5P_DATASET_CREATE, "create a dataset", check);
+    check(H5Pset_chunk(props.get(), static_cast<int>(chunk.size()), chunk.data()), "create a dataset");
     dataset_ = Handle(
         check(H5Dcreate2(loc, name, H5T_NATIVE_DOUBLE, space.get(), H5P_DEFAULT, props.get(), H5P_DEFAULT),
-              name),
+              "create a dataset"),
         H5Dclose);
   }
 
@@ -133,17 +160,17 @@ class Series {
       start.push_back(0);
       count.push_back(d);
     }
-    check_(H5Dset_extent(dataset_.get(), new_dims.data()), name_.c_str());
-    const Handle file_space(check_(H5Dget_space(dataset_.get()), name_.c_str()), H5Sclose);
+    check_(H5Dset_extent(dataset_.get(), new_dims.data()), writing_.c_str());
+    const Handle file_space(check_(H5Dget_space(dataset_.get()), writing_.c_str()), H5Sclose);
     check_(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(),
                                nullptr),
-           name_.c_str());
+           writing_.c_str());
     const Handle memory_space(check_(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr),
-                                     name_.c_str()),
+                                     writing_.c_str()),
                               H5Sclose);
     check_(H5Dwrite(dataset_.get(), H5T_NATIVE_DOUBLE, memory_space.get(), file_space.get(), H5P_DEFAULT,
                     pending_.data()),
-           name_.c_str());
+           writing_.c_str());
     written_ += rows;
     pending_.clear();
   }
@@ -153,6 +180,7 @@ class Series {
 
  private:
   std::string name_;
+  std::string writing_;  // "write position", for messages
   std::vector<hsize_t> row_shape_;
   Checker check_;
   hsize_t row_size_ = 1;
@@ -165,14 +193,17 @@ class Series {
 class Hdf5Writer final : public TrajectoryWriter {
  public:
   Hdf5Writer(const std::filesystem::path& path, const Model& model, const TrajectoryInfo& info)
-      : staged_(path),
-        check_{path.string()},
+      : staged_(path, /*direct_allowed=*/false),
+        check_{path.string(), &driver_},
         names_(io::row_names(model)),
         fields_(body_fields(info.fields)) {
     // Errors are reported by return codes, turned into one FileError line; HDF5's own stack print
     // to stderr would only add noise.
     H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-    file_ = Handle(check_(H5Fcreate(staged_.temporary().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
+    // Through tumble's file driver: a write error (a full disk) is reported, never a crash in HDF5's
+    // exit handler (hdf5_file_driver.hpp).
+    const Handle access(check_(io::hdf5_recording_fapl(&driver_), "set up its file driver"), H5Pclose);
+    file_ = Handle(check_(H5Fcreate(staged_.temporary().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get()),
                           "create the file"),
                    H5Fclose);
     const hid_t root = file_.get();
@@ -200,7 +231,8 @@ class Hdf5Writer final : public TrajectoryWriter {
                                                   std::vector<hsize_t>{N, width}, check_);
       describe(series.id(), *f);
     }
-    diagnostics_ = Handle(check_(H5Gcreate2(root, "diagnostics", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+    const Handle group_props = untimed(H5P_GROUP_CREATE, "create group diagnostics", check_);
+    diagnostics_ = Handle(check_(H5Gcreate2(root, "diagnostics", H5P_DEFAULT, group_props.get(), H5P_DEFAULT),
                                  "create group diagnostics"),
                           H5Gclose);
   }
@@ -227,20 +259,27 @@ class Hdf5Writer final : public TrajectoryWriter {
     ++samples_;
   }
 
+  ~Hdf5Writer() override {
+    // Closing an abandoned file (an error on the way out) must not fail inside HDF5.
+    driver_.closing = true;
+  }
+
   void commit(bool complete) override {
-    bool ok = true;
-    for (Series* s : all_series()) {
-      s->flush();
-      ok = s->close() && ok;
-    }
+    for (Series* s : all_series()) s->flush();
     number_attribute(file_.get(), "complete", complete ? 1 : 0, H5T_NATIVE_INT, check_);
     number_attribute(file_.get(), "t_end", t_end_, H5T_NATIVE_DOUBLE, check_);
+    // Everything written now, where an error is still HDF5's to report; from here on the driver
+    // only records errors, so that every close completes (hdf5_file_driver.hpp).
+    check_(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "write the file");
+    driver_.closing = true;
+    bool ok = true;
+    for (Series* s : all_series()) ok = s->close() && ok;
     ok = diagnostics_.reset() && ok;
     ok = file_.reset() && ok;
-    if (!ok) {
+    if (!ok || driver_.error != 0) {
       staged_.abandon();
-      throw FileError(fmt::format("writing {} failed (disk full?): nothing was kept under that name",
-                                  staged_.final_path().string()));
+      throw FileError(fmt::format("writing {} failed: {}; nothing was kept under that name",
+                                  staged_.final_path().string(), reason(&driver_)));
     }
     staged_.commit();
   }
@@ -253,8 +292,9 @@ class Hdf5Writer final : public TrajectoryWriter {
     const Handle type = string_type();
     const hsize_t n = names_.size();
     const Handle space(check_(H5Screate_simple(1, &n, nullptr), "create a dataspace"), H5Sclose);
+    const Handle props = untimed(H5P_DATASET_CREATE, "create dataset names", check_);
     const Handle set(check_(H5Dcreate2(file_.get(), "names", type.get(), space.get(), H5P_DEFAULT,
-                                       H5P_DEFAULT, H5P_DEFAULT),
+                                       props.get(), H5P_DEFAULT),
                             "create dataset names"),
                      H5Dclose);
     std::vector<const char*> p;
@@ -291,6 +331,7 @@ class Hdf5Writer final : public TrajectoryWriter {
     return out;
   }
 
+  io::Hdf5DriverState driver_;  ///< outlives file_: its driver reports here until it is closed
   io::StagedFile staged_;
   Checker check_;
   std::vector<std::string> names_;

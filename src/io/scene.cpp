@@ -98,6 +98,7 @@ Scene read_scene(const toml::table& root, std::string text, const std::filesyste
   Scene scene;
   scene.path = path;
   scene.text = std::move(text);
+  scene.input_files.push_back(path);       // then every mesh, as it is read
   const std::string file = path.string();  // for messages; outlives every reader
   const TableReader r(root, "scene", file,
                       {"simulation", "output", "world", "bodies", "body_tables", "particles", "forces"});

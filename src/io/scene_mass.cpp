@@ -251,6 +251,7 @@ MassProperties solid(const TableReader& t, const Material& mat, const Pose& pose
     const std::string file(*t.string("mesh"));
     const double scale = t.number("scale", 1.0, "", Domain::positive);
     const std::filesystem::path path = directory / file;
+    scene.input_files.push_back(path);
     TriangleMesh mesh;
     try {
       LoadedMesh loaded = load_mesh(path, MeshLoadOptions{.scale = scale});

@@ -27,8 +27,11 @@ struct SceneBodyInfo {
 };
 
 struct Scene {
-  std::filesystem::path path;            ///< the scene file (as given)
-  std::string text;                      ///< its contents, stored with the outputs
+  std::filesystem::path path;  ///< the scene file (as given)
+  std::string text;            ///< its contents, stored with the outputs
+  /// Every file the scene was read from: the scene file first, then each mesh file as a body or part
+  /// names it (paths as opened; a mesh used twice appears twice). An output must be none of them.
+  std::vector<std::filesystem::path> input_files;
   RunSettings settings;                  ///< [simulation]
   Model model;                           ///< bodies, particles and force models, in file order
   SystemState initial;                   ///< the state at t = 0

@@ -7,9 +7,16 @@
 // Files are written under a temporary name next to the final one (NAME.tmp-PID) and renamed only by
 // commit(), so a final name never holds a half-written file:
 //  - commit() after a complete run, or after the user interrupted it (Ctrl-C): the samples written
-//    so far form a valid file (HDF5: attribute complete = 0 and the time reached);
-//  - destroyed without commit() (an error, e.g. the state became non-finite): the temporary files are
-//    deleted and nothing appears under the final names.
+//    so far form a valid file (HDF5: attribute complete = 0 and the time reached); a CSV trajectory
+//    and its diagnostics are moved into place together (both or neither; SIGINT, SIGTERM and SIGHUP
+//    are held back in the calling thread meanwhile);
+//  - destroyed without commit() (an error, e.g. the state became non-finite, or a write failed): the
+//    temporary files are deleted and nothing appears under the final names.
+// A symlink as output is followed (its target is replaced, the link stays); a character device
+// (/dev/null) or a FIFO is written straight through, never replaced; "-" is standard output (CSV);
+// a directory, a block device or a socket is refused, and so are devices, FIFOs and "-" for HDF5. A
+// new writer removes the temporaries that killed runs left beside its files (NAME.tmp-PID of a PID
+// that is no longer alive). A write error (a full disk) throws FileError at once.
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -44,9 +51,10 @@ class TrajectoryWriter {
   virtual long samples() const = 0;
 };
 
-/// CSV: `trajectory` has the header t,body, then the columns of each field (by default
+/// CSV: `trajectory` ("-": standard output) has the header t,body, then the columns of each field (by default
 /// px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz) and one row per body and per particle per sample, 17
-/// significant digits; `diagnostics` has t and the columns of every SystemField, one row per sample.
+/// significant digits; `diagnostics` has t and the columns of every SystemField, one row per sample
+/// (an empty path: no diagnostics file). Throws InvalidArgument if both name the same file.
 std::unique_ptr<TrajectoryWriter> make_csv_writer(const std::filesystem::path& trajectory,
                                                   const std::filesystem::path& diagnostics,
                                                   const Model& model, const TrajectoryInfo& info);
@@ -55,6 +63,11 @@ std::unique_ptr<TrajectoryWriter> make_csv_writer(const std::filesystem::path& t
 /// the scene text, tumble version and run settings as attributes (hdf5_writer.cpp).
 std::unique_ptr<TrajectoryWriter> make_hdf5_writer(const std::filesystem::path& path, const Model& model,
                                                    const TrajectoryInfo& info);
+
+/// True if the two paths name the same file: the same device and inode when both exist (so hard
+/// links, symlinks and "./x/../f" spellings count), else the same path once "." and ".." and symlinked
+/// directories are resolved. "-" (standard output) is only the same as "-".
+bool same_file(const std::filesystem::path& a, const std::filesystem::path& b);
 
 /// The default diagnostics path for a CSV trajectory: out/x.csv → out/x.diagnostics.csv.
 std::filesystem::path diagnostics_path(const std::filesystem::path& trajectory);
