@@ -195,7 +195,9 @@ RawMesh read_ascii_ply(const Text& text, const PlyHeader& header) {
         if (n < 0) text.fail(t.pos, fmt::format("the count of list '{}' is negative", p.name));
         const bool polygon = is_face && is_ply_face_list(p);
         if (polygon && n < 3) {
-          text.fail(t.pos, fmt::format("face {} has {} corners; a face needs at least 3", i, n));
+          text.fail(t.pos, fmt::format("face {} has {} corners; a face needs at least 3 (or the header's "
+                                       "counts are wrong)",
+                                       i, n));
         }
         corners.clear();
         for (std::int64_t k = 0; k < n; ++k) {
@@ -212,7 +214,7 @@ RawMesh read_ascii_ply(const Text& text, const PlyHeader& header) {
           const std::int64_t index = to_integer(text, v, "vertex index");
           if (index < 0 || static_cast<std::uint64_t>(index) >= nv) {
             text.fail(v.pos, fmt::format("vertex index {} is out of range: the file has {} vertices, "
-                                         "numbered from 0",
+                                         "numbered from 0 (or the header's counts are wrong)",
                                          index, nv));
           }
           corners.push_back(static_cast<std::uint32_t>(index));

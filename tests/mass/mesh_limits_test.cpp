@@ -150,6 +150,12 @@ TEST(MeshLimits, BinaryStlOfTheWrongSizeSaysTruncatedWithTheCounts) {
       load_error(dir / "long.stl"),
       "binary STL of the wrong size: the header says 2 triangles (84 + 50 x 2 = 184 bytes) but the file "
       "has 241 bytes, 57 more (room for 3 triangles): the count is wrong or data was appended");
+  // The right size is binary, even when the header starts with "solid"; assimp reads the checked bytes.
+  write_binary_stl(tessellate(Sphere{1.0}, 8), dir / "sphere.stl");
+  std::string sphere = read_input_file(dir / "sphere.stl", "mesh file");
+  sphere.replace(0, 6, "solid ");
+  write_bytes(dir / "solid_binary.stl", sphere);
+  EXPECT_EQ(load_mesh(dir / "solid_binary.stl").format, "binary STL");
   write_bytes(dir / "short.stl", "not a mesh\n");
   EXPECT_HAS(load_error(dir / "short.stl"),
              "short.stl: not an STL file: too short for a binary STL (11 bytes; "

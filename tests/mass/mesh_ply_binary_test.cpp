@@ -276,7 +276,7 @@ TEST(MeshPlyBinary, MutatedFilesGiveAMeshOrAFileErrorNeverACrash) {
   const std::string seed = cube<float>(false, "float").bytes();
   std::mt19937 rng(20261126);
   int loaded = 0, refused = 0;
-  for (int round = 0; round < 3000; ++round) {
+  for (int round = 0; round < 2000; ++round) {
     std::string s = seed;
     const int edits = 1 + static_cast<int>(rng() % 6);
     for (int e = 0; e < edits; ++e) {
@@ -309,8 +309,8 @@ TEST(MeshPlyBinary, MutatedFilesGiveAMeshOrAFileErrorNeverACrash) {
       ++refused;
     }
   }
-  EXPECT_EQ(loaded + refused, 3000);
-  EXPECT_GT(refused, 1000);
+  EXPECT_EQ(loaded + refused, 2000);
+  EXPECT_GT(refused, 700);
 }
 
 }  // namespace
