@@ -222,6 +222,7 @@ bool starts_with_solid(std::string_view head) {
 
 /// What is wrong with a file that is neither an ASCII STL nor a binary STL of the right size.
 std::string binary_stl_size_problem(std::uint64_t size, std::uint64_t declared) {
+  if (size == 0) return "the file is empty (0 bytes)";
   if (size < 84) {
     return fmt::format(
         "not an STL file: too short for a binary STL ({} bytes; its header alone is 84) and "
@@ -251,6 +252,10 @@ LoadedMesh load_stl(const std::filesystem::path& path, std::string bytes, const 
   }
   // A binary STL is exactly 84 + 50·n bytes; its 80-byte header may well start with "solid". assimp
   // reads it from these bytes, whose size is now known to match.
+  if (size == 84 && declared == 0) {
+    throw FileError(
+        fmt::format("{}: a binary STL of 0 triangles (its 84-byte header only): no surface", path.string()));
+  }
   if (size >= 84 && 84 + 50 * declared == size) {
     return load_with_assimp(path, options, "binary STL", "float32, the format's own", {}, bytes, "stl");
   }

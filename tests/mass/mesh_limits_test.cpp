@@ -156,6 +156,12 @@ TEST(MeshLimits, BinaryStlOfTheWrongSizeSaysTruncatedWithTheCounts) {
   sphere.replace(0, 6, "solid ");
   write_bytes(dir / "solid_binary.stl", sphere);
   EXPECT_EQ(load_mesh(dir / "solid_binary.stl").format, "binary STL");
+  write_bytes(dir / "empty.stl", "");
+  EXPECT_EQ(load_error(dir / "empty.stl"), (dir / "empty.stl").string() + ": the file is empty (0 bytes)");
+  write_bytes(dir / "no_triangles.stl", binary_stl(0, 84));
+  EXPECT_EQ(load_error(dir / "no_triangles.stl"),
+            (dir / "no_triangles.stl").string() +
+                ": a binary STL of 0 triangles (its 84-byte header only): no surface");
   write_bytes(dir / "short.stl", "not a mesh\n");
   EXPECT_HAS(load_error(dir / "short.stl"),
              "short.stl: not an STL file: too short for a binary STL (11 bytes; "
