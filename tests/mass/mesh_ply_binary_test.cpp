@@ -269,7 +269,7 @@ TEST(MeshPlyBinary, HostileFilesGetTheirOwnMessage) {
 }
 
 TEST(MeshPlyBinary, MutatedFilesGiveAMeshOrAFileErrorNeverACrash) {
-  // The mutations that made assimp crash or hang in a quarter of the cases (random bytes, flipped
+  // The mutations that made assimp crash or hang in nearly half of the cases (random bytes, flipped
   // bits, 32-bit values planted, cuts, insertions): with tumble's reader each one is a mesh or a
   // FileError (or the MeshError of a mesh that is not a solid). Deterministic: a fixed seed.
   TempDir dir;
