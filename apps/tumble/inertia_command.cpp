@@ -284,8 +284,11 @@ Runner add_inertia_command(CLI::App& app) {
                   "mesh file, or a scene file (.toml) to report its bodies; a mesh must be closed and "
                   "consistently oriented unless --shell is given. "
                   "Precision: OBJ, OFF, ASCII PLY and ASCII STL are read exactly (every digit written, "
-                  "each coordinate the nearest double); binary STL holds float32 by its format; binary "
-                  "PLY and the other formats assimp reads (3MF, glTF, DAE, ...) are read as float32");
+                  "each coordinate the nearest double); binary PLY as stored (double stays double); binary "
+                  "STL holds float32 by its format; the other formats assimp reads (3MF, glTF, DAE, ...) "
+                  "are read as float32. Only regular files of at most 1 GiB are read (FIFOs and devices "
+                  "are refused); raise the limit with the environment variable TUMBLE_MAX_INPUT_BYTES "
+                  "(bytes, or with k, M, G: e.g. TUMBLE_MAX_INPUT_BYTES=8G)");
   auto* shape = cmd->add_option("--shape", o->shape,
                                 "a primitive instead of a file: box, sphere, ellipsoid, cylinder, "
                                 "capsule, cone, torus (axis z, centred; cone base at z=0)");

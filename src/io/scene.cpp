@@ -3,11 +3,9 @@
 
 #include <fmt/format.h>
 
-#include <array>
-#include <fstream>
-
 #include "scene_sections.hpp"
 #include "tumble/integrate/integrator.hpp"
+#include "tumble/mass/input_file.hpp"
 #include "tumble/sim/output_fields.hpp"
 
 namespace tumble {
@@ -69,21 +67,12 @@ void read_output(const TableReader& root, Scene& scene) {
 }  // namespace
 
 std::string read_file(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    throw FileError(
-        fmt::format("cannot read scene file {}: {}", path.string(),
-                    std::filesystem::exists(path) ? "permission denied or not a file" : "no such file"));
+  // A regular file within the input limit: never a FIFO or a device that could be read forever.
+  try {
+    return read_input_file(path, "scene file");
+  } catch (const FileError& e) {
+    throw FileError(fmt::format("cannot read scene file {}", e.what()));
   }
-  // Straight into the string: through a std::ostringstream the text was copied twice more.
-  std::string text;
-  std::error_code no_size;  // a pipe or a device has none; the string then grows as it is read
-  if (const auto size = std::filesystem::file_size(path, no_size); !no_size) text.reserve(size);
-  std::array<char, 1 << 16> chunk;
-  while (in.read(chunk.data(), chunk.size()) || in.gcount() > 0) {
-    text.append(chunk.data(), static_cast<size_t>(in.gcount()));
-  }
-  return text;
 }
 
 toml::table parse_toml(const std::string& text, const std::string& file) {

@@ -364,7 +364,7 @@ BodyMass read_body_mass(const TableReader& body, const std::filesystem::path& di
   const auto parts = body.tables("parts");
   if (parts.empty()) body.fail_at("parts", "parts is empty: give at least one [[bodies.parts]]");
   MassProperties total;
-  int holes = 0;
+  std::vector<size_t> holes;  // their indices in `parts`
   for (size_t i = 0; i < parts.size(); ++i) {
     const TableReader part(*parts[i], body.context().child_numbered(" part ", i + 1), body.file(),
                            {"shape", "mesh", "scale", "thickness", "inertia", "center_of_mass", "density",
@@ -389,7 +389,7 @@ BodyMass read_body_mass(const TableReader& body, const std::filesystem::path& di
     const MassProperties placed = mp.transformed(pose.R, pose.t);
     if (part.boolean("hole").value_or(false)) {
       total -= placed;
-      ++holes;
+      holes.push_back(i);
     } else {
       total += placed;
     }
@@ -406,8 +406,29 @@ BodyMass read_body_mass(const TableReader& body, const std::filesystem::path& di
     total.mass *= f;
     total.inertia *= f;
   }
+  // Valid parts add up to a valid body; only holes can break it. Checked here, where the holes are
+  // known, so that the message points at the hole (RigidBody would name the body a second time).
+  try {
+    total.validate();
+  } catch (const InvalidMassProperties& e) {
+    const std::string reason = fmt::format(
+        "{}; a hole must lie inside the parts it cuts: check its size and "
+        "position",
+        e.what());
+    if (holes.size() == 1) {
+      const TableReader hole = TableReader::any_keys(
+          *parts[holes[0]], body.context().child_numbered(" part ", holes[0] + 1), body.file());
+      hole.fail_here("this hole leaves the body with mass properties no body can have: " + reason);
+    }
+    std::vector<size_t> numbers;
+    for (size_t h : holes) numbers.push_back(h + 1);
+    body.fail_here(
+        fmt::format("the parts minus the holes (parts {}) leave mass properties no body can have: {}",
+                    fmt::join(numbers, ", "), reason));
+  }
   return {total,
-          fmt::format("{} parts{}, {}", parts.size(), holes ? fmt::format(" ({} holes)", holes) : "",
+          fmt::format("{} parts{}, {}", parts.size(),
+                      holes.empty() ? "" : fmt::format(" ({} holes)", holes.size()),
                       material.kind == Material::Kind::none ? "materials per part" : material.describe())};
 }
 

@@ -1,8 +1,9 @@
-// Loading mesh files. OBJ, OFF, ASCII PLY and ASCII STL are read by tumble's own readers
-// (mesh_read_*.cpp: every decimal digit kept); binary STL, binary PLY and every other format go
-// through assimp (every mesh of the scene, node transforms applied, polygons triangulated). Either
-// way parts are counted (and one may be picked), and vertices are welded by tumble (mesh_weld.cpp
-// says why not by assimp).
+// Loading mesh files. OBJ, OFF, PLY (ASCII and binary) and ASCII STL are read by tumble's own readers
+// (mesh_read_*.cpp: every decimal digit kept, every binary value as stored, every count checked against
+// the file's size); binary STL, whose size is checked first, and every other format go through assimp
+// (every mesh of the scene, node transforms applied, polygons triangulated). Either way the file must
+// be a regular file within the input limit (input_file.hpp), parts are counted (and one may be
+// picked), and vertices are welded by tumble (mesh_weld.cpp says why not by assimp).
 #include "tumble/mass/mesh_io.hpp"
 
 #include <algorithm>
@@ -11,11 +12,11 @@
 #include <assimp/scene.h>
 #include <cmath>
 #include <fmt/format.h>
-#include <fstream>
 #include <system_error>
 
 #include "mesh_text.hpp"
 #include "tumble/error.hpp"
+#include "tumble/mass/input_file.hpp"
 #include "tumble/mass/mesh_weld.hpp"
 
 namespace tumble {
@@ -25,32 +26,10 @@ using mesh_text::RawMesh;
 
 constexpr const char* kTextPrecision = "every digit of the text (each coordinate is the double nearest it)";
 
-void require_readable_file(const std::filesystem::path& path) {
-  std::error_code ec;
-  const auto status = std::filesystem::status(path, ec);
-  if (!std::filesystem::exists(status)) {
-    throw FileError(fmt::format("{}: no such file; check the path and the working directory", path.string()));
-  }
-  if (!std::filesystem::is_regular_file(status)) {
-    throw FileError(fmt::format("{}: not a regular file (a directory?); give a mesh file", path.string()));
-  }
-}
-
 std::string lower_extension(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
   for (char& c : ext) c = static_cast<char>(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c);
   return ext;
-}
-
-/// The first `limit` bytes of the file (all of it by default).
-std::string read_bytes(const std::filesystem::path& path, std::uint64_t size,
-                       std::uint64_t limit = ~std::uint64_t{0}) {
-  std::ifstream in(path, std::ios::binary);
-  std::string bytes(static_cast<std::size_t>(std::min(size, limit)), '\0');
-  if (!in || !in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()))) {
-    throw FileError(fmt::format("{}: cannot read the file (permissions?)", path.string()));
-  }
-  return bytes;
 }
 
 /// Refuses UTF-16 and UTF-32 text (with or without a byte-order mark): tumble reads ASCII or UTF-8.
@@ -85,7 +64,9 @@ std::string listed_names(const std::vector<std::string>& names) {
   if (std::all_of(names.begin(), names.end(), [](const std::string& n) { return n.empty(); })) return "";
   std::string out;
   const std::size_t shown = std::min<std::size_t>(names.size(), 5);
-  for (std::size_t i = 0; i < shown; ++i) out += fmt::format("{}'{}'", i ? ", " : "", names[i]);
+  for (std::size_t i = 0; i < shown; ++i) {
+    out += fmt::format("{}'{}'", i ? ", " : "", mesh_text::excerpt(names[i]));
+  }
   return fmt::format(" ({}{})", out, names.size() > shown ? ", ..." : "");
 }
 
@@ -175,13 +156,18 @@ LoadedMesh finish(const std::filesystem::path& path, RawMesh raw, const MeshLoad
                               scale == 1.0 ? "" : fmt::format(" after scaling by {}", scale)));
 }
 
+/// Reads the file through assimp: from `memory` (the file's bytes, already checked) when given, else
+/// from the path (formats that refer to other files: OBJ materials, glTF buffers).
 LoadedMesh load_with_assimp(const std::filesystem::path& path, const MeshLoadOptions& options,
-                            std::string format, std::string precision, std::vector<std::string> warnings) {
+                            std::string format, std::string precision, std::vector<std::string> warnings,
+                            std::string_view memory = {}, const char* hint = "") {
   Assimp::Importer importer;
   // Points and lines carry no surface: SortByPType splits them off and this drops them.
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-  const aiScene* scene = importer.ReadFile(
-      path.string(), aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_SortByPType);
+  const unsigned flags = aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_SortByPType;
+  const aiScene* scene = memory.empty()
+                             ? importer.ReadFile(path.string(), flags)
+                             : importer.ReadFileFromMemory(memory.data(), memory.size(), flags, hint);
   if (scene == nullptr) {
     throw FileError(fmt::format("{}: cannot read the mesh: {}", path.string(), importer.GetErrorString()));
   }
@@ -234,63 +220,89 @@ bool starts_with_solid(std::string_view head) {
   return word == "solid";
 }
 
-LoadedMesh load_stl(const std::filesystem::path& path, std::uint64_t size, const MeshLoadOptions& options) {
-  const std::string head = read_bytes(path, size, 512);
+/// What is wrong with a file that is neither an ASCII STL nor a binary STL of the right size.
+std::string binary_stl_size_problem(std::uint64_t size, std::uint64_t declared) {
+  if (size == 0) return "the file is empty (0 bytes)";
+  if (size < 84) {
+    return fmt::format(
+        "not an STL file: too short for a binary STL ({} bytes; its header alone is 84) and "
+        "not ASCII STL (which starts with 'solid')",
+        size);
+  }
+  const std::uint64_t need = 84 + 50 * declared;  // declared < 2^32: no overflow
+  const std::uint64_t allowed = (size - 84) / 50;
+  if (size < need) {
+    return fmt::format(
+        "truncated binary STL: the header says {} triangles (84 + 50 x {} = {} bytes), the "
+        "file size ({} bytes) allows {}",
+        declared, declared, need, size, allowed);
+  }
+  return fmt::format(
+      "binary STL of the wrong size: the header says {} triangles (84 + 50 x {} = {} bytes) "
+      "but the file has {} bytes, {} more (room for {} triangles): the count is wrong or "
+      "data was appended",
+      declared, declared, need, size, size - need, allowed);
+}
+
+LoadedMesh load_stl(const std::filesystem::path& path, std::string bytes, const MeshLoadOptions& options) {
+  const std::uint64_t size = bytes.size();
   std::uint64_t declared = 0;  // the triangle count a binary STL's header gives
   if (size >= 84) {
-    for (int i = 3; i >= 0; --i) declared = (declared << 8) | static_cast<unsigned char>(head[80 + i]);
+    for (int i = 3; i >= 0; --i) declared = (declared << 8) | static_cast<unsigned char>(bytes[80 + i]);
   }
-  // A binary STL is exactly 84 + 50·n bytes; its 80-byte header may well start with "solid".
+  // A binary STL is exactly 84 + 50·n bytes; its 80-byte header may well start with "solid". assimp
+  // reads it from these bytes, whose size is now known to match.
+  if (size == 84 && declared == 0) {
+    throw FileError(
+        fmt::format("{}: a binary STL of 0 triangles (its 84-byte header only): no surface", path.string()));
+  }
   if (size >= 84 && 84 + 50 * declared == size) {
-    return load_with_assimp(path, options, "binary STL", "float32, the format's own", {});
+    return load_with_assimp(path, options, "binary STL", "float32, the format's own", {}, bytes, "stl");
   }
-  refuse_wide_text(path, head);
-  if (!starts_with_solid(head)) {
-    // Neither: assimp says why it cannot read it.
-    return load_with_assimp(path, options, "STL", "float32", {});
+  refuse_wide_text(path, bytes);
+  if (!starts_with_solid(bytes)) {
+    throw FileError(fmt::format("{}: {}", path.string(), binary_stl_size_problem(size, declared)));
   }
-  const mesh_text::Text text(path, read_bytes(path, size), options.scale);
+  const bool looks_binary = std::string_view(bytes).substr(0, 4096).find('\0') != std::string_view::npos;
+  const mesh_text::Text text(path, std::move(bytes), options.scale);
   try {
     return finish(path, mesh_text::read_ascii_stl(text), options, "ASCII STL", kTextPrecision);
   } catch (const FileError& e) {
-    if (text.view().substr(0, 4096).find('\0') == std::string_view::npos || size < 84) throw;
-    throw FileError(
-        fmt::format("{} (the file looks binary: a binary STL whose header declares {} triangles "
-                    "is {} bytes long, this one is {}: truncated or padded?)",
-                    e.what(), declared, 84 + 50 * declared, size));
+    if (!looks_binary) throw;
+    throw FileError(fmt::format("{}; the file looks binary (a binary STL may start with 'solid' too): {}",
+                                e.what(), binary_stl_size_problem(size, declared)));
   }
 }
 
-LoadedMesh load_ply(const std::filesystem::path& path, std::uint64_t size, const MeshLoadOptions& options) {
-  // The header is text even in a binary PLY: read it (at most 1 MiB), then the rest only if ASCII.
-  std::string head = read_bytes(path, size, std::uint64_t{1} << 20);
-  refuse_wide_text(path, head);
-  mesh_text::Text header_text(path, std::move(head), options.scale);
-  const mesh_text::PlyHeader header = mesh_text::read_ply_header(header_text, size);
+/// What the coordinates of a binary PLY carry, from the types of x, y, z.
+std::string binary_ply_precision(const mesh_text::PlyElement& vertex) {
+  bool any_float = false, all_double = true;
+  for (const auto& p : vertex.properties) {
+    if (p.name != "x" && p.name != "y" && p.name != "z") continue;
+    const bool is_double = p.type == "double" || p.type == "float64";
+    any_float = any_float || p.type == "float" || p.type == "float32";
+    all_double = all_double && is_double;
+  }
+  if (all_double) return "float64, every bit of the file's doubles";
+  if (any_float) return "float32, as the file declares";
+  return "integers, exact";
+}
+
+LoadedMesh load_ply(const std::filesystem::path& path, std::string bytes, const MeshLoadOptions& options) {
+  refuse_wide_text(path, bytes);
+  const mesh_text::Text text(path, std::move(bytes), options.scale);
+  // The header is text even in a binary PLY; its counts are checked against the file's size.
+  const mesh_text::PlyHeader header = mesh_text::read_ply_header(text, text.view().size());
   const mesh_text::PlyElement* vertex = header.find("vertex");
   const mesh_text::PlyElement* face = header.find("face");
   if (face == nullptr || face->count == 0) throw_no_faces(path, vertex->count, 0);
   if (header.format == mesh_text::PlyHeader::Format::ascii) {
-    const mesh_text::Text text(path, read_bytes(path, size), options.scale);
     return finish(path, mesh_text::read_ascii_ply(text, header), options, "ASCII PLY", kTextPrecision);
   }
-  bool doubles = false;
-  for (const auto& p : vertex->properties) {
-    doubles = doubles || ((p.name == "x" || p.name == "y" || p.name == "z") &&
-                          (p.type == "double" || p.type == "float64"));
-  }
-  std::vector<std::string> warnings;
-  if (doubles) {
-    warnings.push_back(
-        fmt::format("{}: binary PLY with double coordinates is read through assimp, which "
-                    "rounds them to float32 (6e-8 relative; mass properties to about 1e-7); "
-                    "for full precision write the file as ASCII PLY",
-                    path.string()));
-  }
-  return load_with_assimp(path, options, "binary PLY",
-                          doubles ? "float32 (assimp rounds the file's doubles)"
-                                  : "float32, as the file declares",
-                          std::move(warnings));
+  const bool big = header.format == mesh_text::PlyHeader::Format::binary_big_endian;
+  return finish(path, mesh_text::read_binary_ply(text, header), options,
+                big ? "binary PLY (big-endian)" : "binary PLY (little-endian)",
+                binary_ply_precision(*vertex));
 }
 
 }  // namespace
@@ -301,28 +313,26 @@ LoadedMesh load_mesh(const std::filesystem::path& path, const MeshLoadOptions& o
         fmt::format("{}: mesh scale {} is invalid: give a positive factor (e.g. 0.001 for millimetres)",
                     path.string(), options.scale));
   }
-  require_readable_file(path);
-  std::error_code ec;
-  const std::uint64_t size = std::filesystem::file_size(path, ec);
-  if (ec) throw FileError(fmt::format("{}: cannot read the file size: {}", path.string(), ec.message()));
-
   const std::string ext = lower_extension(path);
-  if (ext == ".obj" || ext == ".off") {
-    std::string bytes = read_bytes(path, size);
+  if (ext == ".obj" || ext == ".off" || ext == ".stl" || ext == ".ply") {
+    // Read whole, once: a regular file within the input limit (input_file.hpp).
+    std::string bytes = read_input_file(path, "mesh file");
+    if (ext == ".stl") return load_stl(path, std::move(bytes), options);
+    if (ext == ".ply") return load_ply(path, std::move(bytes), options);
     refuse_wide_text(path, bytes);
     const mesh_text::Text text(path, std::move(bytes), options.scale);
     return ext == ".obj" ? finish(path, mesh_text::read_obj(text), options, "OBJ (text)", kTextPrecision)
                          : finish(path, mesh_text::read_off(text), options, "OFF (text)", kTextPrecision);
   }
-  if (ext == ".stl") return load_stl(path, size, options);
-  if (ext == ".ply") return load_ply(path, size, options);
+  // assimp reads the file itself (it may refer to others); it must be a regular file within the limit.
+  checked_input_size(path, "mesh file");
   const bool float32_format = ext == ".gltf" || ext == ".glb";  // float32 by the format's definition
   std::vector<std::string> warnings;
   if (!float32_format) {
     warnings.push_back(
         fmt::format("{}: read through assimp, which rounds coordinates to float32: if the file "
                     "holds more digits, mass properties may be off by about 1e-7 relative "
-                    "(OBJ, OFF, PLY and STL text are read exactly)",
+                    "(OBJ, OFF, PLY and ASCII STL are read exactly)",
                     path.string()));
   }
   return load_with_assimp(path, options, ext.empty() ? "mesh" : ext.substr(1),

@@ -41,12 +41,12 @@ RawMesh read_off(const Text& text) {
     if (k == "4OFF" || k == "nOFF" || k == "4nOFF") {
       text.fail(key_pos, fmt::format("'{}' is a 4-dimensional or n-dimensional OFF file; tumble reads "
                                      "3-dimensional OFF only",
-                                     first.text));
+                                     excerpt(first.text)));
     }
     if (k != "OFF") {
       text.fail(key_pos, fmt::format("'{}' is not an OFF header: expected OFF (or COFF, NOFF, STOFF...) "
                                      "followed by the vertex and face counts",
-                                     first.text));
+                                     excerpt(first.text)));
     }
     s = peek;
     const Token next = s.word();

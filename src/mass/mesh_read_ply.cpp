@@ -1,6 +1,6 @@
 // PLY: the header (ASCII and binary files alike) and the data of ASCII files. The vertex element's x,
 // y, z may have any declared type: in an ASCII file they are decimal text, read to the nearest double
-// whatever the type says. The face element's list "vertex_indices" (or "vertex_index") gives polygons,
+// whatever the type says (binary data: mesh_read_ply_binary.cpp). The face element's list "vertex_indices" (or "vertex_index") gives polygons,
 // 0-based. Other elements and properties are read past. The data is a stream of words (line breaks
 // are not significant), as the format defines it.
 #include <array>
@@ -9,10 +9,8 @@
 #include "mesh_text.hpp"
 
 namespace tumble::mesh_text {
-namespace {
 
-/// Bytes of a binary value of a PLY type; 0 for an unknown type.
-std::size_t type_size(std::string_view t) {
+std::size_t ply_type_size(std::string_view t) {
   static constexpr std::array<std::pair<std::string_view, std::size_t>, 16> sizes{{
       {"char", 1},
       {"uchar", 1},
@@ -37,11 +35,9 @@ std::size_t type_size(std::string_view t) {
   return 0;
 }
 
-bool is_face_list(const PlyProperty& p) {
+bool is_ply_face_list(const PlyProperty& p) {
   return !p.count_type.empty() && (p.name == "vertex_indices" || p.name == "vertex_index");
 }
-
-}  // namespace
 
 const PlyElement* PlyHeader::find(std::string_view name) const {
   for (const PlyElement& e : elements) {
@@ -72,10 +68,11 @@ PlyHeader read_ply_header(const Text& text, std::uint64_t file_size) {
       } else {
         text.fail(f.pos, fmt::format("unknown PLY format '{}': expected ascii, binary_little_endian or "
                                      "binary_big_endian",
-                                     f.text.substr(0, 40)));
+                                     excerpt(f.text)));
       }
       if (version.text != "1.0") {
-        text.fail(version.pos, fmt::format("PLY version '{}': tumble reads version 1.0", version.text));
+        text.fail(version.pos,
+                  fmt::format("PLY version '{}': tumble reads version 1.0", excerpt(version.text)));
       }
       have_format = true;
     } else if (key.text == "element") {
@@ -92,18 +89,17 @@ PlyHeader read_ply_header(const Text& text, std::uint64_t file_size) {
       Token type = s.word();
       if (type.text == "list") {
         const Token count_type = s.word();
-        if (type_size(count_type.text) == 0) {
-          text.fail(count_type.pos,
-                    fmt::format("unknown list count type '{}'", count_type.text.substr(0, 40)));
+        if (ply_type_size(count_type.text) == 0) {
+          text.fail(count_type.pos, fmt::format("unknown list count type '{}'", excerpt(count_type.text)));
         }
         p.count_type = count_type.text;
         type = s.word();
       }
-      if (type_size(type.text) == 0) {
+      if (ply_type_size(type.text) == 0) {
         text.fail(type.pos,
                   fmt::format("unknown property type '{}': expected char, uchar, short, ushort, int, "
                               "uint, float, double (or int8 ... float64)",
-                              type.text.substr(0, 40)));
+                              excerpt(type.text)));
       }
       p.type = type.text;
       const Token name = s.word();
@@ -115,7 +111,7 @@ PlyHeader read_ply_header(const Text& text, std::uint64_t file_size) {
     } else if (key.text != "comment" && key.text != "obj_info" && !key.empty()) {
       text.fail(key.pos, fmt::format("unexpected '{}' in the PLY header (expected format, element, "
                                      "property, comment or end_header)",
-                                     key.text.substr(0, 40)));
+                                     excerpt(key.text)));
     }
     s.next_line();
   }
@@ -134,7 +130,7 @@ PlyHeader read_ply_header(const Text& text, std::uint64_t file_size) {
   if (vertex->count > kMaxVertices) text.fail(vertex->line_pos, "more than 4294967294 vertices");
   if (const PlyElement* face = h.find("face"); face != nullptr) {
     bool found = false;
-    for (const PlyProperty& p : face->properties) found = found || is_face_list(p);
+    for (const PlyProperty& p : face->properties) found = found || is_ply_face_list(p);
     if (!found) {
       text.fail(face->line_pos, "the face element has no list property 'vertex_indices' (or 'vertex_index')");
     }
@@ -148,7 +144,7 @@ PlyHeader read_ply_header(const Text& text, std::uint64_t file_size) {
   for (const PlyElement& e : h.elements) {
     std::uint64_t per_item = 0;
     for (const PlyProperty& p : e.properties) {
-      per_item += ascii ? 2 : type_size(p.count_type.empty() ? p.type : p.count_type);
+      per_item += ascii ? 2 : ply_type_size(p.count_type.empty() ? p.type : p.count_type);
     }
     if (per_item == 0) continue;  // no properties: nothing to read, whatever the count
     if (e.count > left / per_item) {
@@ -180,8 +176,9 @@ RawMesh read_ascii_ply(const Text& text, const PlyHeader& header) {
         const Token t = s.any_word();
         if (&p == &e.properties.front()) item_pos = t.pos;
         if (t.empty()) {
-          text.fail(t.pos,
-                    fmt::format("the file ends in {} {} of the {} the header declares", e.name, i, e.count));
+          text.fail(t.pos, fmt::format("the file ends in {} {} of the {} the header declares: the header's "
+                                       "counts are wrong or the file is truncated",
+                                       e.name, i, e.count));
         }
         if (p.count_type.empty()) {
           const int axis = !is_vertex ? -1 : p.name == "x" ? 0 : p.name == "y" ? 1 : p.name == "z" ? 2 : -1;
@@ -196,16 +193,19 @@ RawMesh read_ascii_ply(const Text& text, const PlyHeader& header) {
         }
         const std::int64_t n = to_integer(text, t, fmt::format("the count of list '{}'", p.name));
         if (n < 0) text.fail(t.pos, fmt::format("the count of list '{}' is negative", p.name));
-        const bool polygon = is_face && is_face_list(p);
+        const bool polygon = is_face && is_ply_face_list(p);
         if (polygon && n < 3) {
-          text.fail(t.pos, fmt::format("face {} has {} corners; a face needs at least 3", i, n));
+          text.fail(t.pos, fmt::format("face {} has {} corners; a face needs at least 3 (or the header's "
+                                       "counts are wrong)",
+                                       i, n));
         }
         corners.clear();
         for (std::int64_t k = 0; k < n; ++k) {
           const Token v = s.any_word();
           if (v.empty()) {
-            text.fail(v.pos, fmt::format("the file ends inside list '{}' of {} {} ({} of {} values)", p.name,
-                                         e.name, i, k, n));
+            text.fail(v.pos, fmt::format("the file ends inside list '{}' of {} {} ({} of {} values): the "
+                                         "header's counts are wrong or the file is truncated",
+                                         p.name, e.name, i, k, n));
           }
           if (!polygon) {
             check_number(text, v, fmt::format("a value of list '{}'", p.name));
@@ -214,7 +214,7 @@ RawMesh read_ascii_ply(const Text& text, const PlyHeader& header) {
           const std::int64_t index = to_integer(text, v, "vertex index");
           if (index < 0 || static_cast<std::uint64_t>(index) >= nv) {
             text.fail(v.pos, fmt::format("vertex index {} is out of range: the file has {} vertices, "
-                                         "numbered from 0",
+                                         "numbered from 0 (or the header's counts are wrong)",
                                          index, nv));
           }
           corners.push_back(static_cast<std::uint32_t>(index));

@@ -19,9 +19,9 @@ bool is(std::string_view word, std::string_view keyword) {
 void expect(const Text& text, Scanner& s, std::string_view keyword, std::string_view after) {
   const Token t = s.any_word();
   if (!is(t.text, keyword)) {
-    text.fail(t.pos, t.empty() ? fmt::format("the file ends where '{}' should follow {}", keyword, after)
-                               : fmt::format("expected '{}' after {}, found '{}'", keyword, after,
-                                             t.text.substr(0, 40)));
+    text.fail(t.pos,
+              t.empty() ? fmt::format("the file ends where '{}' should follow {}", keyword, after)
+                        : fmt::format("expected '{}' after {}, found '{}'", keyword, after, excerpt(t.text)));
   }
 }
 
@@ -41,7 +41,7 @@ RawMesh read_ascii_stl(const Text& text) {
   std::vector<std::string> names;
   for (Token t = s.any_word(); !t.empty(); t = s.any_word()) {
     if (!is(t.text, "solid")) {
-      text.fail(t.pos, fmt::format("expected 'solid' to start a solid, found '{}'", t.text.substr(0, 40)));
+      text.fail(t.pos, fmt::format("expected 'solid' to start a solid, found '{}'", excerpt(t.text)));
     }
     const std::size_t solid_pos = t.pos;
     const std::string name(s.rest_of_line());
@@ -54,7 +54,7 @@ RawMesh read_ascii_stl(const Text& text) {
         mesh.warnings.push_back(
             fmt::format("{}: the solid '{}' has no 'endsolid' (a truncated file?); its {} "
                         "complete facets were read",
-                        text.where(solid_pos), name, facets));
+                        text.where(solid_pos), excerpt(name), facets));
         break;
       }
       if (is(k.text, "endsolid")) {
@@ -62,7 +62,7 @@ RawMesh read_ascii_stl(const Text& text) {
         break;
       }
       if (!is(k.text, "facet")) {
-        text.fail(k.pos, fmt::format("expected 'facet' or 'endsolid', found '{}'", k.text.substr(0, 40)));
+        text.fail(k.pos, fmt::format("expected 'facet' or 'endsolid', found '{}'", excerpt(k.text)));
       }
       Token n = s.any_word();
       if (is(n.text, "normal")) {
@@ -71,7 +71,7 @@ RawMesh read_ascii_stl(const Text& text) {
       }
       if (!is(n.text, "outer")) {
         text.fail(n.pos, fmt::format("expected 'outer loop' after 'facet normal nx ny nz', found '{}'",
-                                     n.text.substr(0, 40)));
+                                     excerpt(n.text)));
       }
       expect(text, s, "loop", "'outer'");
       corners.clear();
@@ -81,7 +81,7 @@ RawMesh read_ascii_stl(const Text& text) {
         if (!is(v.text, "vertex")) {
           text.fail(v.pos, v.empty() ? std::string("the file ends inside a facet")
                                      : fmt::format("expected 'vertex x y z' or 'endloop', found '{}'",
-                                                   v.text.substr(0, 40)));
+                                                   excerpt(v.text)));
         }
         const double x = coordinate(text, s, "x coordinate");
         const double y = coordinate(text, s, "y coordinate");

@@ -123,16 +123,23 @@ bool Scanner::skip_blank_lines() {
   return true;
 }
 
-namespace {
-std::string shown(std::string_view token) {
-  // Long or binary garbage is cut so that a message stays one readable line.
+std::string excerpt(std::string_view token) {
+  // Long or binary garbage is cut so that a message stays one readable line; the cut does not split
+  // a UTF-8 character.
+  constexpr std::size_t kMax = 40;
+  std::size_t n = std::min(token.size(), kMax);
+  if (n < token.size()) {
+    while (n > 0 && (static_cast<unsigned char>(token[n]) & 0xC0) == 0x80) --n;
+  }
   std::string out;
-  for (char c : token.substr(0, 40)) {
+  for (char c : token.substr(0, n)) {
     const auto u = static_cast<unsigned char>(c);
     out += u < 0x20 || u == 0x7f ? fmt::format("\\x{:02x}", u) : std::string(1, c);
   }
-  return token.size() > 40 ? out + "..." : out;
+  return n < token.size() ? out + "..." : out;
 }
+
+namespace {
 std::string_view unsigned_part(std::string_view t) {
   return t.size() > 1 && t[0] == '+' && t[1] != '-' ? t.substr(1) : t;  // from_chars takes no '+'
 }
@@ -142,16 +149,17 @@ double to_double(const Text& text, const Token& token, std::string_view what) {
   const std::string_view t = unsigned_part(token.text);
   double value = 0.0;
   const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), value);
-  if (ec == std::errc::result_out_of_range) {
-    text.fail(token.pos, fmt::format("{} '{}' is out of the range of a double", what, shown(token.text)));
+  const bool whole = !t.empty() && end == t.data() + t.size();
+  if (whole && ec == std::errc::result_out_of_range) {
+    text.fail(token.pos, fmt::format("{} '{}' is out of the range of a double", what, excerpt(token.text)));
   }
-  if (ec != std::errc{} || end != t.data() + t.size() || t.empty()) {
+  if (ec != std::errc{} || !whole) {
     const bool comma = token.text.find(',') != std::string_view::npos;
-    text.fail(token.pos, fmt::format("{} '{}' is not a number{}", what, shown(token.text),
+    text.fail(token.pos, fmt::format("{} '{}' is not a number{}", what, excerpt(token.text),
                                      comma ? "; write the decimal separator as '.', not ','" : ""));
   }
   if (!std::isfinite(value)) {
-    text.fail(token.pos, fmt::format("{} '{}' is not finite; fix the file", what, shown(token.text)));
+    text.fail(token.pos, fmt::format("{} '{}' is not finite; fix the file", what, excerpt(token.text)));
   }
   return value;
 }
@@ -162,7 +170,7 @@ void check_number(const Text& text, const Token& token, std::string_view what) {
   const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), value);
   if ((ec != std::errc{} && ec != std::errc::result_out_of_range) || end != t.data() + t.size() ||
       t.empty()) {
-    text.fail(token.pos, fmt::format("{} '{}' is not a number", what, shown(token.text)));
+    text.fail(token.pos, fmt::format("{} '{}' is not a number", what, excerpt(token.text)));
   }
 }
 
@@ -170,11 +178,12 @@ std::int64_t to_integer(const Text& text, const Token& token, std::string_view w
   const std::string_view t = unsigned_part(token.text);
   std::int64_t value = 0;
   const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), value);
-  if (ec == std::errc::result_out_of_range) {
-    text.fail(token.pos, fmt::format("{} '{}' is too large", what, shown(token.text)));
+  const bool whole = !t.empty() && end == t.data() + t.size();
+  if (whole && ec == std::errc::result_out_of_range) {
+    text.fail(token.pos, fmt::format("{} '{}' is too large", what, excerpt(token.text)));
   }
-  if (ec != std::errc{} || end != t.data() + t.size() || t.empty()) {
-    text.fail(token.pos, fmt::format("{} '{}' is not a whole number", what, shown(token.text)));
+  if (ec != std::errc{} || !whole) {
+    text.fail(token.pos, fmt::format("{} '{}' is not a whole number", what, excerpt(token.text)));
   }
   return value;
 }

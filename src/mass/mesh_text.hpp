@@ -1,7 +1,8 @@
 #pragma once
 // Tumble's own readers of the text mesh formats (OBJ, OFF, ASCII PLY, ASCII STL): every coordinate is
 // converted from its decimal digits straight to the nearest double (std::from_chars), so a file that
-// says 0.1 gives the double nearest 0.1, not a float32 widened. docs/ARCHITECTURE.md ("Text meshes are
+// says 0.1 gives the double nearest 0.1, not a float32 widened. Binary PLY, whose header is text, is
+// read here too (mesh_read_ply_binary.cpp), its values as the file stores them. docs/ARCHITECTURE.md ("Text meshes are
 // read by tumble") says why no library does this here: assimp, OpenMesh 9 and tinyobjloader all round.
 //
 // Every error is a FileError "PATH:LINE:COLUMN: what is wrong; how to fix it". Counts in headers (OFF,
@@ -42,6 +43,8 @@ class Text {
   std::string where(std::size_t pos) const;
   /// Throws FileError "PATH:LINE:COLUMN: message".
   [[noreturn]] void fail(std::size_t pos, std::string_view message) const;
+
+  double scale() const { return scale_; }
 
   /// A vertex from three parsed coordinates: scaled, checked to be finite (pos: where it starts).
   Vec3 point(double x, double y, double z, std::size_t pos) const;
@@ -92,6 +95,10 @@ class Scanner {
   bool continuation_;
 };
 
+/// A word of the file as it may be quoted in a message: at most 40 bytes (then "..."), control bytes
+/// as \xNN, so that a message stays one short readable line whatever the file holds.
+std::string excerpt(std::string_view token);
+
 /// A coordinate: the nearest double to the decimal text (correctly rounded); a leading '+' is allowed.
 /// Throws with the location and, for "0,1", a hint about decimal commas. `what` names the value.
 double to_double(const Text& text, const Token& token, std::string_view what);
@@ -134,10 +141,21 @@ struct PlyHeader {
   const PlyElement* find(std::string_view name) const;
 };
 
+/// Bytes of a binary value of a PLY type (char ... double, int8 ... float64); 0 for an unknown type.
+std::size_t ply_type_size(std::string_view type);
+/// True for the face element's list of vertex indices ("vertex_indices" or "vertex_index").
+bool is_ply_face_list(const PlyProperty& p);
+
 /// Parses and checks a PLY header: the element counts must fit in the bytes that follow (each ASCII
 /// value takes at least two bytes, each binary one its size), the vertex element must have x, y, z.
 /// `file_size` is the whole file's size (the text may hold only the header of a binary file).
 PlyHeader read_ply_header(const Text& text, std::uint64_t file_size);
 RawMesh read_ascii_ply(const Text& text, const PlyHeader& header);
+/// The data of a binary PLY (either byte order): `text` holds the whole file. The vertex's x, y, z may
+/// have any scalar type and are kept exactly (a double stays a double); the face list gives polygons
+/// (any integer count and index types); other elements and properties are skipped by their sizes.
+/// Every list count is checked against the bytes left before it is read, every index against the
+/// vertex count; errors name the element, its index and the byte offset.
+RawMesh read_binary_ply(const Text& text, const PlyHeader& header);
 
 }  // namespace tumble::mesh_text

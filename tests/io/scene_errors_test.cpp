@@ -171,5 +171,47 @@ TEST(SceneErrors, MissingPiecesAndBadReferences) {
             "bad.toml:8:8: [[forces]] #1: unknown force type \"sprung\"; did you mean \"spring\"?");
 }
 
+/// How often `part` occurs in `text`.
+size_t occurrences(const std::string& text, const std::string& part) {
+  size_t n = 0;
+  for (size_t at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++n;
+  return n;
+}
+
+TEST(SceneErrors, ACompositeErrorNamesTheBodyThePartAndTheLineOnce) {
+  const std::string body = kSim +
+                           "[[bodies]]\nname = \"c\"\ndensity = 1000\n[[bodies.parts]]\n"
+                           "shape = { type = \"box\", size = [1, 1, 1] }\n";  // lines 3-7
+  // A hole that sticks out of the part: the remainder has negative moments.
+  const std::string rod =
+      "[[bodies.parts]]\nshape = { type = \"box\", size = [10, 0.1, 0.1] }\nhole = true\n";
+  std::string m = error_of(body + rod);
+  EXPECT_EQ(m,
+            "bad.toml:8:1: body 'c' part 2: this hole leaves the body with mass properties no body can have: "
+            "inertia tensor is not positive definite: principal moments are -666.75, -666.75, 166.5 kg*m^2; "
+            "every principal moment of a body must be positive; a hole must lie inside the parts it cuts: "
+            "check its size and position");
+  // Two holes: which one is wrong is not known, both are named.
+  m = error_of(body + rod + rod);
+  EXPECT_TRUE(
+      m.starts_with("bad.toml:3:1: body 'c': the parts minus the holes (parts 2, 3) leave mass "
+                    "properties no body can have: inertia tensor"))
+      << m;
+  EXPECT_EQ(occurrences(m, "body 'c'"), 1U) << m;
+
+  // A mesh part with an error in the mesh file: the scene's line, the body and part, then the mesh's
+  // own file:line:column, each once.
+  test::TempDir dir("composite_errors");
+  dir.write("bad.off", "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 9\n");
+  const auto scene = dir.write("c.toml", body + "[[bodies.parts]]\nmesh = \"bad.off\"\nhole = true\n");
+  m = error_of(test::read_text(scene), scene);
+  EXPECT_EQ(
+      m,
+      scene.string() + ":9:8: body 'c' part 2: cannot load mesh \"bad.off\": " + (dir / "bad.off").string() +
+          ":10:7: vertex index 9 is out of range: the file has 4 vertices, numbered from 0; mesh paths are "
+          "relative to the scene file's directory");
+  EXPECT_EQ(occurrences(m, "body 'c'"), 1U) << m;
+}
+
 }  // namespace
 }  // namespace tumble

@@ -421,6 +421,12 @@ TEST(MeshText, MalformedLinesAreNamedByFileLineAndColumn) {
        ":11:3: y coordinate 'zero' is not a number"},
       {"trail.ply", ply_head + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2 5\n",
        ":13:9: unexpected text after the elements"},
+      // Counts that disagree with the data say so (not "repair the non-manifold edges").
+      {"fewer.ply",
+       "ply\nformat ascii 1.0\nelement vertex 2\n" + ply_head.substr(38) + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+       ":12:1: face 0 has 0 corners; a face needs at least 3 (or the header's counts are wrong)"},
+      {"more.ply", ply_head + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 2 1\n",
+       ":14:1: unexpected text after the elements the header declares: the counts are wrong"},
       {"facet.stl", "solid s\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 1 0\n  endloop\n",
        ":6:3: z coordinate 'endloop' is not a number"},
       {"keyword.stl", "solid s\n facet normal 0 0 1\n  outer lop\n", ":3:9: expected 'loop' after 'outer'"},

@@ -1,7 +1,9 @@
 #pragma once
 // Reading triangle meshes from files. The text formats (OBJ, OFF, ASCII PLY, ASCII STL) are read by
-// tumble itself, every coordinate to the double nearest its decimal text; binary STL, binary PLY and
-// the other formats assimp knows go through assimp, which keeps float32 coordinates.
+// tumble itself, every coordinate to the double nearest its decimal text, and so is binary PLY, every
+// value as the file stores it (a double stays a double); binary STL (float32 by its format) and the
+// other formats assimp knows go through assimp, which keeps float32 coordinates. Only regular files
+// within the input limit are read (input_file.hpp: TUMBLE_MAX_INPUT_BYTES).
 #include <cstddef>
 #include <filesystem>
 #include <string>
@@ -28,7 +30,8 @@ struct LoadedMesh {
 /// Reads a mesh file into one triangle mesh, vertices at identical positions welded (STL stores each
 /// triangle's corners separately), polygons fanned into triangles. A file of several parts is merged
 /// with a warning that counts them, unless options.part picks one. Throws FileError with the path (and
-/// line:column in a text file) and the reason when the file is missing, unreadable, malformed, UTF-16,
+/// line:column in a text file, element and byte offset in binary PLY) and the reason when the file is
+/// missing, not a regular file, larger than the input limit, unreadable, malformed, truncated, UTF-16,
 /// a point cloud or empty; InvalidArgument for a bad scale or a part that does not exist.
 LoadedMesh load_mesh(const std::filesystem::path& path, const MeshLoadOptions& options = {});
 
