@@ -65,8 +65,9 @@ void refuse_inputs_as_outputs(const std::vector<NamedOutput>& outputs, const Sce
       const std::filesystem::path& in = scene.input_files[i];
       if (!same_file(out.path, in)) continue;
       throw InvalidArgument(fmt::format("{} is {} {}{}: writing it would destroy the run's input; {}",
-                                        out.label, i == 0 ? "the scene file" : "the mesh file", in.string(),
-                                        i == 0 ? "" : " that the scene reads", out.fix));
+                                        out.label, i == 0 ? "the scene file" : "the file", in.string(),
+                                        i == 0 ? "" : " that the scene reads (a mesh or a body table)",
+                                        out.fix));
     }
   }
 }

@@ -160,6 +160,7 @@ void read_body_tables(const TableReader& root, const std::filesystem::path& dire
     const std::string_view file =
         table.required_string("file", "the CSV file of bodies, e.g. file = \"debris.csv\"");
     const std::filesystem::path path = directory / file;
+    scene.input_files.push_back(path);  // never to be overwritten by the run's outputs
     const CsvText csv(path.string(), [&] {
       try {
         return read_file(path);

@@ -111,11 +111,11 @@ TEST(RunOutputs, AnInputIsNeverAnOutput) {
           "--diagnostics " + s + scene_is + "give another file, e.g. --diagnostics s.diagnostics.csv");
   // A mesh the scene reads.
   const std::string m = d + "/meshes/t_handle.stl";
-  refused(
-      "-o " + d + "/meshes/../meshes/t_handle.stl",
-      "-o " + d + "/meshes/../meshes/t_handle.stl is the mesh file " + m +
-          " that the scene reads: writing it would destroy the run's input; give another output name, e.g. "
-          "-o s.csv");
+  refused("-o " + d + "/meshes/../meshes/t_handle.stl",
+          "-o " + d + "/meshes/../meshes/t_handle.stl is the file " + m +
+              " that the scene reads (a mesh or a body table): writing it would destroy the run's input; "
+              "give another output name, e.g. "
+              "-o s.csv");
   // The trajectory and the diagnostics in one file.
   refused("-o " + d + "/a.csv --diagnostics " + d + "/x/../a.csv",
           "the trajectory " + d + "/a.csv and the diagnostics " + d +

@@ -61,6 +61,9 @@ TEST(BodyTable, ARowIsTheBodyItsTomlTableDescribes) {
   EXPECT_LT((sa.v - sb.v).norm(), 1e-15 * 3);
   EXPECT_LT((sa.omega_w - sb.omega_w).norm(), 1e-15 * 10);
   EXPECT_TRUE(table.conserved.energy);
+  // The table is one of the run's inputs, which no output may overwrite.
+  ASSERT_EQ(table.input_files.size(), 2u);
+  EXPECT_EQ(table.input_files[1], dir / "boxes.csv");
 
   // And it moves as that body does: 500 rk4 steps from states equal to rounding stay equal to within
   // the rounding amplified over the run (ω·t = 5 rad of tumbling; 1e-12 is ~10⁴ ulps).

@@ -30,7 +30,8 @@ struct Scene {
   std::filesystem::path path;  ///< the scene file (as given)
   std::string text;            ///< its contents, stored with the outputs
   /// Every file the scene was read from: the scene file first, then each mesh file as a body or part
-  /// names it (paths as opened; a mesh used twice appears twice). An output must be none of them.
+  /// names it and each [[body_tables]] file (paths as opened; a mesh used twice appears twice). An
+  /// output must be none of them.
   std::vector<std::filesystem::path> input_files;
   RunSettings settings;                  ///< [simulation]
   Model model;                           ///< bodies, particles and force models, in file order
