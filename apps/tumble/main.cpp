@@ -8,6 +8,7 @@
 #include <exception>
 #include <string>
 #include <system_error>
+#include <vector>
 
 #include "commands.hpp"
 #include "tumble/error.hpp"
@@ -31,6 +32,28 @@ int finish_stdout(int status) {
   return status != 0 ? status : 1;
 }
 
+/// Exit status of a command line that cannot be parsed (as most Unix tools do), apart from the 1 of
+/// an input that cannot be used.
+constexpr int kExitUsage = 2;
+
+/// A command line that cannot be parsed: one line saying what, and where the help is.
+int usage_error(const CLI::App& app, const CLI::ParseError& e, int argc, char** argv) {
+  // The command given, if it is one; otherwise the first word is an unknown command.
+  std::string command;
+  for (const CLI::App* sub : app.get_subcommands({})) {
+    if (argc > 1 && sub->get_name() == argv[1]) command = sub->get_name();
+  }
+  if (command.empty() && argc > 1 && argv[1][0] != '-') {
+    std::vector<std::string> names;
+    for (const CLI::App* sub : app.get_subcommands({})) names.push_back(sub->get_name());
+    say(fmt::format("tumble: error: unknown command '{}': the commands are {}; see tumble --help", argv[1],
+                    fmt::join(names, ", ")));
+    return kExitUsage;
+  }
+  say(fmt::format("tumble: error: {}; see tumble {}--help", e.what(), command.empty() ? "" : command + " "));
+  return kExitUsage;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -49,7 +72,8 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    return usage_error(app, e, argc, argv);
   }
   try {
     if (app.got_subcommand("run")) return finish_stdout(run());

@@ -66,12 +66,12 @@ void read_output(const TableReader& root, Scene& scene) {
 
 }  // namespace
 
-std::string read_file(const std::filesystem::path& path) {
+std::string read_file(const std::filesystem::path& path, const char* what) {
   // A regular file within the input limit: never a FIFO or a device that could be read forever.
   try {
-    return read_input_file(path, "scene file");
+    return read_input_file(path, what);
   } catch (const FileError& e) {
-    throw FileError(fmt::format("cannot read scene file {}", e.what()));
+    throw FileError(fmt::format("cannot read {} {}", what, e.what()));
   }
 }
 

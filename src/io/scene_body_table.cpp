@@ -163,10 +163,10 @@ void read_body_tables(const TableReader& root, const std::filesystem::path& dire
     scene.input_files.push_back(path);  // never to be overwritten by the run's outputs
     const CsvText csv(path.string(), [&] {
       try {
-        return read_file(path);
+        return read_file(path, "body table");
       } catch (const FileError& e) {
         table.fail_at("file",
-                      fmt::format("{} (the path is relative to the scene file's directory)", e.what()));
+                      fmt::format("{}; the path is relative to the scene file's directory", e.what()));
       }
     }());
     const std::string prefix(table.string("name_prefix").value_or(path.stem().string() + "_"));

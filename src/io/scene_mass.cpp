@@ -388,6 +388,12 @@ BodyMass read_body_mass(const TableReader& body, const std::filesystem::path& di
                                                   : solid(part, m, pose, directory, source, scene);
     const MassProperties placed = mp.transformed(pose.R, pose.t);
     if (part.boolean("hole").value_or(false)) {
+      if (!(placed.mass < total.mass)) {
+        part.fail_here(
+            fmt::format("this hole would remove {:g} kg from the {:g} kg of the parts before it: a "
+                        "hole must lie inside the parts it cuts, listed after them",
+                        placed.mass, total.mass));
+      }
       total -= placed;
       holes.push_back(i);
     } else {

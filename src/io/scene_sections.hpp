@@ -11,8 +11,9 @@
 
 namespace tumble::scene {
 
-/// The contents of a scene file; FileError if it cannot be read.
-std::string read_file(const std::filesystem::path& path);
+/// The contents of a scene file (or another input it names: `what` says which, for messages); FileError
+/// if it cannot be read.
+std::string read_file(const std::filesystem::path& path, const char* what = "scene file");
 /// The TOML of a scene file; a syntax error is a SceneError at its file:line:column.
 toml::table parse_toml(const std::string& text, const std::string& file);
 /// The Scene of the scene file `text` from `path`, parsed into `root`. load_scene() is read_file(),
