@@ -61,7 +61,7 @@ std::optional<double> estimate_seconds(const Scene& scene, const RunSettings& se
 
 std::string describe(const RunPlan& plan, std::optional<double> seconds, std::size_t rows_per_sample) {
   std::string text = plan.steps ? fmt::format("{} steps, ", amount(*plan.steps)) : "adaptive steps, ";
-  text += fmt::format("{} samples of {}; output about {} (CSV) or {} (HDF5)", amount(plan.samples),
+  text += fmt::format("{} samples of {}; output up to {} (CSV) or about {} (HDF5)", amount(plan.samples),
                       count(rows_per_sample, "row", "rows"), bytes(plan.csv_bytes), bytes(plan.hdf5_bytes));
   if (seconds) text += fmt::format("; about {} on this machine (one thread)", duration(*seconds));
   return text;
@@ -80,12 +80,12 @@ std::optional<std::string> enforce(const RunPlan& plan, std::optional<double> se
   }
   if (!force && out > kMaxBytes) {
     throw InvalidArgument(
-        fmt::format("this run would write about {} ({}): enlarge --output-interval, choose "
+        fmt::format("this run would write up to {} ({}): enlarge --output-interval, choose "
                     "fewer --fields, or give --force to write it anyway",
                     bytes(out), what));
   }
   if (out > kWarnBytes) {
-    return fmt::format("the output will take about {} ({}); --output-interval thins it", bytes(out), what);
+    return fmt::format("the output will take up to {} ({}); --output-interval thins it", bytes(out), what);
   }
   return std::nullopt;
 }

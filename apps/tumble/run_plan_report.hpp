@@ -22,7 +22,7 @@ RunPlan plan_of(const Scene& scene, const RunSettings& settings, const std::vect
 /// and about 10⁶ body-steps); nullopt for adaptive integrators (their step count is not known).
 std::optional<double> estimate_seconds(const Scene& scene, const RunSettings& settings, const RunPlan& plan);
 
-/// "5000 steps, 501 samples of 1 body; output about 150 kB (CSV) or 40 kB (HDF5); about 0.02 s".
+/// "5000 steps, 501 samples of 1 body; output up to 150 kB (CSV) or about 40 kB (HDF5); about 0.02 s".
 std::string describe(const RunPlan& plan, std::optional<double> seconds, std::size_t rows_per_sample);
 
 /// Throws InvalidArgument (with the figures and how to shrink the run, or --force) when the run is

@@ -922,7 +922,7 @@ const std::vector<Case>& catalogue() {
                                109)}},
        "{t} run s.toml --duration 1e5 --timestep 0.1 --output-interval 1e-4",
        1,
-       "tumble: error: this run would write about 680 GB (1000000000 steps, 1000000001 samples): enlarge "
+       "tumble: error: this run would write up to 680 GB (1000000000 steps, 1000000001 samples): enlarge "
        "--output-interval, choose fewer --fields, or give --force to write it anyway"},
       {"cli: inertia unknown shape",
        {},

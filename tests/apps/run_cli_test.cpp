@@ -440,7 +440,7 @@ TEST(CheckCli, StatesTheRunsStepsSamplesSizeAndTime) {
   // t_handle: 20 s at h = 1e-3 with samples every 0.01 s, one body.
   const auto r = run_tumble("check " + example("t_handle.toml"));
   ASSERT_EQ(r.status, 0) << r.output;
-  EXPECT_NE(r.output.find("  plan         20000 steps, 2001 samples of 1 row; output about "),
+  EXPECT_NE(r.output.find("  plan         20000 steps, 2001 samples of 1 row; output up to "),
             std::string::npos)
       << r.output;
   EXPECT_NE(r.output.find(" on this machine (one thread)"), std::string::npos) << r.output;

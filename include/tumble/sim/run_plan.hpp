@@ -21,7 +21,7 @@ struct RunPlan {
   /// Rows of the trajectory: samples × (bodies + particles).
   double rows = 0;
   /// Bytes of the outputs: the trajectory (CSV: the widest rows, 17 significant digits; HDF5: 8 bytes
-  /// a value) and the diagnostics (one row per sample). An upper estimate for CSV.
+  /// a value) and the diagnostics (one row per sample). For CSV an upper bound (full-precision numbers; a tumbling body writes about 0.7 of it, a body at rest less).
   double csv_bytes = 0, hdf5_bytes = 0;
 };
 
