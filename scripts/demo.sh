@@ -14,3 +14,6 @@ echo
 echo "The trajectory is in out/t_handle.csv (t, body, position, quaternion w,x,y,z, velocity and angular"
 echo "velocity, world) and the energy and momenta in out/t_handle.diagnostics.csv. More scenes: examples/*.toml;"
 echo "validate one with 'build/release/bin/tumble check FILE'; the format is docs/scene-format.md."
+echo
+echo "== the same from Python (Debian's /usr/bin/python3 with NumPy): examples/python/t_handle_flips.py =="
+PYTHONPATH=build/release/python /usr/bin/python3 examples/python/t_handle_flips.py

@@ -1,0 +1,11 @@
+#pragma once
+// The parts of the Python module `tumble._tumble`, each bound by its own file.
+#include <pybind11/pybind11.h>
+
+namespace tumble::python {
+
+void bind_mass(pybind11::module_& m);           // mass.cpp: MassProperties, shapes, meshes
+void bind_scene(pybind11::module_& m);          // scene.cpp: Scene, load_scene, simulate
+void bind_euler_poinsot(pybind11::module_& m);  // euler_poinsot.cpp: the analytic free motion
+
+}  // namespace tumble::python

@@ -1,0 +1,167 @@
+// Scenes and runs in Python: tumble.Scene, load_scene, and simulate, which records every sample as
+// NumPy arrays made from the output-field table (sim/output_fields.hpp), as the CSV and HDF5 writers are.
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include "bindings.hpp"
+#include "tumble/integrate/integrator.hpp"
+#include "tumble/io/scene.hpp"
+#include "tumble/sim/output_fields.hpp"
+
+namespace py = pybind11;
+
+namespace tumble::python {
+namespace {
+
+/// Samples of one quantity, grown as the run goes and handed to NumPy as (T, ...shape) at the end.
+struct Series {
+  std::vector<double> values;
+  std::vector<py::ssize_t> shape;  // of one sample
+  py::array_t<double> array() const {
+    std::vector<py::ssize_t> full{0};
+    py::ssize_t per = 1;
+    for (const py::ssize_t n : shape) per *= n;
+    full[0] = per == 0 ? 0 : static_cast<py::ssize_t>(values.size()) / per;
+    full.insert(full.end(), shape.begin(), shape.end());
+    py::array_t<double> a(full);
+    std::copy(values.begin(), values.end(), a.mutable_data());
+    return a;
+  }
+};
+
+py::dict simulate(const Scene& scene, std::optional<std::string> integrator,
+                  std::optional<std::string> formulation, std::optional<double> timestep,
+                  std::optional<double> duration, std::optional<double> output_interval,
+                  std::optional<double> rtol, std::optional<double> atol, std::optional<int> threads,
+                  std::optional<std::vector<std::string>> field_names) {
+  RunSettings s = scene.settings;
+  if (integrator) s.integrator = *integrator;
+  if (formulation) s.formulation = parse_formulation(*formulation);
+  if (timestep) s.timestep = *timestep;
+  if (duration) s.duration = *duration;
+  if (output_interval) s.output_interval = *output_interval;
+  if (rtol) s.tolerances.relative = *rtol;
+  if (atol) s.tolerances.absolute = *atol;
+  if (threads) s.threads = *threads;
+  validate(s);
+  const std::vector<const BodyField*> fields =
+      body_fields(field_names ? *field_names : scene.output_fields);  // names checked here
+  const Model& model = scene.model;
+  const auto rows = static_cast<py::ssize_t>(model.bodies.size() + model.particles.size());
+
+  std::vector<double> t;
+  std::vector<Series> body(fields.size());
+  for (size_t f = 0; f < fields.size(); ++f) body[f].shape = {rows, fields[f]->width};
+  const auto system = system_fields();
+  std::vector<Series> diagnostics(system.size());
+  for (size_t f = 0; f < system.size(); ++f) diagnostics[f].shape = {system[f].width};
+  DriftMonitor monitor(model, scene.initial, scene.conserved, scene.drift_threshold, s);
+  {
+    py::gil_scoped_release free_python;  // the run touches no Python object
+    simulate(model, scene.initial, s, [&](const SystemState& state) {
+      t.push_back(state.t);
+      for (size_t f = 0; f < fields.size(); ++f) {
+        std::vector<double>& v = body[f].values;
+        const auto w = static_cast<size_t>(fields[f]->width);
+        for (size_t i = 0; i < model.bodies.size(); ++i) {
+          v.resize(v.size() + w);
+          fields[f]->of_body(model.bodies[i], state.bodies[i], v.data() + v.size() - w);
+        }
+        for (const ParticleState& p : state.particles) {
+          v.resize(v.size() + w);
+          fields[f]->of_particle(p, v.data() + v.size() - w);
+        }
+      }
+      const DriftSample d = monitor.observe(state);
+      for (size_t f = 0; f < system.size(); ++f) {
+        std::vector<double>& v = diagnostics[f].values;
+        const auto w = static_cast<size_t>(system[f].width);
+        v.resize(v.size() + w, std::numeric_limits<double>::quiet_NaN());  // NaN: undefined here
+        if (!system[f].of_sample(d, v.data() + v.size() - w)) {
+          std::fill(v.end() - static_cast<std::ptrdiff_t>(w), v.end(),
+                    std::numeric_limits<double>::quiet_NaN());
+        }
+      }
+      return true;
+    });
+  }
+  py::dict out, arrays, units, frames, diag;
+  out["t"] = py::array_t<double>(static_cast<py::ssize_t>(t.size()), t.data());
+  for (size_t f = 0; f < fields.size(); ++f) {
+    const std::string name(fields[f]->name);
+    arrays[name.c_str()] = body[f].array();
+    units[name.c_str()] = std::string(fields[f]->unit);
+    frames[name.c_str()] = std::string(fields[f]->frame);
+  }
+  for (size_t f = 0; f < system.size(); ++f) {
+    py::array_t<double> a = diagnostics[f].array();
+    diag[std::string(system[f].name).c_str()] = system[f].width == 1 ? py::object(a.attr("reshape")(-1))
+                                                                     : py::object(a);
+  }
+  out["fields"] = arrays;
+  out["units"] = units;
+  out["frames"] = frames;
+  out["diagnostics"] = diag;
+  std::vector<std::string> names;
+  for (const RigidBody& b : model.bodies) names.push_back(b.name());
+  for (const Particle& p : model.particles) names.push_back(p.name);
+  out["names"] = names;
+  out["integrator"] = s.integrator;
+  out["formulation"] = formulation_name(s.formulation);
+  out["timestep"] = s.timestep;
+  if (auto w = monitor.warning()) out["warning"] = *w;
+  return out;
+}
+
+}  // namespace
+
+void bind_scene(py::module_& m) {
+  py::class_<Scene>(m, "Scene", "A scene file read and validated: bodies, particles, forces, settings.")
+      .def_property_readonly("path", [](const Scene& s) { return s.path; })
+      .def_readonly("text", &Scene::text, "the scene file's TOML")
+      .def_property_readonly(
+          "bodies",
+          [](const Scene& s) {
+            std::vector<std::string> names;
+            for (const RigidBody& b : s.model.bodies) names.push_back(b.name());
+            return names;
+          },
+          "the bodies' names, in file order")
+      .def_property_readonly(
+          "particles",
+          [](const Scene& s) {
+            std::vector<std::string> names;
+            for (const Particle& p : s.model.particles) names.push_back(p.name);
+            return names;
+          },
+          "the particles' names")
+      .def_property_readonly(
+          "duration", [](const Scene& s) { return s.settings.duration; }, "s")
+      .def_property_readonly(
+          "timestep", [](const Scene& s) { return s.settings.timestep; }, "s")
+      .def_property_readonly("integrator", [](const Scene& s) { return s.settings.integrator; })
+      .def_readonly("warnings", &Scene::warnings);
+  m.def("load_scene", &load_scene, py::arg("path"),
+        "Read and validate a scene file (TOML, docs/scene-format.md); ValueError 'file:line:column: ...' "
+        "for anything wrong in it, OSError if it cannot be read.");
+  m.def("parse_scene", &parse_scene, py::arg("text"), py::arg("path") = "scene.toml",
+        "A scene from TOML text; `path` names it in messages and anchors relative mesh paths.");
+  m.def("_simulate", &simulate, py::arg("scene"), py::arg("integrator"), py::arg("formulation"),
+        py::arg("timestep"), py::arg("duration"), py::arg("output_interval"), py::arg("rtol"),
+        py::arg("atol"), py::arg("threads"), py::arg("fields"));
+  m.def(
+      "output_fields",
+      [] {
+        std::vector<std::string> names;
+        for (const BodyField& f : body_fields()) names.emplace_back(f.name);
+        return names;
+      },
+      "the names of every per-body output field (docs/scene-format.md)");
+}
+
+}  // namespace tumble::python
