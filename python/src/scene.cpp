@@ -1,5 +1,6 @@
 // Scenes and runs in Python: tumble.Scene, load_scene, and simulate, which records every sample as
 // NumPy arrays made from the output-field table (sim/output_fields.hpp), as the CSV and HDF5 writers are.
+#include <pybind11/functional.h>
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
@@ -9,6 +10,8 @@
 #include <optional>
 
 #include "bindings.hpp"
+#include "tumble/error.hpp"
+#include "tumble/forces/forces.hpp"
 #include "tumble/integrate/integrator.hpp"
 #include "tumble/io/scene.hpp"
 #include "tumble/sim/output_fields.hpp"
@@ -34,11 +37,70 @@ struct Series {
   }
 };
 
-py::dict simulate(const Scene& scene, std::optional<std::string> integrator,
+/// A force law written in Python, called once per block of bodies (never once per body) with the time,
+/// the bodies' indices and their world quantities as (n, 3) and (n, 4) arrays; it returns the force
+/// (N) and the torque about the centre of mass (N·m), world axes, as two (n, 3) arrays.
+std::shared_ptr<const ForceModel> python_force(py::function f) {
+  return std::make_shared<const BlockCallback>(
+      [f = std::move(f)](const BodyBlock& b, BlockLoads& loads) {
+        py::gil_scoped_acquire python;
+        const auto n = static_cast<py::ssize_t>(b.count);
+        py::array_t<std::int64_t> index(n);
+        py::array_t<double> o({n, py::ssize_t{3}}), q({n, py::ssize_t{4}}), v({n, py::ssize_t{3}}),
+            w({n, py::ssize_t{3}});
+        auto I = index.mutable_unchecked<1>();
+        auto O = o.mutable_unchecked<2>();
+        auto Q = q.mutable_unchecked<2>();
+        auto V = v.mutable_unchecked<2>();
+        auto W = w.mutable_unchecked<2>();
+        for (py::ssize_t j = 0; j < n; ++j) {
+          I(j) = static_cast<std::int64_t>(b.begin) + j;
+          for (int k = 0; k < 3; ++k) {
+            O(j, k) = b.o[k][j];
+            V(j, k) = b.v[k][j];
+            W(j, k) = b.omega_w[k][j];
+          }
+          for (int k = 0; k < 4; ++k) Q(j, k) = b.q[k][j];
+        }
+        const py::object result = f(b.t, index, o, q, v, w);
+        const auto pair = result.cast<py::tuple>();
+        if (pair.size() != 2) throw InvalidArgument("the force function must return (force, torque)");
+        using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+        const auto F = pair[0].cast<Array>();
+        const auto T = pair[1].cast<Array>();
+        for (const Array* a : {&F, &T}) {
+          if (a->ndim() != 2 || a->shape(0) != n || a->shape(1) != 3) {
+            throw InvalidArgument(
+                py::str("the force function returned an array of shape {}; force and torque must be (n, 3) "
+                        "for the n = {} bodies it was given")
+                    .format(py::getattr(*a, "shape"), n)
+                    .cast<std::string>());
+          }
+        }
+        const auto Fv = F.unchecked<2>();
+        const auto Tv = T.unchecked<2>();
+        for (py::ssize_t j = 0; j < n; ++j) {
+          loads.add(static_cast<size_t>(j), Vec3(Fv(j, 0), Fv(j, 1), Fv(j, 2)),
+                    Vec3(Tv(j, 0), Tv(j, 1), Tv(j, 2)));
+        }
+      },
+      "a Python force function");
+}
+
+py::dict simulate(const Scene& scene_in, std::optional<std::string> integrator,
                   std::optional<std::string> formulation, std::optional<double> timestep,
                   std::optional<double> duration, std::optional<double> output_interval,
                   std::optional<double> rtol, std::optional<double> atol, std::optional<int> threads,
-                  std::optional<std::vector<std::string>> field_names) {
+                  std::optional<std::vector<std::string>> field_names, std::optional<py::function> force) {
+  // A Python force joins a copy of the model (the force list is shared, the bodies copied); what it
+  // conserves is unknown, so no drift is judged, and it runs on one thread (one interpreter).
+  std::optional<Scene> with_force;
+  if (force) {
+    with_force.emplace(scene_in);
+    with_force->model.forces.push_back(python_force(*force));
+    with_force->conserved = Conservation{false, false, false};
+  }
+  const Scene& scene = with_force ? *with_force : scene_in;
   RunSettings s = scene.settings;
   if (integrator) s.integrator = *integrator;
   if (formulation) s.formulation = parse_formulation(*formulation);
@@ -48,6 +110,7 @@ py::dict simulate(const Scene& scene, std::optional<std::string> integrator,
   if (rtol) s.tolerances.relative = *rtol;
   if (atol) s.tolerances.absolute = *atol;
   if (threads) s.threads = *threads;
+  if (force) s.threads = 1;
   validate(s);
   const std::vector<const BodyField*> fields =
       body_fields(field_names ? *field_names : scene.output_fields);  // names checked here
@@ -153,7 +216,7 @@ void bind_scene(py::module_& m) {
         "A scene from TOML text; `path` names it in messages and anchors relative mesh paths.");
   m.def("_simulate", &simulate, py::arg("scene"), py::arg("integrator"), py::arg("formulation"),
         py::arg("timestep"), py::arg("duration"), py::arg("output_interval"), py::arg("rtol"),
-        py::arg("atol"), py::arg("threads"), py::arg("fields"));
+        py::arg("atol"), py::arg("threads"), py::arg("fields"), py::arg("force"));
   m.def(
       "output_fields",
       [] {

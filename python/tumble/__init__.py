@@ -30,7 +30,7 @@ from ._tumble import (  # noqa: F401  (re-exported)
 from . import _tumble
 
 __all__ = [
-    "MassProperties", "MeshMassProperties", "Scene", "Trajectory", "box", "cylinder", "ellipsoid",
+    "MassProperties", "MeshMassProperties", "Scene", "Trajectory", "bodies", "box", "cylinder", "ellipsoid",
     "euler_poinsot", "inertia", "load_scene", "mesh_mass_properties", "output_fields", "parse_scene",
     "simulate", "sphere",
 ]
@@ -78,17 +78,40 @@ class Trajectory:
 
 
 def simulate(scene, integrator=None, formulation=None, timestep=None, duration=None,
-             output_interval=None, rtol=None, atol=None, threads=None, fields=None):
+             output_interval=None, rtol=None, atol=None, threads=None, fields=None, force=None):
     """Run a scene and return its Trajectory. Arguments left None take the scene's [simulation]
     values (as `tumble run` options do): integrator (e.g. "rk4", "splitting", "dopri45", "exact"),
     formulation ("world", "mixed", "body"), timestep and duration and output_interval (s; 0 = every
     step), rtol/atol for adaptive integrators, threads, and fields (a list of output field names,
-    default the scene's [output] fields or position, orientation, velocity, angular_velocity)."""
+    default the scene's [output] fields or position, orientation, velocity, angular_velocity).
+
+    force: a force law in Python, added to the scene's forces, called once per block of bodies (not
+    once per body) as force(t, index, position, orientation, velocity, omega) with the bodies' indices
+    (n,) and world arrays (n, 3) and (n, 4) (centre of mass, w-first quaternion of the principal
+    frame, centre-of-mass velocity, angular velocity); it returns (force, torque), two (n, 3) arrays
+    in N and N m, world axes, the torque about the centre of mass. Such a run uses one thread and
+    judges no drift (what the force conserves is unknown)."""
     if isinstance(scene, (str, bytes)) or hasattr(scene, "__fspath__"):
         scene = load_scene(scene)
     return Trajectory(_tumble._simulate(scene, integrator, formulation, timestep, duration,
                                         output_interval, rtol, atol, threads,
-                                        None if fields is None else list(fields)))
+                                        None if fields is None else list(fields), force))
+
+
+def bodies(mass, moments, position=None, orientation=None, velocity=None, omega=None, omega_frame="world",
+           gravity=None, duration=1.0, timestep=1e-3, output_interval=0.01, integrator="rk4"):
+    """A scene of N rigid bodies from arrays, for the batched engine: mass (N,) kg; moments (N, 3)
+    principal moments (kg m^2) about each body's reference axes, which are its principal axes at its
+    centre of mass; position (N, 3) m, orientation (N, 4) w first, velocity (N, 3) m/s, omega (N, 3)
+    rad/s in omega_frame ("world", "reference" or "principal"); optional uniform gravity (3,) m/s^2.
+    Bodies are named body_0 ... body_N-1. Returns a Scene for simulate()."""
+    def rows(a, width):
+        return None if a is None else _np.ascontiguousarray(_np.reshape(a, (-1, width)), dtype=_np.float64)
+    return _tumble._scene_from_arrays(
+        _np.ascontiguousarray(_np.ravel(mass), dtype=_np.float64), rows(moments, 3), rows(position, 3),
+        rows(orientation, 4), rows(velocity, 3), rows(omega, 3), omega_frame,
+        None if gravity is None else _np.asarray(gravity, dtype=_np.float64),
+        float(duration), float(timestep), float(output_interval), integrator)
 
 
 class _MeshMass:
