@@ -32,7 +32,7 @@ from . import _tumble
 __all__ = [
     "MassProperties", "MeshMassProperties", "Scene", "Trajectory", "bodies", "box", "cylinder", "ellipsoid",
     "euler_poinsot", "inertia", "load_scene", "mesh_mass_properties", "output_fields", "parse_scene",
-    "simulate", "sphere",
+    "save_scene", "scene_from_dict", "simulate", "sphere",
 ]
 
 
@@ -168,3 +168,29 @@ def euler_poinsot(moments, omega_b0, t, q0=(1.0, 0.0, 0.0, 0.0)):
     raw = _tumble._euler_poinsot(_np.asarray(moments, dtype=float), _np.asarray(omega_b0, dtype=float),
                                  _np.asarray(q0, dtype=float), times)
     return FreeMotion(times, raw)
+
+
+def scene_from_dict(scene, path="scene.toml"):
+    """A scene built in Python: a dict with the keys of a scene file (docs/scene-format.md), e.g.
+    {"simulation": {"duration": 10.0}, "bodies": [{"name": "a", "shape": {"type": "box", "size":
+    [0.1, 0.2, 0.3]}, "density": 2700}]}. It is written as TOML (tomli_w) and read by the same
+    reader as a file, so every check and message is the file's; `path` anchors mesh paths."""
+    import tomli_w
+    return parse_scene(tomli_w.dumps(scene), str(path))
+
+
+def save_scene(scene, path):
+    """Write a scene as TOML to `path`: a Scene read from a file or text (its TOML, as given), or a
+    dict as scene_from_dict takes (validated first). Scenes made by bodies() from arrays have no TOML:
+    give their bodies as a [[body_tables]] CSV file instead."""
+    if isinstance(scene, dict):
+        import tomli_w
+        text = tomli_w.dumps(scene)
+        parse_scene(text, str(path))  # refuse what could not be loaded back
+    else:
+        text = scene.text
+        if not text:
+            raise ValueError("this scene was made from arrays and has no TOML: write its bodies as a "
+                             "[[body_tables]] CSV file (docs/scene-format.md) and a scene that names it")
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(text)
