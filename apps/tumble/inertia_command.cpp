@@ -288,7 +288,10 @@ Runner add_inertia_command(CLI::App& app) {
                   "STL holds float32 by its format; the other formats assimp reads (3MF, glTF, DAE, ...) "
                   "are read as float32. Only regular files of at most 1 GiB are read (FIFOs and devices "
                   "are refused); raise the limit with the environment variable TUMBLE_MAX_INPUT_BYTES "
-                  "(bytes, or with k, M, G: e.g. TUMBLE_MAX_INPUT_BYTES=8G)");
+                  "(bytes, or with k, M, G: e.g. TUMBLE_MAX_INPUT_BYTES=8G). assimp runs in a child "
+                  "process: a crash there is an error, and it is stopped after 30 s + 1 s per MiB "
+                  "(TUMBLE_LOADER_TIMEOUT_S=600 raises it) or beyond 32 x the file size of memory, at "
+                  "least 2 GiB (TUMBLE_LOADER_MEMORY_BYTES=64G)");
   auto* shape = cmd->add_option("--shape", o->shape,
                                 "a primitive instead of a file: box, sphere, ellipsoid, cylinder, "
                                 "capsule, cone, torus (axis z, centred; cone base at z=0)");

@@ -75,9 +75,9 @@ std::uint64_t checked_size(const std::filesystem::path& path, std::string_view w
 
 }  // namespace
 
-std::uint64_t max_input_bytes() {
-  const char* text = std::getenv(kMaxInputBytesVariable);
-  if (text == nullptr || *text == '\0') return kDefaultMaxInputBytes;
+std::uint64_t byte_count_from_environment(const char* name, std::uint64_t fallback) {
+  const char* text = std::getenv(name);
+  if (text == nullptr || *text == '\0') return fallback;
   const std::string_view s(text);
   std::uint64_t value = 0;
   const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
@@ -92,9 +92,13 @@ std::uint64_t max_input_bytes() {
     throw InvalidArgument(
         fmt::format("{}='{}' is not a byte count: give a positive whole number of bytes, "
                     "optionally followed by k, M, G or T (powers of 1024), e.g. {}=8G",
-                    kMaxInputBytesVariable, s.substr(0, 40), kMaxInputBytesVariable));
+                    name, s.substr(0, 40), name));
   }
   return value << shift;
+}
+
+std::uint64_t max_input_bytes() {
+  return byte_count_from_environment(kMaxInputBytesVariable, kDefaultMaxInputBytes);
 }
 
 std::uint64_t checked_input_size(const std::filesystem::path& path, std::string_view what) {

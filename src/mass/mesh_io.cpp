@@ -1,19 +1,18 @@
 // Loading mesh files. OBJ, OFF, PLY (ASCII and binary) and ASCII STL are read by tumble's own readers
 // (mesh_read_*.cpp: every decimal digit kept, every binary value as stored, every count checked against
 // the file's size); binary STL, whose size is checked first, and every other format go through assimp
-// (every mesh of the scene, node transforms applied, polygons triangulated). Either way the file must
+// (every mesh of the scene, node transforms applied, polygons triangulated), in a child process that
+// may crash, hang or run out of memory without taking tumble along (mesh_assimp.hpp). Either way the file must
 // be a regular file within the input limit (input_file.hpp), parts are counted (and one may be
 // picked), and vertices are welded by tumble (mesh_weld.cpp says why not by assimp).
 #include "tumble/mass/mesh_io.hpp"
 
 #include <algorithm>
-#include <assimp/Importer.hpp>
-#include <assimp/postprocess.h>
-#include <assimp/scene.h>
 #include <cmath>
 #include <fmt/format.h>
 #include <system_error>
 
+#include "mesh_assimp.hpp"
 #include "mesh_text.hpp"
 #include "tumble/error.hpp"
 #include "tumble/mass/input_file.hpp"
@@ -70,20 +69,26 @@ std::string listed_names(const std::vector<std::string>& names) {
   return fmt::format(" ({}{})", out, names.size() > shown ? ", ..." : "");
 }
 
+/// "1 mesh", "2 meshes", "3 objects".
+std::string counted(std::size_t n, const std::string& word) {
+  const bool es = !word.empty() && (word.back() == 'h' || word.back() == 's');
+  return fmt::format("{} {}{}", n, word, n == 1 ? "" : es ? "es" : "s");
+}
+
 /// Checks the part choice and, when several parts are merged, says so.
 void note_parts(const std::filesystem::path& path, const std::vector<std::string>& names,
                 const std::string& word, std::size_t part, LoadedMesh& out) {
   out.parts = names.size();
   if (part > names.size()) {
-    throw InvalidArgument(fmt::format("{}: part {} does not exist: the file has {} {}{}{}; give 1 to {}",
-                                      path.string(), part, names.size(), word, names.size() == 1 ? "" : "s",
-                                      listed_names(names), names.size()));
+    throw InvalidArgument(fmt::format("{}: part {} does not exist: the file has {}{}; give 1 to {}",
+                                      path.string(), part, counted(names.size(), word), listed_names(names),
+                                      names.size()));
   }
   if (part == 0 && names.size() > 1) {
     out.warnings.push_back(
-        fmt::format("{} holds {} {}s{}; they were merged into one body (to take one "
+        fmt::format("{} holds {}{}; they were merged into one body (to take one "
                     "alone: tumble inertia --part K, K = 1 to {})",
-                    path.string(), names.size(), word, listed_names(names), names.size()));
+                    path.string(), counted(names.size(), word), listed_names(names), names.size()));
   }
 }
 
@@ -135,77 +140,13 @@ LoadedMesh finish(const std::filesystem::path& path, RawMesh raw, const MeshLoad
   return out;
 }
 
-/// Names the bad vertex by the first face that uses it: assimp renumbers vertices (OBJ corners are
-/// split per face), but faces keep the file's order, so "face 12 of mesh 0" is findable in the file.
-[[noreturn]] void throw_non_finite(const std::filesystem::path& path, const aiMesh& part, unsigned mesh_index,
-                                   unsigned vertex, double scale) {
-  const aiVector3D& p = part.mVertices[vertex];
-  std::string where = fmt::format("vertex {} of mesh {}", vertex, mesh_index);
-  for (unsigned f = 0; f < part.mNumFaces; ++f) {
-    const aiFace& face = part.mFaces[f];
-    for (unsigned k = 0; k < face.mNumIndices; ++k) {
-      if (face.mIndices[k] == vertex) {
-        where = fmt::format("corner {} of face {} of mesh {}", k, f, mesh_index);
-        f = part.mNumFaces - 1;  // stop at the first face that uses it
-        break;
-      }
-    }
-  }
-  throw FileError(fmt::format("{}: {} has non-finite coordinates ({}, {}, {}){}; fix the file", path.string(),
-                              where, p.x, p.y, p.z,
-                              scale == 1.0 ? "" : fmt::format(" after scaling by {}", scale)));
-}
-
-/// Reads the file through assimp: from `memory` (the file's bytes, already checked) when given, else
-/// from the path (formats that refer to other files: OBJ materials, glTF buffers).
+/// Reads the file through assimp, in a child process (mesh_assimp.hpp): from `memory` (the file's
+/// bytes, already checked) when given, else from the path (glTF, whose buffers may be other files).
 LoadedMesh load_with_assimp(const std::filesystem::path& path, const MeshLoadOptions& options,
                             std::string format, std::string precision, std::vector<std::string> warnings,
-                            std::string_view memory = {}, const char* hint = "") {
-  Assimp::Importer importer;
-  // Points and lines carry no surface: SortByPType splits them off and this drops them.
-  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-  const unsigned flags = aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_SortByPType;
-  const aiScene* scene = memory.empty()
-                             ? importer.ReadFile(path.string(), flags)
-                             : importer.ReadFileFromMemory(memory.data(), memory.size(), flags, hint);
-  if (scene == nullptr) {
-    throw FileError(fmt::format("{}: cannot read the mesh: {}", path.string(), importer.GetErrorString()));
-  }
-
-  // Each assimp mesh with triangles is a part (assimp makes one per object and material).
-  RawMesh raw;
-  raw.part_word = "mesh";
+                            std::uint64_t file_bytes, std::string_view memory = {}, const char* hint = "") {
+  RawMesh raw = mesh_assimp::read(path, options.scale, memory, hint, file_bytes);
   raw.warnings = std::move(warnings);
-  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
-    const aiMesh* part = scene->mMeshes[m];
-    const auto base = static_cast<std::uint32_t>(raw.vertices.size());
-    const auto part_index = static_cast<std::uint32_t>(raw.part_names.size());
-    for (unsigned i = 0; i < part->mNumVertices; ++i) {
-      const aiVector3D& p = part->mVertices[i];
-      const Vec3 v = options.scale *
-                     Vec3(static_cast<double>(p.x), static_cast<double>(p.y), static_cast<double>(p.z));
-      if (!v.allFinite()) throw_non_finite(path, *part, m, i, options.scale);
-      raw.vertices.push_back(v);
-    }
-    bool any = false;
-    for (unsigned f = 0; f < part->mNumFaces; ++f) {
-      const aiFace& face = part->mFaces[f];
-      if (face.mNumIndices != 3) continue;  // points and lines left over in a mixed mesh
-      raw.triangles.push_back({base + face.mIndices[0], base + face.mIndices[1], base + face.mIndices[2]});
-      raw.part_of.push_back(part_index);
-      any = true;
-    }
-    if (any) {
-      const std::string name = part->mName.C_Str();
-      raw.part_names.push_back(name.empty() ? fmt::format("mesh {}", m) : name);
-    }
-  }
-  if (raw.triangles.empty()) {
-    throw FileError(
-        fmt::format("{}: the file holds no triangles ({} meshes, only points or lines, or empty); export the "
-                    "surface as triangles or polygons",
-                    path.string(), scene->mNumMeshes));
-  }
   return finish(path, std::move(raw), options, std::move(format), std::move(precision));
 }
 
@@ -257,7 +198,7 @@ LoadedMesh load_stl(const std::filesystem::path& path, std::string bytes, const 
         fmt::format("{}: a binary STL of 0 triangles (its 84-byte header only): no surface", path.string()));
   }
   if (size >= 84 && 84 + 50 * declared == size) {
-    return load_with_assimp(path, options, "binary STL", "float32, the format's own", {}, bytes, "stl");
+    return load_with_assimp(path, options, "binary STL", "float32, the format's own", {}, size, bytes, "stl");
   }
   refuse_wide_text(path, bytes);
   if (!starts_with_solid(bytes)) {
@@ -324,8 +265,20 @@ LoadedMesh load_mesh(const std::filesystem::path& path, const MeshLoadOptions& o
     return ext == ".obj" ? finish(path, mesh_text::read_obj(text), options, "OBJ (text)", kTextPrecision)
                          : finish(path, mesh_text::read_off(text), options, "OFF (text)", kTextPrecision);
   }
-  // assimp reads the file itself (it may refer to others); it must be a regular file within the limit.
-  checked_input_size(path, "mesh file");
+  // assimp parses the bytes tumble read (a regular file within the limit), except glTF's text form,
+  // whose buffers may be other files: assimp opens it, and them, itself.
+  std::string bytes;
+  std::uint64_t size = 0;
+  if (ext == ".gltf") {
+    size = checked_input_size(path, "mesh file");
+  } else {
+    bytes = read_input_file(path, "mesh file");
+    size = bytes.size();
+  }
+  if (size == 0) {
+    throw FileError(fmt::format(
+        "{}: the file is empty (0 bytes); export the surface as triangles or polygons", path.string()));
+  }
   const bool float32_format = ext == ".gltf" || ext == ".glb";  // float32 by the format's definition
   std::vector<std::string> warnings;
   if (!float32_format) {
@@ -335,9 +288,10 @@ LoadedMesh load_mesh(const std::filesystem::path& path, const MeshLoadOptions& o
                     "(OBJ, OFF, PLY and ASCII STL are read exactly)",
                     path.string()));
   }
+  const std::string hint = ext.empty() ? "" : ext.substr(1);
   return load_with_assimp(path, options, ext.empty() ? "mesh" : ext.substr(1),
                           float32_format ? "float32, the format's own" : "float32 (assimp's)",
-                          std::move(warnings));
+                          std::move(warnings), size, bytes, hint.c_str());
 }
 
 }  // namespace tumble

@@ -23,6 +23,11 @@ constexpr const char* kMaxInputBytesVariable = "TUMBLE_MAX_INPUT_BYTES";
 /// Throws InvalidArgument when the variable is not a byte count.
 std::uint64_t max_input_bytes();
 
+/// The byte count the environment variable `name` gives (a whole number, optionally followed by k, M, G
+/// or T, powers of 1024), or `fallback` when it is unset or empty. Throws InvalidArgument when it is not
+/// a positive byte count.
+std::uint64_t byte_count_from_environment(const char* name, std::uint64_t fallback);
+
 /// The size of the regular file `path`, checked: FileError when it does not exist, is not a regular
 /// file (the message names what it is), or is larger than max_input_bytes() (the message names the
 /// limit and how to raise it). `what` names the file in messages ("mesh file", "scene file").

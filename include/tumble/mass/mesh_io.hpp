@@ -4,7 +4,13 @@
 // value as the file stores it (a double stays a double); binary STL (float32 by its format) and the
 // other formats assimp knows go through assimp, which keeps float32 coordinates. Only regular files
 // within the input limit are read (input_file.hpp: TUMBLE_MAX_INPUT_BYTES).
+//
+// assimp runs in a child process (fuzzing made it segfault, abort and loop forever on mutated DAE, X,
+// GLB and 3MF files): its crash, endless loop or runaway allocation becomes a FileError naming the
+// file, and tumble goes on. The child gets loader_timeout_seconds() of wall time and
+// loader_memory_bytes() of address space; the environment variables below change them.
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -12,6 +18,22 @@
 #include "tumble/mass/triangle_mesh.hpp"
 
 namespace tumble {
+
+/// Seconds the assimp child process may take: a decimal number > 0, e.g. TUMBLE_LOADER_TIMEOUT_S=600.
+constexpr const char* kLoaderTimeoutVariable = "TUMBLE_LOADER_TIMEOUT_S";
+/// Address space the assimp child process may allocate: bytes, optionally followed by k, M, G or T
+/// (powers of 1024), e.g. TUMBLE_LOADER_MEMORY_BYTES=64G.
+constexpr const char* kLoaderMemoryVariable = "TUMBLE_LOADER_MEMORY_BYTES";
+
+/// The assimp child's time limit for a file of `file_bytes`: TUMBLE_LOADER_TIMEOUT_S if set, else 30 s
+/// plus 1 s per MiB (rounded up; assimp parses binary STL at about 250 MiB/s, Collada text at about
+/// 20). Throws InvalidArgument when the variable is not a positive number of seconds.
+double loader_timeout_seconds(std::uint64_t file_bytes);
+
+/// The assimp child's memory limit for a file of `file_bytes` (address space beyond what it inherits):
+/// TUMBLE_LOADER_MEMORY_BYTES if set, else 32 times the file's size, at least 2 GiB. Throws
+/// InvalidArgument when the variable is not a byte count.
+std::uint64_t loader_memory_bytes(std::uint64_t file_bytes);
 
 struct MeshLoadOptions {
   double scale = 1.0;    ///< multiplies every coordinate (0.001 for a CAD file in millimetres)
@@ -32,7 +54,9 @@ struct LoadedMesh {
 /// with a warning that counts them, unless options.part picks one. Throws FileError with the path (and
 /// line:column in a text file, element and byte offset in binary PLY) and the reason when the file is
 /// missing, not a regular file, larger than the input limit, unreadable, malformed, truncated, UTF-16,
-/// a point cloud or empty; InvalidArgument for a bad scale or a part that does not exist.
+/// a point cloud or empty, or when assimp crashed, timed out or ran out of memory on it (one line,
+/// with the signal and how to raise a limit); InvalidArgument for a bad scale, a part that does not
+/// exist, or a limit variable that is not a number.
 LoadedMesh load_mesh(const std::filesystem::path& path, const MeshLoadOptions& options = {});
 
 /// Writes a binary STL (for tests, benchmarks and examples). Throws FileError on failure.
