@@ -27,7 +27,19 @@ MassProperties MassSpec::apply(const MassProperties& unit, double mass_per_measu
         fmt::format("the shape has no extent (measure {}), so it cannot carry mass", unit.mass));
   }
   const double factor = kind_ == Kind::density ? value_ * mass_per_measure_unit : value_ / unit.mass;
-  return MassProperties{unit.mass * factor, unit.center_of_mass, unit.inertia * factor, unit.volume};
+  MassProperties out{unit.mass * factor, unit.center_of_mass, unit.inertia * factor, unit.volume};
+  // Found by fuzzing (fuzz/fuzz_mass.cpp): extreme densities, masses or sizes overflowed to inf or
+  // underflowed to 0 and were returned as if they were numbers.
+  if (!std::isfinite(out.mass) || !(out.mass > 0.0) || !out.center_of_mass.allFinite() ||
+      !out.inertia.allFinite()) {
+    throw InvalidArgument(fmt::format(
+        "mass properties out of the range of double: {} {} on a {} of {:.6g} gives a mass of {:.6g} kg{}; "
+        "give values in SI units (kg, m) of a realistic size",
+        kind_ == Kind::density ? "density" : "mass", value_,
+        mass_per_measure_unit == 1.0 ? "measure" : "shell measure", unit.mass, out.mass,
+        out.inertia.allFinite() ? "" : " and a non-finite inertia"));
+  }
+  return out;
 }
 
 }  // namespace tumble
