@@ -1,9 +1,10 @@
 // libFuzzer target: TOML text -> validated scene (tumble::parse_scene). A tumble::Error (SceneError,
 // FileError, InvalidArgument, ...) is the expected way to refuse a scene; anything else is a finding.
-// The scene is named fuzz.toml in a temporary directory that holds small meshes (cube.obj, cube.off,
+// The scene is named fuzz.toml in a temporary directory (not the working directory, so that relative
+// paths on the command line keep working) that holds small meshes (cube.obj, cube.off,
 // cube.ply, cube.stl, and the examples' meshes/t_handle.stl, meshes/asteroid.obj, debris_field.csv), so
 // that scenes naming them go through mesh loading and body tables too.
-#include <unistd.h>
+#include <stdlib.h>  // mkdtemp
 
 #include <cmath>
 #include <cstddef>
@@ -58,27 +59,27 @@ void copy_if_there(const fs::path& from, const fs::path& to) {
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
   char pattern[] = "/tmp/tumble-fuzz-scene-XXXXXX";
   const char* dir = mkdtemp(pattern);
-  if (dir == nullptr || chdir(dir) != 0) std::abort();
+  if (dir == nullptr) std::abort();
   work_dir = dir;
   std::atexit(remove_work_dir);
-  fs::create_directory("meshes");
-  for (const char* sub : {".", "meshes"}) {
-    write(fs::path(sub) / "cube.obj", kCubeObj);
-    write(fs::path(sub) / "cube.off", kCubeOff);
-    write(fs::path(sub) / "cube.ply", kCubePly);
-    write(fs::path(sub) / "cube.stl", kTetraStl);
+  fs::create_directory(work_dir / "meshes");
+  for (const fs::path& sub : {work_dir, work_dir / "meshes"}) {
+    write(sub / "cube.obj", kCubeObj);
+    write(sub / "cube.off", kCubeOff);
+    write(sub / "cube.ply", kCubePly);
+    write(sub / "cube.stl", kTetraStl);
   }
   const fs::path examples = TUMBLE_EXAMPLES_DIR;
-  copy_if_there(examples / "meshes/t_handle.stl", "meshes/t_handle.stl");
-  copy_if_there(examples / "meshes/asteroid.obj", "meshes/asteroid.obj");
-  copy_if_there(examples / "debris_field.csv", "debris_field.csv");
+  copy_if_there(examples / "meshes/t_handle.stl", work_dir / "meshes/t_handle.stl");
+  copy_if_there(examples / "meshes/asteroid.obj", work_dir / "meshes/asteroid.obj");
+  copy_if_there(examples / "debris_field.csv", work_dir / "debris_field.csv");
   return 0;
 }
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   tumble::fuzz::refused_or_ok([&] {
-    const tumble::Scene scene = tumble::parse_scene(text, "fuzz.toml");
+    const tumble::Scene scene = tumble::parse_scene(text, work_dir / "fuzz.toml");
     FUZZ_CHECK(scene.body_info.size() == scene.model.bodies.size());
     FUZZ_CHECK(scene.initial.bodies.size() == scene.model.bodies.size());
     for (const auto& info : scene.body_info) {
