@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "tumble/error.hpp"
@@ -57,6 +58,23 @@ TEST(FuzzRegressions, MassSpecThatOverflowsOrUnderflowsIsRefused) {
   const std::string m = message_of([&] { solid_mass_properties(big, MassSpec::density(1e300)); });
   EXPECT_NE(m.find("out of the range of double"), std::string::npos) << m;
   EXPECT_NO_THROW(solid_mass_properties(tetrahedron(1.0), MassSpec::density(1e300)));
+}
+
+// fuzz_mass, crash-30337a2d (as found): one triangle of coordinates k·2^-12 as a shell of thickness
+// 6.66e-310 m (a subnormal double): mass 1.8e-318 kg and an inertia of subnormals without a digit
+// left, which validated, and whose principal moments came out unordered.
+TEST(FuzzRegressions, SubnormalMassPropertiesAreRefused) {
+  const double s = std::ldexp(1.0, -12);
+  const TriangleMesh sheet{{Vec3(63, 0, 1) * s, Vec3(83, 0, 0) * s, Vec3(0, 1, 0) * s, Vec3(1, 2, 0) * s},
+                           {{3, 1, 0}}};
+  const double thickness = 6.6646e-310;
+  ASSERT_LT(thickness, std::numeric_limits<double>::min());
+  const std::string m = message_of([&] { shell_mass_properties(sheet, thickness, MassSpec::density(1.0)); });
+  EXPECT_NE(m.find("mass properties out of the range of double"), std::string::npos) << m;
+  const MeshMassResult ok = shell_mass_properties(sheet, 1e-3, MassSpec::density(1.0));
+  const PrincipalAxes axes = ok.properties.validated_principal_axes();
+  EXPECT_TRUE(axes.Lambda[0] <= axes.Lambda[1] && axes.Lambda[1] <= axes.Lambda[2]);
+  EXPECT_THROW(solid_mass_properties(tetrahedron(1.0), MassSpec::mass(5e-324)), InvalidArgument);
 }
 
 }  // namespace
