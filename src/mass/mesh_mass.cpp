@@ -115,6 +115,12 @@ MeshMassResult shell_mass_properties(const TriangleMesh& mesh, double thickness,
         name, thickness, shortest, shortest_triangle));
   }
   unit.volume = unit.mass * thickness;  // thin-wall limit: material volume = area · t
+  if (!std::isfinite(unit.volume)) {    // found by fuzz/fuzz_mass.cpp: a volume of inf m^3 was returned
+    throw InvalidArgument(fmt::format(
+        "{}: shell thickness {} m times the surface area {:.6g} m^2 overflows double: give the wall "
+        "thickness in metres",
+        name, thickness, unit.mass));
+  }
   result.properties = spec.apply(unit, thickness);
   return result;
 }

@@ -77,5 +77,14 @@ TEST(FuzzRegressions, SubnormalMassPropertiesAreRefused) {
   EXPECT_THROW(solid_mass_properties(tetrahedron(1.0), MassSpec::mass(5e-324)), InvalidArgument);
 }
 
+// fuzz_mass, crash-4cceed37: a closed mesh as a shell of thickness 1.35e308 m and a total mass of
+// 1.35e308 kg: mass and inertia finite, but the material volume (area · thickness) was inf m^3.
+TEST(FuzzRegressions, ShellVolumeThatOverflowsIsRefused) {
+  const std::string m =
+      message_of([&] { shell_mass_properties(tetrahedron(1.0), 1.348e308, MassSpec::mass(1.348e308), "t"); });
+  EXPECT_NE(m.find("t: shell thickness 1.348e+308 m times the surface area"), std::string::npos) << m;
+  EXPECT_NE(m.find("overflows double"), std::string::npos) << m;
+}
+
 }  // namespace
 }  // namespace tumble
