@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Every test: the formatting check, the GCC release build (warnings are errors), then the same suite
-# built with Clang 14 under AddressSanitizer + UndefinedBehaviorSanitizer.
+# built with Clang 14 under AddressSanitizer + UndefinedBehaviorSanitizer; that build's ctest also runs
+# each libFuzzer target (fuzz/) for 5 s from its seed corpus (bench/fuzz.sh fuzzes for longer).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh

@@ -9,7 +9,7 @@
 // and formats them only when it throws. Strings it returns are views into the parsed TOML, valid as
 // long as that is.
 #include <fmt/format.h>
-#include <toml++/toml.h>
+#include "toml.hpp"
 
 #include <initializer_list>
 #include <optional>

@@ -246,24 +246,42 @@ LoadedMesh load_ply(const std::filesystem::path& path, std::string bytes, const 
                 binary_ply_precision(*vertex));
 }
 
-}  // namespace
-
-LoadedMesh load_mesh(const std::filesystem::path& path, const MeshLoadOptions& options) {
+void check_scale(const std::filesystem::path& path, const MeshLoadOptions& options) {
   if (!std::isfinite(options.scale) || !(options.scale > 0.0)) {
     throw InvalidArgument(
         fmt::format("{}: mesh scale {} is invalid: give a positive factor (e.g. 0.001 for millimetres)",
                     path.string(), options.scale));
   }
+}
+
+bool read_by_tumble(const std::string& ext) {
+  return ext == ".obj" || ext == ".off" || ext == ".stl" || ext == ".ply";
+}
+
+}  // namespace
+
+LoadedMesh load_mesh_bytes(const std::filesystem::path& path, std::string bytes,
+                           const MeshLoadOptions& options) {
+  check_scale(path, options);
   const std::string ext = lower_extension(path);
-  if (ext == ".obj" || ext == ".off" || ext == ".stl" || ext == ".ply") {
+  if (ext == ".stl") return load_stl(path, std::move(bytes), options);
+  if (ext == ".ply") return load_ply(path, std::move(bytes), options);
+  if (ext != ".obj" && ext != ".off") {
+    throw InvalidArgument(
+        fmt::format("{}: reading from memory takes .obj, .off, .ply or .stl, not '{}'", path.string(), ext));
+  }
+  refuse_wide_text(path, bytes);
+  const mesh_text::Text text(path, std::move(bytes), options.scale);
+  return ext == ".obj" ? finish(path, mesh_text::read_obj(text), options, "OBJ (text)", kTextPrecision)
+                       : finish(path, mesh_text::read_off(text), options, "OFF (text)", kTextPrecision);
+}
+
+LoadedMesh load_mesh(const std::filesystem::path& path, const MeshLoadOptions& options) {
+  check_scale(path, options);
+  const std::string ext = lower_extension(path);
+  if (read_by_tumble(ext)) {
     // Read whole, once: a regular file within the input limit (input_file.hpp).
-    std::string bytes = read_input_file(path, "mesh file");
-    if (ext == ".stl") return load_stl(path, std::move(bytes), options);
-    if (ext == ".ply") return load_ply(path, std::move(bytes), options);
-    refuse_wide_text(path, bytes);
-    const mesh_text::Text text(path, std::move(bytes), options.scale);
-    return ext == ".obj" ? finish(path, mesh_text::read_obj(text), options, "OBJ (text)", kTextPrecision)
-                         : finish(path, mesh_text::read_off(text), options, "OFF (text)", kTextPrecision);
+    return load_mesh_bytes(path, read_input_file(path, "mesh file"), options);
   }
   // assimp parses the bytes tumble read (a regular file within the limit), except glTF's text form,
   // whose buffers may be other files: assimp opens it, and them, itself.

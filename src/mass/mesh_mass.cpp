@@ -10,6 +10,20 @@
 #include "tumble/mass/mesh_check.hpp"
 
 namespace tumble {
+namespace {
+
+/// The integrals of coordinates up to x grow like x^5 (inertia of a solid) and overflow double beyond
+/// about 1e61 m (the products on the way, earlier): found by fuzzing (fuzz/fuzz_mass.cpp), a mesh of
+/// finite but huge coordinates gave an infinite or NaN inertia without a word.
+void require_finite_integrals(const MassProperties& unit, double diagonal, const std::string& name) {
+  if (std::isfinite(unit.mass) && unit.center_of_mass.allFinite() && unit.inertia.allFinite()) return;
+  throw MeshError(fmt::format(
+      "{}: the mesh's integrals overflow double (volume or area {:.6g}, bounding-box diagonal {:.6g} m): "
+      "its coordinates are too large; give them in metres, or scale the mesh down",
+      name, unit.mass, diagonal));
+}
+
+}  // namespace
 
 MeshMassResult solid_mass_properties(const TriangleMesh& mesh, const MassSpec& spec,
                                      const std::string& name) {
@@ -26,6 +40,7 @@ MeshMassResult solid_mass_properties(const TriangleMesh& mesh, const MassSpec& s
   MeshMassResult result;
   result.surface_area = report.surface_area;
   MassProperties unit = integrate_solid_mesh(mesh);
+  require_finite_integrals(unit, report.diagonal, name);
   // A closed mesh can still enclose nothing (two triangles back to back, a folded sheet). The
   // rounding of the signed volume is a few ε of Σ|tetrahedra| ≲ area·diagonal/3, far below 1e-12 L³
   // for any mesh with fewer than ~10⁹ triangles of ordinary proportions.
@@ -71,6 +86,7 @@ MeshMassResult shell_mass_properties(const TriangleMesh& mesh, double thickness,
   }
   MeshMassResult result;
   MassProperties unit = detail::unit_properties(detail::surface_moments(mesh));
+  require_finite_integrals(unit, report.diagonal, name);
   if (!(unit.mass > 0.0)) {
     throw MeshError(fmt::format(
         "{}: the surface has zero area (every triangle is degenerate), so it cannot carry mass", name));
@@ -99,6 +115,12 @@ MeshMassResult shell_mass_properties(const TriangleMesh& mesh, double thickness,
         name, thickness, shortest, shortest_triangle));
   }
   unit.volume = unit.mass * thickness;  // thin-wall limit: material volume = area · t
+  if (!std::isfinite(unit.volume)) {    // found by fuzz/fuzz_mass.cpp: a volume of inf m^3 was returned
+    throw InvalidArgument(fmt::format(
+        "{}: shell thickness {} m times the surface area {:.6g} m^2 overflows double: give the wall "
+        "thickness in metres",
+        name, thickness, unit.mass));
+  }
   result.properties = spec.apply(unit, thickness);
   return result;
 }

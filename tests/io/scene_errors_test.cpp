@@ -27,6 +27,32 @@ TEST(SceneErrors, SyntaxError) {
             "bad.toml:5:11: TOML syntax error: Error while parsing value: could not determine value type");
 }
 
+// Found by fuzz/fuzz_scene.cpp: malformed text reached undefined behaviour inside toml++ 3.3's parser
+// (src/io/toml.hpp): a code point such as U+03C9 (ω) where the parser asks whether a character is
+// whitespace reached a __builtin_unreachable (in every build), and a table header whose key starts
+// with neither a bare-key character nor a quote broke a precondition (an assertion abort in a debug
+// build, __builtin_assume under Clang). Each is now a syntax error like any other.
+TEST(SceneErrors, TomlParserUndefinedBehaviour) {
+  for (const char* text : {"[\n[bodies]]\n", "[[[1]]]", "[[[a]]]", "[[[]]", "[[=", "[&", "[[\n", "[ \t\n",
+                           "a\xcf\x89 = 1\n", "a \xcf\x89= 1\n", "\xcc\xaa", "\xe2\xb4\x80 = 1"}) {
+    const std::string m = error_of(text);
+    EXPECT_EQ(m.rfind("bad.toml:", 0), 0u) << text << " -> " << m;
+    EXPECT_NE(m.find("TOML syntax error"), std::string::npos) << text << " -> " << m;
+  }
+  // As found (crash-0cb0c2c1, shortened): a stray '[' line before [[bodies]].
+  EXPECT_EQ(error_of("[simulation]\nduration = 1.0\n[\n[bodies]]\nname = \"cube\"\n"),
+            "bad.toml:3:2: TOML syntax error: Error while parsing key: expected bare key starting character "
+            "or string delimiter, saw '\\n'");
+  // As found (crash-7c596a57, shortened): "ω" typed into a key.
+  EXPECT_EQ(error_of(kSim + "[[bodies]]\nname = \"top\"\n\xcf\x89 = [0.0, 0.0, 1.0]\n"),
+            "bad.toml:5:1: TOML syntax error: Error while parsing root table: expected keys, tables, "
+            "whitespace or comments, saw '\xcf\x89'");
+  // Upstream's report (#190): valid TOML, read to the end; only the key is tumble's error.
+  EXPECT_EQ(error_of("s = \"\"\"\\\n\xc2\xa7\"\"\"\n"),
+            "bad.toml:1:1: scene: unknown key 's'; the keys here are: simulation, output, world, bodies, "
+            "body_tables, particles, forces");
+}
+
 TEST(SceneErrors, UnknownKeysSuggestTheClosest) {
   EXPECT_EQ(error_of(kSim + "[[bodies]]\nname = \"a\"\nshape = { type = \"box\", size = [1, 1, 1] }\ndensty "
                             "= 1.0\n"),
