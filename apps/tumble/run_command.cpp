@@ -153,8 +153,9 @@ int execute(Job& j) {
     }
     base.settings = settings;
     base.output = std::filesystem::absolute(out).lexically_normal().string();
-    base.diagnostics =
-        diagnostics.empty() ? std::string() : std::filesystem::absolute(diagnostics).lexically_normal().string();
+    base.diagnostics = diagnostics.empty()
+                           ? std::string()
+                           : std::filesystem::absolute(diagnostics).lexically_normal().string();
     base.fields = j.fields;
     base.drift_threshold = j.threshold;
     base.strict = j.strict;
@@ -200,8 +201,8 @@ int execute(Job& j) {
   DriftExtremes extremes_at_point;
   std::optional<std::string> warning_at_point;
   using Clock = std::chrono::steady_clock;
-  Clock::time_point next_checkpoint =
-      Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(j.checkpoint_every));
+  Clock::time_point next_checkpoint = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                                         std::chrono::duration<double>(j.checkpoint_every));
   auto save = [&](const RunPoint& p) {
     Checkpoint c = base;
     c.largest_energy_drift = extremes_at_point.energy;
@@ -263,9 +264,8 @@ int execute(Job& j) {
     if (!scene.model.particles.empty())
       what += " and " + count(scene.model.particles.size(), "particle", "particles");
     fmt::print(human, "{} {} for {:g} s ({}, {} formulation): {} samples of {}\n",
-               j.resumed ? "resumed and ran" : "ran", j.scene_arg,
-               settings.duration, settings.integrator, formulation_name(settings.formulation),
-               writer->samples(), what);
+               j.resumed ? "resumed and ran" : "ran", j.scene_arg, settings.duration, settings.integrator,
+               formulation_name(settings.formulation), writer->samples(), what);
     std::vector<std::string> drift;
     if (scene.conserved.energy && extremes.energy)
       drift.push_back(fmt::format("energy {:.2g}", *extremes.energy));
@@ -368,16 +368,18 @@ int run(const RunOptions& o) {
           out == "-" ? "standard output" : out.string()));
     }
     if (!(std::isfinite(o.checkpoint_every) && o.checkpoint_every >= 0)) {
-      throw InvalidArgument(fmt::format(
-          "--checkpoint-every {} is invalid: give the seconds of wall-clock time between checkpoints, e.g. 60",
-          o.checkpoint_every));
+      throw InvalidArgument(
+          fmt::format("--checkpoint-every {} is invalid: give the seconds of wall-clock time between "
+                      "checkpoints, e.g. 60",
+                      o.checkpoint_every));
     }
     refuse_inputs_as_outputs({{fmt::format("--checkpoint {}", o.checkpoint), o.checkpoint,
                                fmt::format("give another file, e.g. --checkpoint {}.checkpoint", stem)}},
                              scene);
     for (const NamedOutput& other : outputs) {
       if (same_file(other.path, o.checkpoint)) {
-        throw InvalidArgument(fmt::format("--checkpoint {} is {}: give another file", o.checkpoint, other.label));
+        throw InvalidArgument(
+            fmt::format("--checkpoint {} is {}: give another file", o.checkpoint, other.label));
       }
     }
   }
@@ -436,7 +438,8 @@ int resume(const ResumeOptions& o) {
         j.checkpoint_every));
   }
   std::vector<NamedOutput> outputs{{fmt::format("the trajectory {}", c.output), c.output, "start a new run"}};
-  if (!c.diagnostics.empty()) outputs.push_back({fmt::format("the diagnostics {}", c.diagnostics), c.diagnostics, "start a new run"});
+  if (!c.diagnostics.empty())
+    outputs.push_back({fmt::format("the diagnostics {}", c.diagnostics), c.diagnostics, "start a new run"});
   refuse_inputs_as_outputs(outputs, j.scene);
   print_scene_warnings(j.scene);
   recover_outputs(c);  // a killed run's files, still under their temporary names
@@ -460,7 +463,8 @@ Runner add_resume_command(CLI::App& app) {
       "  tumble run examples/t_handle.toml -o out/t.csv --checkpoint out/t.ckpt --checkpoint-every 30\n"
       "  (Ctrl-C)\n"
       "  tumble resume out/t.ckpt");
-  cmd->add_option("checkpoint", o->checkpoint, "checkpoint file written by tumble run --checkpoint")->required();
+  cmd->add_option("checkpoint", o->checkpoint, "checkpoint file written by tumble run --checkpoint")
+      ->required();
   cmd->add_option("--checkpoint-every", o->checkpoint_every,
                   "seconds of wall-clock time between checkpoints (default 60; 0 = at every sample)");
   cmd->add_option("--threads", o->threads, "threads (results are bit-identical for any count)");

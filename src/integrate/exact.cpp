@@ -153,7 +153,7 @@ class Exact final : public Integrator {
   std::vector<Vec3> o0_, v0_;        // centre of mass and its velocity (world) at the anchor
   std::vector<ParticleState> particles0_;
   SystemCoordinates anchor_;  // the state anchored at
-  BodyColumns last_;  // what the last step produced
+  BodyColumns last_;          // what the last step produced
   std::vector<ParticleState> last_particles_;
   double last_t_ = 0.0, last_h_ = 0.0;
 };

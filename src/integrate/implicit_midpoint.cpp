@@ -38,8 +38,8 @@ class ImplicitMidpoint final : public Integrator {
   std::vector<double> save_state() const override { return {static_cast<double>(evaluations_)}; }
   void load_state(const Model&, Formulation, const std::vector<double>& state) override {
     if (state.size() != 1 || !(state[0] >= 0 && state[0] < 9e15)) {
-      throw InvalidArgument(fmt::format("the saved state of integrator 'midpoint' does not fit ({} values)",
-                                        state.size()));
+      throw InvalidArgument(
+          fmt::format("the saved state of integrator 'midpoint' does not fit ({} values)", state.size()));
     }
     evaluations_ = static_cast<long>(state[0]);
   }

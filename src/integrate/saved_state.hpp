@@ -41,7 +41,8 @@ class Writer {
 
 class Reader {
  public:
-  Reader(const std::vector<double>& in, std::string integrator) : in_(in), integrator_(std::move(integrator)) {}
+  Reader(const std::vector<double>& in, std::string integrator)
+      : in_(in), integrator_(std::move(integrator)) {}
   double get() {
     if (pos_ >= in_.size()) fail();
     return in_[pos_++];

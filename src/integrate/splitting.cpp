@@ -183,8 +183,8 @@ class Strang {
     std::optional<EulerPoinsot> flow;  // from the body's state at the start of the first drift of the run
     Quat q0{1.0, 0.0, 0.0, 0.0};       // that state: q and ^bω (a checkpoint stores these, not the flow)
     Vec3 w0 = Vec3::Zero();
-    double tau = 0.0, tau_lo = 0.0;    // time along it: the drifts' h summed, compensated (τ + τ_lo)
-    Quat q{1.0, 0.0, 0.0, 0.0};        // what the last drift left: q and ω in the formulation's variables
+    double tau = 0.0, tau_lo = 0.0;  // time along it: the drifts' h summed, compensated (τ + τ_lo)
+    Quat q{1.0, 0.0, 0.0, 0.0};      // what the last drift left: q and ω in the formulation's variables
     Vec3 omega = Vec3::Zero();
   };
 
@@ -235,7 +235,7 @@ class Splitting2 final : public Integrator {
     strang_.step(model, F, x, h, threads_);
   }
 
- std::vector<double> save_state() const override {
+  std::vector<double> save_state() const override {
     std::vector<double> out;
     strang_.save(out);
     return out;
@@ -265,7 +265,7 @@ class Splitting4 final : public Integrator {
     x.t = t_end;  // the three substeps add to h up to rounding
   }
 
- std::vector<double> save_state() const override {
+  std::vector<double> save_state() const override {
     std::vector<double> out;
     strang_.save(out);
     return out;

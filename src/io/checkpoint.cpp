@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -199,8 +200,8 @@ void recover_outputs(const Checkpoint& c) {
     }
     std::filesystem::rename(temporary, io::output_target(out), ec);
     if (ec) {
-      throw FileError(fmt::format("cannot move the killed run's {} to {}: {}", temporary.string(), out,
-                                  ec.message()));
+      throw FileError(
+          fmt::format("cannot move the killed run's {} to {}: {}", temporary.string(), out, ec.message()));
     }
   }
 }
@@ -247,8 +248,8 @@ void write_checkpoint(const std::filesystem::path& path, const Checkpoint& c) {
   auto fail = [&](int error) {
     std::error_code ec;
     std::filesystem::remove(temporary, ec);
-    throw FileError(
-        fmt::format("cannot write the checkpoint {}: {}", path.string(), std::strerror(error != 0 ? error : EIO)));
+    throw FileError(fmt::format("cannot write the checkpoint {}: {}", path.string(),
+                                std::strerror(error != 0 ? error : EIO)));
   };
   const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) fail(errno);
@@ -276,12 +277,13 @@ Checkpoint read_checkpoint(const std::filesystem::path& path) {
   const std::string bytes = read_input_file(path, "checkpoint");
   const std::string name = path.string();
   if (bytes.size() < sizeof kMagic || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0) {
-    throw InvalidArgument(fmt::format("{} is not a tumble checkpoint (it does not begin with TUMBLECK)", name));
+    throw InvalidArgument(
+        fmt::format("{} is not a tumble checkpoint (it does not begin with TUMBLECK)", name));
   }
   std::uint32_t head[2] = {0, 0};
   if (bytes.size() < sizeof kMagic + sizeof head + 8) {
-    throw InvalidArgument(fmt::format("checkpoint {} is truncated ({} bytes); it cannot be resumed", name,
-                                      bytes.size()));
+    throw InvalidArgument(
+        fmt::format("checkpoint {} is truncated ({} bytes); it cannot be resumed", name, bytes.size()));
   }
   std::memcpy(head, bytes.data() + sizeof kMagic, sizeof head);
   if (head[1] != kByteOrder) {

@@ -39,8 +39,8 @@ class CsvFile {
           const std::optional<Kept>& kept = {})
       : staged_(path), what_(what) {
     if (kept && staged_.kind() != io::OutputKind::staged) {
-      throw InvalidArgument(fmt::format("the {} {} is not a regular file: it cannot be continued", what_,
-                                        path.string()));
+      throw InvalidArgument(
+          fmt::format("the {} {} is not a regular file: it cannot be continued", what_, path.string()));
     }
     if (staged_.kind() == io::OutputKind::standard_output) {
       file_ = stdout;
@@ -80,8 +80,8 @@ class CsvFile {
   }
   /// Flushed to the file and fsync'ed.
   void sync() {
-    if (std::fflush(file_) != 0 || (file_ != stdout && staged_.kind() == io::OutputKind::staged &&
-                                    ::fsync(fileno(file_)) != 0)) {
+    if (std::fflush(file_) != 0 ||
+        (file_ != stdout && staged_.kind() == io::OutputKind::staged && ::fsync(fileno(file_)) != 0)) {
       fail(errno);
     }
   }
@@ -94,9 +94,10 @@ class CsvFile {
     const std::filesystem::path source = staged_.target();
     std::ifstream in(source, std::ios::binary);
     if (!in) {
-      throw InvalidArgument(fmt::format("the {} {} that the checkpoint continues is missing: the run cannot "
-                                        "be resumed; start a new run",
-                                        what_, source.string()));
+      throw InvalidArgument(
+          fmt::format("the {} {} that the checkpoint continues is missing: the run cannot "
+                      "be resumed; start a new run",
+                      what_, source.string()));
     }
     const size_t wanted = 1 + static_cast<size_t>(kept.samples) * kept.lines_per_sample;
     std::string line, last;

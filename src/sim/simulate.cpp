@@ -279,7 +279,8 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
     p.steps_since_sample = steps_since_sample;
     p.samples = samples;
     p.finished = !(x.t < t_end - tiny);
-    p.stats = {step, 0, integrator->evaluations_counted().value_or(step * integrator->evaluations_per_step())};
+    p.stats = {step, 0,
+               integrator->evaluations_counted().value_or(step * integrator->evaluations_per_step())};
     p.event_values = g_prev;
     p.integrator = integrator->save_state();
     if (hooks.on_run_point) hooks.on_run_point(p);

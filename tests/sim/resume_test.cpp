@@ -1,10 +1,12 @@
 // Exact resume: a run stopped at a sample and continued from its RunPoint is the run that was not
 // stopped, bit for bit, for every integrator.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cstring>
 
 #include "../support/sim_helpers.hpp"
+#include "tumble/error.hpp"
 #include "tumble/forces/forces.hpp"
 
 namespace tumble {
@@ -77,7 +79,8 @@ void check_resume(const std::string& integrator, const Case& c) {
   rs.formulation = c.formulation;
   rs.tolerances = {1e-8, 1e-10};
   const std::string what = fmt::format("{} particle={} interval={} formulation={} event={}", integrator,
-                                       c.particle, c.output_interval, formulation_name(c.formulation), c.event);
+                                       c.particle, c.output_interval, formulation_name(c.formulation),
+                                       c.event);
   auto hooks_for = [&](std::vector<SystemState>& samples, int& hits) {
     RunHooks h;
     h.on_sample = [&samples](const SystemState& s) {
@@ -139,7 +142,8 @@ void check_resume(const std::string& integrator, const Case& c) {
     const std::string w = what + (on_grid ? " stopped at a sample" : " stopped between samples");
     expect_same_bits(end, resumed_end, w + ", final state");
     ASSERT_EQ(got.size(), whole.size()) << w;
-    for (size_t k = 0; k < whole.size(); ++k) expect_same_bits(whole[k], got[k], w + fmt::format(", sample {}", k));
+    for (size_t k = 0; k < whole.size(); ++k)
+      expect_same_bits(whole[k], got[k], w + fmt::format(", sample {}", k));
   }
 }
 

@@ -51,9 +51,9 @@ struct EventHit {
 /// a sample on the output grid (fixed-step integrators), or after an accepted step that held samples
 /// (adaptive ones: their state is where the step ended).
 struct RunPoint {
-  double t0 = 0.0;          ///< the run's start time (the initial state's)
-  SystemCoordinates x;      ///< the formulation's variables there
-  long next_sample = 1;     ///< k of the next sample on the grid t₀ + k·Δ
+  double t0 = 0.0;       ///< the run's start time (the initial state's)
+  SystemCoordinates x;   ///< the formulation's variables there
+  long next_sample = 1;  ///< k of the next sample on the grid t₀ + k·Δ
   double t_last_sample = 0.0;
   long steps_since_sample = 0;  ///< fixed-step: steps since the last sample on the grid
   long samples = 0;             ///< samples handed to on_sample so far (the initial state's included)
