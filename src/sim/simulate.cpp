@@ -195,6 +195,8 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
     if (from) {
       integrator->load_state(from->integrator);
       finished = from->finished;
+      // A point after the final sample: x is that sample's state (the step's end is clipped to t_end).
+      if (finished) return to_state(settings.formulation, x);
     }
     // A run point after a step that held samples: nothing of the step is pending then.
     auto keep = [&](const SystemCoordinates& at) {
