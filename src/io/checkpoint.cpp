@@ -25,7 +25,9 @@ constexpr std::uint32_t kByteOrder = 0x01020304;
 
 class Out {
  public:
-  void raw(const void* p, size_t n) { bytes.append(static_cast<const char*>(p), n); }
+  void raw(const void* p, size_t n) {
+    if (n > 0) bytes.append(static_cast<const char*>(p), n);  // p may be null (an empty vector's data)
+  }
   void u64(std::uint64_t v) { raw(&v, sizeof v); }
   void i64(long v) { u64(static_cast<std::uint64_t>(v)); }
   void f64(double v) { raw(&v, sizeof v); }
@@ -50,6 +52,7 @@ class In {
   In(std::string_view bytes, const std::filesystem::path& path) : bytes_(bytes), path_(path) {}
   void raw(void* p, size_t n) {
     if (n > bytes_.size() - pos_) corrupt();
+    if (n == 0) return;  // p may be null (an empty vector's data)
     std::memcpy(p, bytes_.data() + pos_, n);
     pos_ += n;
   }
