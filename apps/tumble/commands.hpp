@@ -12,6 +12,8 @@ using Runner = std::function<int()>;
 Runner add_inertia_command(CLI::App& app);
 /// `tumble run`: simulate a scene file, write the trajectory and diagnostics (run_command.cpp).
 Runner add_run_command(CLI::App& app);
+/// `tumble resume`: continue a run from its checkpoint (run_command.cpp).
+Runner add_resume_command(CLI::App& app);
 /// `tumble check`: validate a scene file and summarise it (check_command.cpp).
 Runner add_check_command(CLI::App& app);
 

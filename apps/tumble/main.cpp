@@ -66,6 +66,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("tumble ") + TUMBLE_VERSION);
   app.require_subcommand(1);
   const tumble::cli::Runner run = tumble::cli::add_run_command(app);
+  const tumble::cli::Runner resume = tumble::cli::add_resume_command(app);
   const tumble::cli::Runner check = tumble::cli::add_check_command(app);
   const tumble::cli::Runner inertia = tumble::cli::add_inertia_command(app);
 
@@ -77,6 +78,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (app.got_subcommand("run")) return finish_stdout(run());
+    if (app.got_subcommand("resume")) return finish_stdout(resume());
     if (app.got_subcommand("check")) return finish_stdout(check());
     if (app.got_subcommand("inertia")) return finish_stdout(inertia());
   } catch (const tumble::Error& e) {

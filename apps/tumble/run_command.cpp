@@ -1,6 +1,9 @@
 // `tumble run`: simulate a scene file and write its trajectory (CSV or HDF5) and diagnostics.
 #include <fmt/format.h>
 
+#include <unistd.h>
+
+#include <chrono>
 #include <cstdio>
 
 #include <algorithm>
@@ -14,6 +17,7 @@
 #include "run_plan_report.hpp"
 #include "scene_summary.hpp"
 #include "tumble/integrate/integrator.hpp"
+#include "tumble/io/checkpoint.hpp"
 #include "tumble/io/scene.hpp"
 #include "tumble/io/trajectory_writer.hpp"
 
@@ -42,6 +46,33 @@ struct RunOptions {
   bool progress = false;
   bool strict = false;
   bool force = false;
+  std::string checkpoint;
+  double checkpoint_every = 60.0;
+};
+
+/// What `tumble resume` takes.
+struct ResumeOptions {
+  std::string checkpoint;
+  std::optional<double> checkpoint_every;
+  std::optional<int> threads;
+  bool quiet = false;
+  bool progress = false;
+};
+
+/// Everything a run needs after its options are checked: from the command line (`run`) or from a
+/// checkpoint (`resume`).
+struct Job {
+  Scene scene;
+  std::string scene_arg;  // the scene as named on the command line
+  RunSettings settings;
+  double threshold = 0.0;
+  bool hdf5 = false;
+  std::filesystem::path out, diagnostics;
+  std::vector<std::string> fields;
+  bool quiet = false, progress = false, strict = false;
+  std::filesystem::path checkpoint;  // empty: none
+  double checkpoint_every = 60.0;
+  std::optional<Checkpoint> resumed;  // the checkpoint this run continues
 };
 
 bool is_hdf5_name(const std::filesystem::path& p) {
@@ -99,7 +130,173 @@ struct DriftExtremes {
   }
 };
 
+/// Runs a job: writes the outputs (continuing them for a resumed run) and, with a checkpoint file, a
+/// checkpoint every checkpoint_every seconds of wall-clock time and when interrupted.
+int execute(Job& j) {
+  Scene& scene = j.scene;
+  const RunSettings& settings = j.settings;
+  const std::filesystem::path& out = j.out;
+  const std::filesystem::path& diagnostics = j.diagnostics;
+  const bool hdf5 = j.hdf5;
+  // Human messages go to stderr when the trajectory takes standard output.
+  std::FILE* const human = out == "-" || diagnostics == "-" ? stderr : stdout;
+  // The writer keeps the scene's text (HDF5 stores it); the run needs it no more, so it is not copied.
+  // What a checkpoint holds besides the run point (checkpoint.hpp).
+  Checkpoint base;
+  if (!j.checkpoint.empty()) {
+    base.tumble_version = TUMBLE_VERSION;
+    base.scene_path = j.scene_arg;
+    base.scene_absolute = std::filesystem::absolute(scene.path).lexically_normal().string();
+    base.scene_text = scene.text;
+    for (size_t i = 1; i < scene.input_files.size(); ++i) {
+      base.inputs.push_back(j.resumed ? j.resumed->inputs.at(i - 1) : stamp_file(scene.input_files[i]));
+    }
+    base.settings = settings;
+    base.output = std::filesystem::absolute(out).lexically_normal().string();
+    base.diagnostics = diagnostics.empty()
+                           ? std::string()
+                           : std::filesystem::absolute(diagnostics).lexically_normal().string();
+    base.fields = j.fields;
+    base.drift_threshold = j.threshold;
+    base.strict = j.strict;
+    base.writer_pid = static_cast<long>(::getpid());
+  }
+  // The writer keeps the scene's text (HDF5 stores it); the run needs it no more, so it is not copied.
+  const TrajectoryInfo info{std::move(scene.text), j.scene_arg, TUMBLE_VERSION, settings, j.fields};
+  std::optional<CsvContinuation> continuation;
+  if (j.resumed) continuation = CsvContinuation{j.resumed->point.samples, j.resumed->point.t_last_sample};
+  const std::unique_ptr<TrajectoryWriter> writer =
+      hdf5 ? make_hdf5_writer(out, scene.model, info)
+           : make_csv_writer(out, diagnostics, scene.model, info, continuation);
+
+  DriftMonitor monitor(scene.model, scene.initial, scene.conserved, j.threshold, settings);
+  DriftExtremes extremes;
+  if (j.resumed) {
+    extremes.energy = j.resumed->largest_energy_drift;
+    extremes.angular_momentum = j.resumed->largest_angular_momentum_drift;
+    if (!j.resumed->drift_warning.empty()) monitor.restore_warning(j.resumed->drift_warning);
+  }
+  Progress progress(j.quiet      ? ProgressMode::never
+                    : j.progress ? ProgressMode::always
+                                 : ProgressMode::automatic,
+                    scene.initial.t, scene.initial.t + settings.duration);
+  const InterruptGuard interrupt;
+  bool interrupted = false;
+  double t_reached = j.resumed ? j.resumed->point.t_last_sample : scene.initial.t;
+  RunHooks hooks;
+  hooks.on_sample = [&](const SystemState& state) {
+    const DriftSample d = monitor.observe(state);
+    writer->write(scene.model, state, d);
+    extremes.add(d);
+    t_reached = state.t;
+    if (auto warning = monitor.take_warning()) progress.message("tumble: warning: " + *warning);
+    progress.update(state.t);
+    interrupted = interrupt.requested();
+    return !interrupted;  // stop at this sample: everything written so far stays valid
+  };
+  // Asked every step: Ctrl-C needs no wait for a sample.
+  hooks.stop_requested = [&] { return interrupt.requested(); };
+  // Checkpoints: the run point (the last sample on the grid) with what the drift report said there.
+  RunPoint point;
+  DriftExtremes extremes_at_point;
+  std::optional<std::string> warning_at_point;
+  using Clock = std::chrono::steady_clock;
+  Clock::time_point next_checkpoint = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                                         std::chrono::duration<double>(j.checkpoint_every));
+  auto save = [&](const RunPoint& p) {
+    Checkpoint c = base;
+    c.largest_energy_drift = extremes_at_point.energy;
+    c.largest_angular_momentum_drift = extremes_at_point.angular_momentum;
+    c.drift_warning = warning_at_point.value_or("");
+    c.point = p;
+    write_checkpoint(j.checkpoint, c);
+  };
+  if (!j.checkpoint.empty()) {
+    hooks.run_point = &point;
+    hooks.on_run_point = [&](const RunPoint& p) {
+      extremes_at_point = extremes;
+      warning_at_point = monitor.warning();
+      if (Clock::now() < next_checkpoint) return;
+      writer->sync();  // the rows the checkpoint counts are in the file before it names them
+      save(p);
+      next_checkpoint = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                           std::chrono::duration<double>(j.checkpoint_every));
+    };
+  }
+  if (j.resumed) hooks.resume_from = &j.resumed->point;
+  simulate(scene.model, scene.initial, settings, hooks);
+  progress.finish();
+  {
+    // A second Ctrl-C now waits until both files are in place (interrupt.hpp).
+    const InterruptGuard::Deferral deferral;
+    writer->commit(!interrupted);
+  }
+  bool checkpointed = false;
+  if (!j.checkpoint.empty()) {
+    if (interrupted && point.samples > 0) {
+      save(point);  // the outputs are under their final names now, cut back to point.samples on resume
+      checkpointed = true;
+    } else if (!interrupted) {
+      std::error_code ec;
+      std::filesystem::remove(j.checkpoint, ec);  // the run is complete: nothing to resume
+    }
+  }
+
+  const auto files = writer->outputs();
+  if (interrupted) {
+    std::fputs(
+        fmt::format("tumble: interrupted at t = {:g} s of {:g} s; {} holds the {} samples up to then\n",
+                    t_reached, scene.initial.t + settings.duration,
+                    files.front() == "-" ? "standard output" : files.front().string(), writer->samples())
+            .c_str(),
+        stderr);
+    if (checkpointed) {
+      std::fputs(fmt::format("tumble: checkpoint {} holds the run at t = {:g} s; continue it with: tumble "
+                             "resume {}\n",
+                             j.checkpoint.string(), point.t_last_sample, j.checkpoint.string())
+                     .c_str(),
+                 stderr);
+    }
+    return 128 + interrupt.signal();  // 130 for SIGINT, as shells report an interrupted command
+  }
+  if (!j.quiet) {
+    std::string what = count(scene.model.bodies.size(), "body", "bodies");
+    if (!scene.model.particles.empty())
+      what += " and " + count(scene.model.particles.size(), "particle", "particles");
+    fmt::print(human, "{} {} for {:g} s ({}, {} formulation): {} samples of {}\n",
+               j.resumed ? "resumed and ran" : "ran", j.scene_arg, settings.duration, settings.integrator,
+               formulation_name(settings.formulation), writer->samples(), what);
+    std::vector<std::string> drift;
+    if (scene.conserved.energy && extremes.energy)
+      drift.push_back(fmt::format("energy {:.2g}", *extremes.energy));
+    if (scene.conserved.angular_momentum && extremes.angular_momentum) {
+      drift.push_back(fmt::format("angular momentum {:.2g}", *extremes.angular_momentum));
+    }
+    if (!drift.empty())
+      fmt::print(human, "largest relative drift of conserved quantities: {}\n", fmt::join(drift, ", "));
+    auto where = [](const std::filesystem::path& p) { return p == "-" ? "standard output" : p.string(); };
+    if (hdf5) {
+      fmt::print(human, "trajectory and diagnostics: {}\n", files.front().string());
+    } else if (files.size() == 1) {
+      fmt::print(human, "trajectory:  {}\ndiagnostics: none (give --diagnostics FILE)\n", where(files[0]));
+    } else {
+      fmt::print(human, "trajectory:  {}\ndiagnostics: {}\n", where(files[0]), where(files[1]));
+    }
+  }
+  if (monitor.warning()) {
+    // Said again at the end, where it is not lost in the progress output: the files are complete, but
+    // their numbers carry more integration error than the scene's threshold allows.
+    std::fflush(human);
+    fmt::print(stderr,
+               "tumble: warning: the results carry integration error past the drift threshold ({}){}\n",
+               *monitor.warning(), j.strict ? "; failing because of --strict" : "");
+    if (j.strict) return kExitDrift;
+  }
+  return 0;
+}
+
 int run(const RunOptions& o) {
+  Job j;
   body_fields(o.fields);  // an unknown field is named before the scene is read
   Scene scene = load_scene(o.scene);
   const RunSettings settings = settings_for(scene, o);
@@ -158,90 +355,124 @@ int run(const RunOptions& o) {
     }
   }
   refuse_inputs_as_outputs(outputs, scene);
-  // Human messages go to stderr when the trajectory takes standard output.
-  std::FILE* const human = out == "-" || diagnostics == "-" ? stderr : stdout;
-  // The writer keeps the scene's text (HDF5 stores it); the run needs it no more, so it is not copied.
-  const TrajectoryInfo info{std::move(scene.text), o.scene, TUMBLE_VERSION, settings,
-                            o.fields.empty() ? scene.output_fields : o.fields};
-  const std::unique_ptr<TrajectoryWriter> writer =
-      hdf5 ? make_hdf5_writer(out, scene.model, info) : make_csv_writer(out, diagnostics, scene.model, info);
-
-  DriftMonitor monitor(scene.model, scene.initial, scene.conserved, threshold, settings);
-  DriftExtremes extremes;
-  Progress progress(o.quiet      ? ProgressMode::never
-                    : o.progress ? ProgressMode::always
-                                 : ProgressMode::automatic,
-                    scene.initial.t, scene.initial.t + settings.duration);
-  const InterruptGuard interrupt;
-  bool interrupted = false;
-  double t_reached = scene.initial.t;
-  simulate(
-      scene.model, scene.initial, settings,
-      [&](const SystemState& state) {
-        const DriftSample d = monitor.observe(state);
-        writer->write(scene.model, state, d);
-        extremes.add(d);
-        t_reached = state.t;
-        if (auto warning = monitor.take_warning()) progress.message("tumble: warning: " + *warning);
-        progress.update(state.t);
-        interrupted = interrupt.requested();
-        return !interrupted;  // stop at this sample: everything written so far stays valid
-      },
-      nullptr, [&] { return interrupt.requested(); });  // asked every step: Ctrl-C needs no wait for a sample
-  progress.finish();
-  {
-    // A second Ctrl-C now waits until both files are in place (interrupt.hpp).
-    const InterruptGuard::Deferral deferral;
-    writer->commit(!interrupted);
-  }
-
-  const auto files = writer->outputs();
-  if (interrupted) {
-    std::fputs(
-        fmt::format("tumble: interrupted at t = {:g} s of {:g} s; {} holds the {} samples up to then\n",
-                    t_reached, scene.initial.t + settings.duration,
-                    files.front() == "-" ? "standard output" : files.front().string(), writer->samples())
-            .c_str(),
-        stderr);
-    return 128 + interrupt.signal();  // 130 for SIGINT, as shells report an interrupted command
-  }
-  if (!o.quiet) {
-    std::string what = count(scene.model.bodies.size(), "body", "bodies");
-    if (!scene.model.particles.empty())
-      what += " and " + count(scene.model.particles.size(), "particle", "particles");
-    fmt::print(human, "ran {} for {:g} s ({}, {} formulation): {} samples of {}\n", o.scene,
-               settings.duration, settings.integrator, formulation_name(settings.formulation),
-               writer->samples(), what);
-    std::vector<std::string> drift;
-    if (scene.conserved.energy && extremes.energy)
-      drift.push_back(fmt::format("energy {:.2g}", *extremes.energy));
-    if (scene.conserved.angular_momentum && extremes.angular_momentum) {
-      drift.push_back(fmt::format("angular momentum {:.2g}", *extremes.angular_momentum));
-    }
-    if (!drift.empty())
-      fmt::print(human, "largest relative drift of conserved quantities: {}\n", fmt::join(drift, ", "));
-    auto where = [](const std::filesystem::path& p) { return p == "-" ? "standard output" : p.string(); };
+  if (!o.checkpoint.empty()) {
     if (hdf5) {
-      fmt::print(human, "trajectory and diagnostics: {}\n", files.front().string());
-    } else if (files.size() == 1) {
-      fmt::print(human, "trajectory:  {}\ndiagnostics: none (give --diagnostics FILE)\n", where(files[0]));
-    } else {
-      fmt::print(human, "trajectory:  {}\ndiagnostics: {}\n", where(files[0]), where(files[1]));
+      throw InvalidArgument(
+          "--checkpoint needs CSV output: continuing an HDF5 file is not supported; use --format csv (or "
+          "a .csv output name)");
+    }
+    if (written_through) {
+      throw InvalidArgument(fmt::format(
+          "--checkpoint needs the trajectory in a file that a resumed run can continue, not {}; give a file "
+          "name with -o",
+          out == "-" ? "standard output" : out.string()));
+    }
+    if (!(std::isfinite(o.checkpoint_every) && o.checkpoint_every >= 0)) {
+      throw InvalidArgument(
+          fmt::format("--checkpoint-every {} is invalid: give the seconds of wall-clock time between "
+                      "checkpoints, e.g. 60",
+                      o.checkpoint_every));
+    }
+    refuse_inputs_as_outputs({{fmt::format("--checkpoint {}", o.checkpoint), o.checkpoint,
+                               fmt::format("give another file, e.g. --checkpoint {}.checkpoint", stem)}},
+                             scene);
+    for (const NamedOutput& other : outputs) {
+      if (same_file(other.path, o.checkpoint)) {
+        throw InvalidArgument(
+            fmt::format("--checkpoint {} is {}: give another file", o.checkpoint, other.label));
+      }
     }
   }
-  if (monitor.warning()) {
-    // Said again at the end, where it is not lost in the progress output: the files are complete, but
-    // their numbers carry more integration error than the scene's threshold allows.
-    std::fflush(human);
-    fmt::print(stderr,
-               "tumble: warning: the results carry integration error past the drift threshold ({}){}\n",
-               *monitor.warning(), o.strict ? "; failing because of --strict" : "");
-    if (o.strict) return kExitDrift;
+  j.scene_arg = o.scene;
+  j.settings = settings;
+  j.threshold = threshold;
+  j.hdf5 = hdf5;
+  j.out = out;
+  j.diagnostics = diagnostics;
+  j.fields = o.fields.empty() ? scene.output_fields : o.fields;
+  j.quiet = o.quiet;
+  j.progress = o.progress;
+  j.strict = o.strict;
+  j.checkpoint = o.checkpoint;
+  j.checkpoint_every = o.checkpoint_every;
+  j.scene = std::move(scene);
+  return execute(j);
+}
+
+/// `tumble resume CHECKPOINT`: the run rebuilt from the checkpoint's scene text and settings, its outputs
+/// cut back to the checkpoint's samples and continued.
+int resume(const ResumeOptions& o) {
+  Job j;
+  Checkpoint c = read_checkpoint(o.checkpoint);
+  check_inputs_unchanged(c.inputs);  // a changed mesh would build another model
+  j.scene = parse_scene(c.scene_text, c.scene_absolute);
+  {
+    std::vector<std::string> now;
+    for (size_t i = 1; i < j.scene.input_files.size(); ++i)
+      now.push_back(std::filesystem::absolute(j.scene.input_files[i]).lexically_normal().string());
+    std::vector<std::string> then;
+    for (const FileStamp& s : c.inputs) then.push_back(s.path);
+    if (now != then) {
+      throw InvalidArgument(fmt::format(
+          "the scene of checkpoint {} now reads other files than when the run began ({}); the run cannot "
+          "be resumed exactly",
+          o.checkpoint, fmt::join(now, ", ")));
+    }
   }
-  return 0;
+  j.scene_arg = c.scene_path;
+  j.settings = c.settings;
+  if (o.threads) j.settings.threads = *o.threads;  // results do not depend on it, bit for bit
+  validate(j.settings);
+  j.threshold = c.drift_threshold;
+  j.out = c.output;
+  j.diagnostics = c.diagnostics;
+  j.fields = c.fields;
+  j.strict = c.strict;
+  j.quiet = o.quiet;
+  j.progress = o.progress;
+  j.checkpoint = o.checkpoint;
+  j.checkpoint_every = o.checkpoint_every.value_or(60.0);
+  if (!(std::isfinite(j.checkpoint_every) && j.checkpoint_every >= 0)) {
+    throw InvalidArgument(fmt::format(
+        "--checkpoint-every {} is invalid: give the seconds of wall-clock time between checkpoints, e.g. 60",
+        j.checkpoint_every));
+  }
+  std::vector<NamedOutput> outputs{{fmt::format("the trajectory {}", c.output), c.output, "start a new run"}};
+  if (!c.diagnostics.empty())
+    outputs.push_back({fmt::format("the diagnostics {}", c.diagnostics), c.diagnostics, "start a new run"});
+  refuse_inputs_as_outputs(outputs, j.scene);
+  print_scene_warnings(j.scene);
+  recover_outputs(c);  // a killed run's files, still under their temporary names
+  j.resumed = std::move(c);
+  return execute(j);
 }
 
 }  // namespace
+
+Runner add_resume_command(CLI::App& app) {
+  auto o = std::make_shared<ResumeOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "resume",
+      "Continue a run from the checkpoint that `tumble run --checkpoint FILE` wrote (every "
+      "--checkpoint-every seconds, and when the run was interrupted by Ctrl-C, SIGTERM or SIGHUP). The "
+      "scene is rebuilt from the text stored in the checkpoint (a mesh or body table that changed since is "
+      "refused), the same settings and outputs are used, the CSV files are cut back to the checkpoint's "
+      "last sample and continued: the trajectory and diagnostics end up byte for byte those of a run that "
+      "was never stopped, for every integrator. The checkpoint is updated as the run goes on and removed "
+      "when it completes.\n\nExample:\n"
+      "  tumble run examples/t_handle.toml -o out/t.csv --checkpoint out/t.ckpt --checkpoint-every 30\n"
+      "  (Ctrl-C)\n"
+      "  tumble resume out/t.ckpt");
+  cmd->add_option("checkpoint", o->checkpoint, "checkpoint file written by tumble run --checkpoint")
+      ->required();
+  cmd->add_option("--checkpoint-every", o->checkpoint_every,
+                  "seconds of wall-clock time between checkpoints (default 60; 0 = at every sample)");
+  cmd->add_option("--threads", o->threads, "threads (results are bit-identical for any count)");
+  auto* quiet = cmd->add_flag("--quiet,-q", o->quiet, "no progress bar and no summary");
+  cmd->add_flag("--progress", o->progress, "show the progress bar even when stderr is not a terminal")
+      ->excludes(quiet);
+  return [o] { return resume(*o); };
+}
 
 Runner add_run_command(CLI::App& app) {
   auto o = std::make_shared<RunOptions>();
@@ -259,7 +490,9 @@ Runner add_run_command(CLI::App& app) {
       "written through, never replaced.\n\nExamples:\n"
       "  tumble run examples/t_handle.toml -o out/t_handle.csv\n"
       "  tumble run examples/satellite.toml -o out/satellite.h5 --integrator dopri45 --rtol 1e-10\n"
-      "  tumble run examples/t_handle.toml --timestep 1e-4 --duration 5 --quiet");
+      "  tumble run examples/t_handle.toml --timestep 1e-4 --duration 5 --quiet\n"
+      "  tumble run examples/t_handle.toml -o out/t.csv --checkpoint out/t.ckpt   (then: tumble resume "
+      "out/t.ckpt)");
   cmd->add_option("scene", o->scene, "scene file (TOML; see docs/scene-format.md)")->required();
   cmd->add_option("-o,--output", o->output,
                   "trajectory file; .h5/.hdf5 means HDF5 unless --format says otherwise (default: the "
@@ -302,6 +535,13 @@ Runner add_run_command(CLI::App& app) {
   cmd->add_flag("--force", o->force,
                 "run even if it would take more than a day or write more than 100 GB (`tumble check` "
                 "prints the steps, samples, output size and time a run would take)");
+  cmd->add_option("--checkpoint", o->checkpoint,
+                  "write a checkpoint to this file every --checkpoint-every seconds and when interrupted "
+                  "(Ctrl-C, SIGTERM, SIGHUP); `tumble resume FILE` continues the run, and its CSV files end "
+                  "up byte for byte those of an uninterrupted run. Removed when the run completes. CSV "
+                  "output to a file only (not HDF5, -, a device or a FIFO)");
+  cmd->add_option("--checkpoint-every", o->checkpoint_every,
+                  "seconds of wall-clock time between checkpoints (default 60; 0 = at every sample)");
   auto* quiet =
       cmd->add_flag("--quiet,-q", o->quiet, "no progress bar and no summary; errors and warnings only");
   cmd->add_flag("--progress", o->progress,

@@ -9,6 +9,7 @@
 
 #include "engine.hpp"
 #include "methods.hpp"
+#include "saved_state.hpp"
 
 namespace tumble {
 namespace {
@@ -96,6 +97,37 @@ class DormandPrince45 final : public AdaptiveIntegrator {
     stepper_.calc_state(t, p);
     unpack(p, t, x);
     return x;
+  }
+
+  /// The current state, time and next trial step, and the work counted. Odeint's stepper also keeps
+  /// the right-hand side at the current state (first same as last): it is rhs(state, time) of these very
+  /// numbers, so the first step after load_state() evaluates it again, bit for bit the same, and its
+  /// count is not added twice. The error controller keeps nothing else between steps (Boost's
+  /// default_step_adjuster only caps the step).
+  std::vector<double> save_state() const override {
+    std::vector<double> out;
+    saved::Writer w(out);
+    w.put(stepper_.current_time());
+    w.put(stepper_.current_time_step());
+    w.put(static_cast<double>(stats_.steps));
+    w.put(static_cast<double>(stats_.evaluations));
+    const Packed& p = stepper_.current_state();
+    w.put(static_cast<double>(p.size()));
+    out.insert(out.end(), p.begin(), p.end());
+    return out;
+  }
+
+  void load_state(const std::vector<double>& state) override {
+    saved::Reader r(state, name());
+    const double t = r.get(), dt = r.get();
+    const auto steps = static_cast<long>(r.count(size_t{1} << 53));
+    const auto evaluations = static_cast<long>(r.count(size_t{1} << 53));
+    Packed p(r.count(stepper_.current_state().size()));
+    if (p.size() != stepper_.current_state().size()) r.fail();
+    for (double& v : p) v = r.get();
+    r.done();
+    stepper_.initialize(p, t, dt);
+    stats_ = {steps, 0, steps > 0 ? evaluations - 1 : evaluations};
   }
 
   IntegratorStats stats() const override {

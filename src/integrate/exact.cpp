@@ -16,6 +16,7 @@
 
 #include "engine.hpp"
 #include "methods.hpp"
+#include "saved_state.hpp"
 #include "tumble/error.hpp"
 #include "tumble/integrate/euler_poinsot.hpp"
 
@@ -60,6 +61,35 @@ class Exact final : public Integrator {
     last_h_ = h;
   }
 
+  /// The anchor as the state it was taken from (anchoring there again gives the same flows, bit for
+  /// bit) and the last state produced.
+  std::vector<double> save_state() const override {
+    std::vector<double> out;
+    saved::Writer w(out);
+    w.put(model_ != nullptr ? 1.0 : 0.0);
+    if (model_ == nullptr) return out;
+    w.put(static_cast<double>(formulation_));
+    w.put(anchor_);
+    w.put(last_), w.put(last_particles_);
+    w.put(last_t_), w.put(last_h_);
+    return out;
+  }
+  void load_state(const Model& model, Formulation, const std::vector<double>& state) override {
+    saved::Reader r(state, name());
+    model_ = nullptr;
+    if (r.flag()) {
+      const auto F = static_cast<Formulation>(r.count(2));
+      const size_t n = model.bodies.size(), np = model.particles.size();
+      const SystemCoordinates anchor_state = r.coordinates(n, np);
+      if (anchor_state.bodies.size() != n) r.fail();
+      anchor(model, F, anchor_state);
+      r.columns(last_, BodyColumns::kCount, n);
+      last_particles_ = r.particles(np);
+      last_t_ = r.get(), last_h_ = r.get();
+    }
+    r.done();
+  }
+
  private:
   /// Whether x is the state this integrator produced last, for this model and formulation. Its time
   /// may have been moved by rounding (simulate() snaps the time of a sample onto its grid).
@@ -89,6 +119,7 @@ class Exact final : public Integrator {
       v0_.push_back(F == Formulation::body ? Vec3(c.q * c.v) : c.v);
     }
     particles0_ = x.particles;
+    anchor_ = x;
   }
 
   void evaluate(const Model& model, Formulation F, double t, SystemCoordinates& x) {
@@ -121,7 +152,8 @@ class Exact final : public Integrator {
   std::vector<EulerPoinsot> flows_;  // per body, from the anchor
   std::vector<Vec3> o0_, v0_;        // centre of mass and its velocity (world) at the anchor
   std::vector<ParticleState> particles0_;
-  BodyColumns last_;  // what the last step produced
+  SystemCoordinates anchor_;  // the state anchored at
+  BodyColumns last_;          // what the last step produced
   std::vector<ParticleState> last_particles_;
   double last_t_ = 0.0, last_h_ = 0.0;
 };

@@ -34,6 +34,15 @@ class ImplicitMidpoint final : public Integrator {
   int order() const override { return 2; }
   int evaluations_per_step() const override { return kTypicalIterations; }
   std::optional<long> evaluations_counted() const override { return evaluations_; }
+  /// Only the count of evaluations (each step starts its iteration from the step's start).
+  std::vector<double> save_state() const override { return {static_cast<double>(evaluations_)}; }
+  void load_state(const Model&, Formulation, const std::vector<double>& state) override {
+    if (state.size() != 1 || !(state[0] >= 0 && state[0] < 9e15)) {
+      throw InvalidArgument(
+          fmt::format("the saved state of integrator 'midpoint' does not fit ({} values)", state.size()));
+    }
+    evaluations_ = static_cast<long>(state[0]);
+  }
 
   void step(const Model& model, Formulation F, SystemCoordinates& x, double h) override {
     const size_t nb = x.bodies.size(), np = x.particles.size();

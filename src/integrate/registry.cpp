@@ -41,6 +41,16 @@ std::string unknown(const std::string& name) {
 
 }  // namespace
 
+void Integrator::load_state(const Model& /*model*/, Formulation /*formulation*/,
+                            const std::vector<double>& state) {
+  if (!state.empty()) {
+    throw InvalidArgument(fmt::format(
+        "integrator '{}' keeps nothing between steps, but was given a saved state of {} values (saved by "
+        "another integrator)",
+        name(), state.size()));
+  }
+}
+
 std::vector<std::string> integrator_names() {
   std::vector<std::string> names;
   for (const auto& entry : fixed_step()) names.push_back(entry.first);

@@ -53,6 +53,7 @@
 
 #include "engine.hpp"
 #include "methods.hpp"
+#include "saved_state.hpp"
 #include "tumble/integrate/euler_poinsot.hpp"
 
 namespace tumble {
@@ -110,6 +111,50 @@ class Strang {
     remember(x);
   }
 
+  /// The kept flows (each as the state it was set up from: setting it up again gives the same flow,
+  /// bit for bit), the end loads and the state they belong to.
+  void save(std::vector<double>& out) const {
+    saved::Writer w(out);
+    w.put(static_cast<double>(flights_.size()));
+    w.put(static_cast<double>(flights_formulation_));
+    for (const FreeFlight& ff : flights_) {
+      w.put(ff.flow ? 1.0 : 0.0);
+      w.put(ff.q0), w.put(ff.w0);
+      w.put(ff.tau), w.put(ff.tau_lo);
+      w.put(ff.q), w.put(ff.omega);
+    }
+    w.put(cached_ ? 1.0 : 0.0);
+    if (!cached_) return;
+    w.put(loads_);
+    w.put(particle_loads_);
+    w.put(state_);
+    w.put(particles_);
+    w.put(t_);
+  }
+
+  void load(const Model& model, saved::Reader& r) {
+    const size_t n = model.bodies.size(), np = model.particles.size();
+    const size_t count = r.count(n);
+    if (count != n && count != 0) r.fail();
+    flights_formulation_ = static_cast<Formulation>(r.count(2));
+    flights_.assign(count, FreeFlight{});
+    for (size_t i = 0; i < count; ++i) {
+      FreeFlight& ff = flights_[i];
+      const bool has_flow = r.flag();
+      ff.q0 = r.quat(), ff.w0 = r.vec3();
+      ff.tau = r.get(), ff.tau_lo = r.get();
+      ff.q = r.quat(), ff.omega = r.vec3();
+      if (has_flow) ff.flow.emplace(model.bodies[i].Lambda(), ff.q0, ff.w0);
+    }
+    cached_ = r.flag();
+    if (!cached_) return;
+    r.columns(loads_, 6, n);
+    particle_loads_ = r.vec3s(np);
+    r.columns(state_, BodyColumns::kCount, n);
+    particles_ = r.particles(np);
+    t_ = r.get();
+  }
+
  private:
   Vec3 cached(size_t first, size_t i) const {
     return {loads_[first][i], loads_[first + 1][i], loads_[first + 2][i]};
@@ -136,8 +181,10 @@ class Strang {
   /// A body's torque-free motion since the last torque (or change of its state), kept between steps.
   struct FreeFlight {
     std::optional<EulerPoinsot> flow;  // from the body's state at the start of the first drift of the run
-    double tau = 0.0, tau_lo = 0.0;    // time along it: the drifts' h summed, compensated (τ + τ_lo)
-    Quat q{1.0, 0.0, 0.0, 0.0};        // what the last drift left: q and ω in the formulation's variables
+    Quat q0{1.0, 0.0, 0.0, 0.0};       // that state: q and ^bω (a checkpoint stores these, not the flow)
+    Vec3 w0 = Vec3::Zero();
+    double tau = 0.0, tau_lo = 0.0;  // time along it: the drifts' h summed, compensated (τ + τ_lo)
+    Quat q{1.0, 0.0, 0.0, 0.0};      // what the last drift left: q and ω in the formulation's variables
     Vec3 omega = Vec3::Zero();
   };
 
@@ -155,6 +202,8 @@ class Strang {
     } else {
       const Vec3 w_b = F == Formulation::world ? Vec3(c.q.conjugate() * c.omega) : c.omega;
       ff.flow.emplace(Lambda, c.q, w_b);
+      ff.q0 = c.q;
+      ff.w0 = w_b;
       ff.tau = h;
       ff.tau_lo = 0.0;
     }
@@ -186,6 +235,17 @@ class Splitting2 final : public Integrator {
     strang_.step(model, F, x, h, threads_);
   }
 
+  std::vector<double> save_state() const override {
+    std::vector<double> out;
+    strang_.save(out);
+    return out;
+  }
+  void load_state(const Model& model, Formulation, const std::vector<double>& state) override {
+    saved::Reader r(state, name());
+    strang_.load(model, r);
+    r.done();
+  }
+
  private:
   Strang strang_;
 };
@@ -203,6 +263,17 @@ class Splitting4 final : public Integrator {
     strang_.step(model, F, x, w0 * h, threads_);
     strang_.step(model, F, x, w1 * h, threads_);
     x.t = t_end;  // the three substeps add to h up to rounding
+  }
+
+  std::vector<double> save_state() const override {
+    std::vector<double> out;
+    strang_.save(out);
+    return out;
+  }
+  void load_state(const Model& model, Formulation, const std::vector<double>& state) override {
+    saved::Reader r(state, name());
+    strang_.load(model, r);
+    r.done();
   }
 
  private:

@@ -11,6 +11,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
 #include <optional>
 
 #include "sample_rows.hpp"
@@ -18,15 +19,29 @@
 #include "tumble/error.hpp"
 #include "tumble/io/trajectory_writer.hpp"
 
+#include <unistd.h>
+
 namespace tumble {
 namespace {
+
+/// What a continued file keeps of the file now under its final name (CsvContinuation).
+struct Kept {
+  long samples;
+  size_t lines_per_sample;
+  double last_t;
+};
 
 /// A CSV file being written: a staged temporary (or a device, a FIFO, standard output: staged_file.hpp)
 /// and its stdio stream. The first failed write throws: a full disk stops the run at once.
 class CsvFile {
  public:
-  CsvFile(const std::filesystem::path& path, const std::string& header, std::string_view what)
+  CsvFile(const std::filesystem::path& path, const std::string& header, std::string_view what,
+          const std::optional<Kept>& kept = {})
       : staged_(path), what_(what) {
+    if (kept && staged_.kind() != io::OutputKind::staged) {
+      throw InvalidArgument(
+          fmt::format("the {} {} is not a regular file: it cannot be continued", what_, path.string()));
+    }
     if (staged_.kind() == io::OutputKind::standard_output) {
       file_ = stdout;
     } else {
@@ -36,7 +51,11 @@ class CsvFile {
             fmt::format("cannot create {}: {}", staged_.temporary().string(), std::strerror(errno)));
       }
     }
-    write(header + "\n");
+    if (kept) {
+      copy_kept(header, *kept);
+    } else {
+      write(header + "\n");
+    }
   }
   ~CsvFile() {
     if (file_ && file_ != stdout) std::fclose(file_);
@@ -59,10 +78,58 @@ class CsvFile {
     file_ = nullptr;
     if (error != 0) fail(error);
   }
+  /// Flushed to the file and fsync'ed.
+  void sync() {
+    if (std::fflush(file_) != 0 ||
+        (file_ != stdout && staged_.kind() == io::OutputKind::staged && ::fsync(fileno(file_)) != 0)) {
+      fail(errno);
+    }
+  }
   io::StagedFile& staged() { return staged_; }
   const std::filesystem::path& path() const { return staged_.final_path(); }
 
  private:
+  /// Copies the header and the first kept.samples samples of the file under the final name.
+  void copy_kept(const std::string& header, const Kept& kept) {
+    const std::filesystem::path source = staged_.target();
+    std::ifstream in(source, std::ios::binary);
+    if (!in) {
+      throw InvalidArgument(
+          fmt::format("the {} {} that the checkpoint continues is missing: the run cannot "
+                      "be resumed; start a new run",
+                      what_, source.string()));
+    }
+    const size_t wanted = 1 + static_cast<size_t>(kept.samples) * kept.lines_per_sample;
+    std::string line, last;
+    size_t lines = 0;
+    while (lines < wanted && std::getline(in, line)) {
+      if (in.eof()) break;  // a last line without its newline: cut off, not a whole row
+      if (lines == 0 && line != header) {
+        throw InvalidArgument(fmt::format(
+            "the {} {} does not have this run's header: it is not the file the checkpointed run wrote; the "
+            "run cannot be resumed",
+            what_, source.string()));
+      }
+      write(line);
+      write("\n");
+      ++lines;
+      if (lines == wanted) last = line;
+    }
+    if (lines < wanted) {
+      throw InvalidArgument(fmt::format(
+          "the {} {} holds {} of the {} lines the checkpoint needs ({} samples): it is not the file the "
+          "checkpointed run wrote, or it was cut; the run cannot be resumed",
+          what_, source.string(), lines, wanted, kept.samples));
+    }
+    const std::string t = fmt::format("{:.17g},", kept.last_t);
+    if (last.compare(0, t.size(), t) != 0) {
+      throw InvalidArgument(fmt::format(
+          "the {} {} has another time at its sample {} than the checkpoint ({} s): it is not the file the "
+          "checkpointed run wrote; the run cannot be resumed",
+          what_, source.string(), kept.samples, kept.last_t));
+    }
+  }
+
   [[noreturn]] void fail(int error) {
     staged_.abandon();
     const std::string reason = std::strerror(error != 0 ? error : EIO);
@@ -103,12 +170,21 @@ std::vector<const SystemField*> all_system_fields() {
 class CsvWriter final : public TrajectoryWriter {
  public:
   CsvWriter(const std::filesystem::path& trajectory, const std::filesystem::path& diagnostics,
-            const Model& model, std::vector<const BodyField*> fields)
+            const Model& model, std::vector<const BodyField*> fields,
+            const std::optional<CsvContinuation>& continuation)
       : names_(io::row_names(model)),
         fields_(std::move(fields)),
-        trajectory_(trajectory, header({"t", "body"}, fields_), "trajectory") {
+        trajectory_(trajectory, header({"t", "body"}, fields_), "trajectory",
+                    kept(continuation, names_.size())),
+        samples_(continuation ? continuation->samples : 0) {
     if (!diagnostics.empty())
-      diagnostics_.emplace(diagnostics, header({"t"}, all_system_fields()), "diagnostics");
+      diagnostics_.emplace(diagnostics, header({"t"}, all_system_fields()), "diagnostics",
+                           kept(continuation, 1));
+  }
+
+  void sync() override {
+    trajectory_.sync();
+    if (diagnostics_) diagnostics_->sync();
   }
 
   void write(const Model& model, const SystemState& state, const DriftSample& d) override {
@@ -157,6 +233,11 @@ class CsvWriter final : public TrajectoryWriter {
     io::commit_together(trajectory_.staged(), diagnostics_->staged());
   }
 
+  static std::optional<Kept> kept(const std::optional<CsvContinuation>& c, size_t lines_per_sample) {
+    if (!c) return std::nullopt;
+    return Kept{c->samples, lines_per_sample, c->last_t};
+  }
+
   std::vector<std::filesystem::path> outputs() const override {
     if (!diagnostics_) return {trajectory_.path()};
     return {trajectory_.path(), diagnostics_->path()};
@@ -167,9 +248,9 @@ class CsvWriter final : public TrajectoryWriter {
   std::vector<std::string> names_;
   std::vector<const BodyField*> fields_;
   CsvFile trajectory_;
+  long samples_ = 0;
   std::optional<CsvFile> diagnostics_;
   fmt::memory_buffer buffer_;
-  long samples_ = 0;
 };
 
 }  // namespace
@@ -193,13 +274,14 @@ bool same_file(const std::filesystem::path& a, const std::filesystem::path& b) {
 
 std::unique_ptr<TrajectoryWriter> make_csv_writer(const std::filesystem::path& trajectory,
                                                   const std::filesystem::path& diagnostics,
-                                                  const Model& model, const TrajectoryInfo& info) {
+                                                  const Model& model, const TrajectoryInfo& info,
+                                                  const std::optional<CsvContinuation>& continuation) {
   if (!diagnostics.empty() && same_file(trajectory, diagnostics)) {
     throw InvalidArgument(
         fmt::format("the trajectory {} and the diagnostics {} are the same file: give different files",
                     trajectory.string(), diagnostics.string()));
   }
-  return std::make_unique<CsvWriter>(trajectory, diagnostics, model, body_fields(info.fields));
+  return std::make_unique<CsvWriter>(trajectory, diagnostics, model, body_fields(info.fields), continuation);
 }
 
 }  // namespace tumble

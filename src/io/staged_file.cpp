@@ -184,6 +184,16 @@ void commit_together(StagedFile& first, StagedFile& second) {
   if (had_older) std::filesystem::remove(backup, ec);
 }
 
+std::filesystem::path output_target(const std::filesystem::path& final_path) {
+  return follow_symlinks(final_path);
+}
+
+std::filesystem::path temporary_path(const std::filesystem::path& final_path, long pid) {
+  std::filesystem::path out = follow_symlinks(final_path);
+  out += fmt::format(".tmp-{}", pid);
+  return out;
+}
+
 void remove_stale_temporaries(const std::filesystem::path& final_path) {
   const std::string name = final_path.filename().string();
   if (name.empty()) return;

@@ -53,6 +53,12 @@ class StagedFile {
 /// FileError says so. Files written directly are not affected (there is nothing to undo).
 void commit_together(StagedFile& first, StagedFile& second);
 
+/// The file that holds `final_path`'s output: the path with symlinks followed.
+std::filesystem::path output_target(const std::filesystem::path& final_path);
+
+/// FINAL.tmp-PID: where process `pid` stages `final_path` (symlinks followed, as StagedFile does).
+std::filesystem::path temporary_path(const std::filesystem::path& final_path, long pid);
+
 /// Removes FINAL.tmp-PID and FINAL.old-PID beside `final_path` whose PID is not a live process
 /// (kill(PID, 0) fails with ESRCH). Only regular files whose names match exactly; best effort.
 void remove_stale_temporaries(const std::filesystem::path& final_path);

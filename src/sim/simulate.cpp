@@ -132,17 +132,33 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
                                       model.particles.size()));
   }
   if (!is_adaptive(settings.integrator)) make_integrator(settings.integrator)->check(model);
-  SystemCoordinates x = to_coordinates(settings.formulation, state);
+  const RunPoint* const from = hooks.resume_from;
+  SystemCoordinates x = from ? from->x : to_coordinates(settings.formulation, state);
+  if (from) {
+    if (from->t0 != state.t || x.bodies.size() != model.bodies.size() ||
+        x.particles.size() != model.particles.size() || from->event_values.size() != events.size() ||
+        from->next_sample < 1 || from->samples < 1) {
+      throw InvalidArgument(
+          "the run point to resume from does not belong to this run (another initial state, model or set "
+          "of events)");
+    }
+  }
   if (const std::string bad = first_non_finite(model, x); !bad.empty()) {
-    throw InvalidArgument(fmt::format("initial state of {} is not finite", bad));
+    throw InvalidArgument(fmt::format("{} state of {} is not finite", from ? "the resumed" : "initial", bad));
   }
   const double t0 = state.t;
   const double t_end = t0 + settings.duration;
   const double h = settings.timestep;
   // Sample times are t₀ + k·Δ, computed from k (not accumulated) so they do not drift.
   const double dt_out = settings.output_interval > 0 ? settings.output_interval : h;
-  long k_out = 1;
-  if (on_sample && !on_sample(state)) return state;
+  long k_out = from ? from->next_sample : 1;
+  // Samples handed over, counted for run points (a resumed run continues the count).
+  long samples = from ? from->samples : 0;
+  auto emit = [&](const SystemState& s) {
+    ++samples;
+    return !on_sample || on_sample(s);
+  };
+  if (!from && !emit(state)) return state;
   // `steps` > 1: the last of several steps taken together from t_start, checked only after them.
   auto check = [&](const SystemCoordinates& y, long step, double step_h, long steps = 1,
                    double t_start = 0.0) {
@@ -160,14 +176,15 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
   std::vector<double> g_prev;
   for (const Event& e : events) {
     if (!e.g) throw InvalidArgument(fmt::format("event '{}' has no function g", e.name));
-    g_prev.push_back(evaluate(e, state));
+    if (!from) g_prev.push_back(evaluate(e, state));
   }
+  if (from) g_prev = from->event_values;
   // Reports the crossings of one step in time order; the state of a stopping event ends the run.
   auto report = [&](const Hit& hit, SystemState& out) {
     out = to_state(settings.formulation, hit.x);
     if (hooks.on_event) hooks.on_event(EventHit{events[hit.event].name, out});
     if (!events[hit.event].stop) return false;
-    if (on_sample) on_sample(out);
+    emit(out);
     return true;
   };
 
@@ -175,6 +192,29 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
     const auto integrator = make_adaptive_integrator(settings.integrator, settings.tolerances);
     integrator->start(model, settings.formulation, x, std::min(h, std::max(settings.duration, h)));
     bool finished = t_end <= t0;
+    if (from) {
+      integrator->load_state(from->integrator);
+      finished = from->finished;
+      // A point after the final sample: x is that sample's state (the step's end is clipped to t_end).
+      if (finished) return to_state(settings.formulation, x);
+    }
+    // A run point after a step that held samples: nothing of the step is pending then.
+    auto keep = [&](const SystemCoordinates& at) {
+      if (!hooks.run_point) return;
+      RunPoint& p = *hooks.run_point;
+      p.t0 = t0;
+      p.x = at;
+      p.next_sample = k_out;
+      p.t_last_sample = std::min(t0 + static_cast<double>(k_out - 1) * dt_out, t_end);
+      p.steps_since_sample = 0;
+      p.samples = samples;
+      p.finished = finished;
+      p.stats = integrator->stats();
+      p.event_values = g_prev;
+      p.integrator = integrator->save_state();
+      if (hooks.on_run_point) hooks.on_run_point(p);
+    };
+    if (!from) keep(x);
     while (!finished) {
       const double t_a = integrator->current_time();
       integrator->step();
@@ -188,6 +228,7 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
                                      [&](double tau) { return integrator->interpolate(t_a + tau); });
       // Samples and crossings inside this step, in time order.
       size_t next_hit = 0;
+      bool sampled = false;
       while (true) {
         const double t_sample = std::min(t0 + static_cast<double>(k_out) * dt_out, t_end);
         const bool hit_first = next_hit < hits.size() && t_a + hits[next_hit].tau <= std::min(t_sample, t_b);
@@ -200,12 +241,14 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
         ++k_out;
         to_state(settings.formulation, x, state);  // reuses the storage: no allocation per sample
         finished = t_sample >= t_end;
-        if (on_sample && !on_sample(state)) return state;
+        sampled = true;
+        if (!emit(state)) return state;
         if (finished) break;
       }
+      if (sampled) keep(x_b);
       if (!finished && stop_requested && stop_requested()) {
         state = to_state(settings.formulation, x_b);
-        if (on_sample) on_sample(state);
+        emit(state);
         return state;
       }
     }
@@ -221,6 +264,30 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
   const bool chunks = events.empty() && integrator->fuses_steps(model);
   double t_last_sample = t0;
   long steps_since_sample = 0;
+  if (from) {
+    integrator->load_state(model, settings.formulation, from->integrator);
+    step = from->stats.steps;
+    t_last_sample = from->t_last_sample;
+    steps_since_sample = from->steps_since_sample;
+  }
+  // A run point right after a sample on the grid: nothing of the step is pending then.
+  auto keep = [&] {
+    if (!hooks.run_point) return;
+    RunPoint& p = *hooks.run_point;
+    p.t0 = t0;
+    p.x = x;
+    p.next_sample = k_out;
+    p.t_last_sample = t_last_sample;
+    p.steps_since_sample = steps_since_sample;
+    p.samples = samples;
+    p.finished = !(x.t < t_end - tiny);
+    p.stats = {step, 0,
+               integrator->evaluations_counted().value_or(step * integrator->evaluations_per_step())};
+    p.event_values = g_prev;
+    p.integrator = integrator->save_state();
+    if (hooks.on_run_point) hooks.on_run_point(p);
+  };
+  if (!from) keep();
   while (x.t < t_end - tiny) {
     const double t_sample = std::min(t0 + static_cast<double>(k_out) * dt_out, t_end);
     if (chunks) {
@@ -244,7 +311,7 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
         check(x, step, h, count, t_start);
         if (stop_requested && stop_requested()) {
           to_state(settings.formulation, x, state);
-          if (on_sample) on_sample(state);
+          emit(state);
           return state;
         }
         continue;
@@ -280,14 +347,16 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
     }
     const bool stop = stop_requested && stop_requested();
     if (x.t == t_sample || stop) {
-      if (x.t == t_sample) {
+      const bool on_grid = x.t == t_sample;
+      if (on_grid) {
         ++k_out;
         t_last_sample = t_sample;
         steps_since_sample = 0;
       }
       to_state(settings.formulation, x, state);  // reuses the storage: no allocation per sample
-      if (on_sample && !on_sample(state)) return state;
-      if (stop) return state;
+      const bool go_on = emit(state);
+      if (on_grid) keep();
+      if (!go_on || stop) return state;
     }
   }
   return to_state(settings.formulation, x);

@@ -59,6 +59,15 @@ class Integrator {
   /// `exact` refuses some: it solves torque-free motion under a uniform field). simulate() asks first.
   virtual void check(const Model& /*model*/) const {}
 
+  /// What the integrator carries from one step to the next besides x (splitting's kept flows and end
+  /// loads, exact's anchor, counters), as doubles (counts and flags are exact in a double): a checkpoint
+  /// stores it, and an integrator given it by load_state() and then the same x continues bit for bit as
+  /// this one would. Empty for the integrators that carry nothing.
+  virtual std::vector<double> save_state() const { return {}; }
+  /// Restores what save_state() returned, for `model` in `formulation`. Throws InvalidArgument if it
+  /// does not fit (another integrator's state, another model's size).
+  virtual void load_state(const Model& model, Formulation formulation, const std::vector<double>& state);
+
   /// Threads a step uses (≤ 0: one per hardware thread). Results do not depend on it, bit for bit.
   void set_threads(int threads) { threads_ = threads; }
   int threads() const { return threads_; }
@@ -96,6 +105,13 @@ class AdaptiveIntegrator {
   /// The variables at t ∈ [previous_time(), current_time()], by dense output.
   virtual SystemCoordinates interpolate(double t) const = 0;
   virtual IntegratorStats stats() const = 0;
+
+  /// Everything the integrator carries between accepted steps (its state, time and next trial step, the
+  /// work counted), as doubles, for a checkpoint. load_state() after start() (same model, formulation and
+  /// shape of x) continues the run bit for bit: the next step is the step this integrator would take.
+  virtual std::vector<double> save_state() const = 0;
+  /// Throws InvalidArgument if `state` does not fit.
+  virtual void load_state(const std::vector<double>& state) = 0;
 
   /// The variables at time t (non-decreasing between calls), stepping as far as needed and
   /// interpolating inside the last step.

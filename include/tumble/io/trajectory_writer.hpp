@@ -19,6 +19,7 @@
 // that is no longer alive). A write error (a full disk) throws FileError at once.
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,18 @@ class TrajectoryWriter {
   virtual std::vector<std::filesystem::path> outputs() const = 0;
   /// Samples written so far.
   virtual long samples() const = 0;
+  /// Makes what was written so far durable in the (temporary) files: flushed and fsync'ed (a checkpoint
+  /// is about to name them). Throws FileError.
+  virtual void sync() {}
+};
+
+/// CSV files that an earlier part of the same run wrote, to be continued (`tumble resume`): the files
+/// now under the final names are copied into the new temporaries up to the end of sample `samples`,
+/// and writing continues from there. Checked: the header is this run's, the files hold that many
+/// samples, and the last one kept is at `last_t`.
+struct CsvContinuation {
+  long samples = 0;
+  double last_t = 0.0;
 };
 
 /// CSV: `trajectory` ("-": standard output) has the header t,body, then the columns of each field (by default
@@ -57,7 +70,8 @@ class TrajectoryWriter {
 /// (an empty path: no diagnostics file). Throws InvalidArgument if both name the same file.
 std::unique_ptr<TrajectoryWriter> make_csv_writer(const std::filesystem::path& trajectory,
                                                   const std::filesystem::path& diagnostics,
-                                                  const Model& model, const TrajectoryInfo& info);
+                                                  const Model& model, const TrajectoryInfo& info,
+                                                  const std::optional<CsvContinuation>& continuation = {});
 
 /// HDF5 (one file): datasets t, names, one (n, N, width) dataset per field, and the group diagnostics;
 /// the scene text, tumble version and run settings as attributes (hdf5_writer.cpp).

@@ -41,6 +41,11 @@ class DriftMonitor {
   std::optional<std::string> take_warning();
   /// The warning of this run, if there was one (kept for the run's closing summary).
   const std::optional<std::string>& warning() const { return first_warning_; }
+  /// A resumed run: the warning the first part of the run gave (it is not given again).
+  void restore_warning(const std::string& warning) {
+    warned_ = true;
+    first_warning_ = warning;
+  }
 
  private:
   const Model& model_;

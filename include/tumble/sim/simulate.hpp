@@ -46,6 +46,23 @@ struct EventHit {
   SystemState state;
 };
 
+/// Where a run stands at a sample, in full: what simulate needs to continue it exactly as if it had
+/// never stopped (io/checkpoint.hpp stores it in a file). Taken only where nothing is pending: right after
+/// a sample on the output grid (fixed-step integrators), or after an accepted step that held samples
+/// (adaptive ones: their state is where the step ended).
+struct RunPoint {
+  double t0 = 0.0;       ///< the run's start time (the initial state's)
+  SystemCoordinates x;   ///< the formulation's variables there
+  long next_sample = 1;  ///< k of the next sample on the grid t₀ + k·Δ
+  double t_last_sample = 0.0;
+  long steps_since_sample = 0;  ///< fixed-step: steps since the last sample on the grid
+  long samples = 0;             ///< samples handed to on_sample so far (the initial state's included)
+  bool finished = false;        ///< the final time was sampled
+  IntegratorStats stats;
+  std::vector<double> event_values;  ///< g of each event there
+  std::vector<double> integrator;    ///< Integrator::save_state(), AdaptiveIntegrator::save_state()
+};
+
 /// What a run reports back, all optional.
 struct RunHooks {
   /// Called with every sample (the initial state first); return false to stop the run early.
@@ -60,6 +77,18 @@ struct RunHooks {
   std::function<bool()> stop_requested;
   /// Receives the work done (steps, rejections, force evaluations).
   IntegratorStats* stats = nullptr;
+
+  /// Exact resume. When set, kept up to date at every point a run can be resumed from (see RunPoint;
+  /// the initial state is one): a copy of the state and of the integrator's state there each time.
+  /// After a run that stopped early it holds the last such point, which may be a sample or two before
+  /// the state the run stopped at.
+  RunPoint* run_point = nullptr;
+  /// Called right after each update of *run_point (e.g. to write a checkpoint now and then).
+  std::function<void(const RunPoint&)> on_run_point;
+  /// Continue a run from this point, taken by a run of the same model, initial state (passed as `state`),
+  /// settings and events; the samples before it are not handed to on_sample again. The run from there
+  /// is bit for bit the run that was not stopped.
+  const RunPoint* resume_from = nullptr;
 };
 
 /// Runs the model from `state` and returns the final state. Throws tumble::Error naming the body,

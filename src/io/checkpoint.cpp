@@ -1,0 +1,347 @@
+// Checkpoint files (format in include/tumble/io/checkpoint.hpp).
+#include "tumble/io/checkpoint.hpp"
+
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+
+#include <csignal>
+
+#include "staged_file.hpp"
+#include "tumble/error.hpp"
+#include "tumble/mass/input_file.hpp"
+
+namespace tumble {
+namespace {
+
+constexpr char kMagic[8] = {'T', 'U', 'M', 'B', 'L', 'E', 'C', 'K'};
+constexpr std::uint32_t kVersion = 1;
+constexpr std::uint32_t kByteOrder = 0x01020304;
+
+class Out {
+ public:
+  void raw(const void* p, size_t n) {
+    if (n > 0) bytes.append(static_cast<const char*>(p), n);  // p may be null (an empty vector's data)
+  }
+  void u64(std::uint64_t v) { raw(&v, sizeof v); }
+  void i64(long v) { u64(static_cast<std::uint64_t>(v)); }
+  void f64(double v) { raw(&v, sizeof v); }
+  void str(std::string_view s) {
+    u64(s.size());
+    raw(s.data(), s.size());
+  }
+  void f64s(const std::vector<double>& v) {
+    u64(v.size());
+    raw(v.data(), v.size() * sizeof(double));
+  }
+  void opt(const std::optional<double>& v) {
+    u64(v ? 1 : 0);
+    f64(v.value_or(0.0));
+  }
+  std::string bytes;
+};
+
+/// Reads what Out wrote; anything out of bounds or out of range is a corrupt file.
+class In {
+ public:
+  In(std::string_view bytes, const std::filesystem::path& path) : bytes_(bytes), path_(path) {}
+  void raw(void* p, size_t n) {
+    if (n > bytes_.size() - pos_) corrupt();
+    if (n == 0) return;  // p may be null (an empty vector's data)
+    std::memcpy(p, bytes_.data() + pos_, n);
+    pos_ += n;
+  }
+  std::uint64_t u64() {
+    std::uint64_t v;
+    raw(&v, sizeof v);
+    return v;
+  }
+  /// A count of items of `item` bytes each that must fit in what is left.
+  size_t count(size_t item) {
+    const std::uint64_t n = u64();
+    if (n > (bytes_.size() - pos_) / std::max<size_t>(item, 1)) corrupt();
+    return static_cast<size_t>(n);
+  }
+  long i64(long lo, long hi) {
+    const auto v = static_cast<long>(u64());
+    if (v < lo || v > hi) corrupt();
+    return v;
+  }
+  bool flag() { return i64(0, 1) == 1; }
+  double f64() {
+    double v;
+    raw(&v, sizeof v);
+    return v;
+  }
+  std::string str() {
+    std::string s(count(1), '\0');
+    raw(s.data(), s.size());
+    return s;
+  }
+  std::vector<double> f64s() {
+    std::vector<double> v(count(sizeof(double)));
+    raw(v.data(), v.size() * sizeof(double));
+    return v;
+  }
+  std::optional<double> opt() {
+    const bool has = flag();
+    const double v = f64();
+    return has ? std::optional<double>(v) : std::nullopt;
+  }
+  bool at_end() const { return pos_ == bytes_.size(); }
+  [[noreturn]] void corrupt() const {
+    throw InvalidArgument(fmt::format(
+        "checkpoint {} is corrupt: its fields do not fit its length; it cannot be resumed", path_.string()));
+  }
+
+ private:
+  std::string_view bytes_;
+  const std::filesystem::path& path_;
+  size_t pos_ = 0;
+};
+
+constexpr long kMaxLong = 1L << 53;
+
+void put_point(Out& o, const RunPoint& p) {
+  o.f64(p.t0);
+  o.f64(p.x.t);
+  const size_t n = p.x.bodies.size();
+  o.u64(n);
+  for (size_t k = 0; k < BodyColumns::kCount; ++k) o.raw(p.x.bodies[k], n * sizeof(double));
+  o.u64(p.x.particles.size());
+  for (const ParticleState& s : p.x.particles) {
+    o.raw(s.x.data(), 3 * sizeof(double));
+    o.raw(s.v.data(), 3 * sizeof(double));
+  }
+  o.i64(p.next_sample);
+  o.f64(p.t_last_sample);
+  o.i64(p.steps_since_sample);
+  o.i64(p.samples);
+  o.u64(p.finished ? 1 : 0);
+  o.i64(p.stats.steps);
+  o.i64(p.stats.rejected);
+  o.i64(p.stats.evaluations);
+  o.f64s(p.event_values);
+  o.f64s(p.integrator);
+}
+
+RunPoint get_point(In& in) {
+  RunPoint p;
+  p.t0 = in.f64();
+  p.x.t = in.f64();
+  const size_t n = in.count(BodyColumns::kCount * sizeof(double));
+  p.x.bodies.resize(n);
+  for (size_t k = 0; k < BodyColumns::kCount; ++k) in.raw(p.x.bodies[k], n * sizeof(double));
+  p.x.particles.resize(in.count(6 * sizeof(double)));
+  for (ParticleState& s : p.x.particles) {
+    in.raw(s.x.data(), 3 * sizeof(double));
+    in.raw(s.v.data(), 3 * sizeof(double));
+  }
+  p.next_sample = in.i64(1, kMaxLong);
+  p.t_last_sample = in.f64();
+  p.steps_since_sample = in.i64(0, kMaxLong);
+  p.samples = in.i64(1, kMaxLong);
+  p.finished = in.flag();
+  p.stats.steps = in.i64(0, kMaxLong);
+  p.stats.rejected = in.i64(0, kMaxLong);
+  p.stats.evaluations = in.i64(0, kMaxLong);
+  p.event_values = in.f64s();
+  p.integrator = in.f64s();
+  return p;
+}
+
+}  // namespace
+
+std::uint64_t fnv1a64(std::string_view bytes, std::uint64_t hash) {
+  for (const unsigned char c : bytes) {
+    hash ^= c;
+    hash *= 0x100000001b3ULL;
+  }
+  return hash;
+}
+
+FileStamp stamp_file(const std::filesystem::path& path) {
+  const std::string text = read_input_file(path, "input file");
+  return {std::filesystem::absolute(path).lexically_normal().string(), text.size(), fnv1a64(text)};
+}
+
+void check_inputs_unchanged(const std::vector<FileStamp>& inputs) {
+  for (const FileStamp& s : inputs) {
+    std::error_code ec;
+    if (!std::filesystem::exists(s.path, ec)) {
+      throw InvalidArgument(fmt::format(
+          "{}, which the scene reads, is gone since the checkpoint was written: the run cannot be resumed "
+          "exactly; put the file back or start a new run",
+          s.path));
+    }
+    const FileStamp now = stamp_file(s.path);
+    if (now.size != s.size || now.hash != s.hash) {
+      throw InvalidArgument(fmt::format(
+          "{}, which the scene reads, changed since the checkpoint was written ({} bytes then, {} now{}): "
+          "the run cannot be resumed exactly; restore the file or start a new run",
+          s.path, s.size, now.size, now.size == s.size ? ", other contents" : ""));
+    }
+  }
+}
+
+void recover_outputs(const Checkpoint& c) {
+  for (const std::string& out : {c.output, c.diagnostics}) {
+    if (out.empty()) continue;
+    const std::filesystem::path temporary = io::temporary_path(out, c.writer_pid);
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(std::filesystem::symlink_status(temporary, ec))) continue;
+    if (c.writer_pid != static_cast<long>(::getpid()) && ::kill(static_cast<pid_t>(c.writer_pid), 0) == 0) {
+      throw InvalidArgument(fmt::format(
+          "the run that wrote this checkpoint (process {}) is still writing {}: stop it (Ctrl-C writes a "
+          "last checkpoint) before resuming",
+          c.writer_pid, temporary.string()));
+    }
+    std::filesystem::rename(temporary, io::output_target(out), ec);
+    if (ec) {
+      throw FileError(
+          fmt::format("cannot move the killed run's {} to {}: {}", temporary.string(), out, ec.message()));
+    }
+  }
+}
+
+void write_checkpoint(const std::filesystem::path& path, const Checkpoint& c) {
+  Out o;
+  o.raw(kMagic, sizeof kMagic);
+  const std::uint32_t head[2] = {kVersion, kByteOrder};
+  o.raw(head, sizeof head);
+  o.str(c.tumble_version);
+  o.str(c.scene_path);
+  o.str(c.scene_absolute);
+  o.str(c.scene_text);
+  o.u64(c.inputs.size());
+  for (const FileStamp& s : c.inputs) {
+    o.str(s.path);
+    o.u64(s.size);
+    o.u64(s.hash);
+  }
+  const RunSettings& r = c.settings;
+  o.f64(r.duration);
+  o.f64(r.timestep);
+  o.f64(r.output_interval);
+  o.u64(static_cast<std::uint64_t>(r.formulation));
+  o.str(r.integrator);
+  o.f64(r.tolerances.relative);
+  o.f64(r.tolerances.absolute);
+  o.i64(r.threads);
+  o.str(c.output);
+  o.str(c.diagnostics);
+  o.u64(c.fields.size());
+  for (const std::string& f : c.fields) o.str(f);
+  o.f64(c.drift_threshold);
+  o.u64(c.strict ? 1 : 0);
+  o.i64(c.writer_pid);
+  o.opt(c.largest_energy_drift);
+  o.opt(c.largest_angular_momentum_drift);
+  o.str(c.drift_warning);
+  put_point(o, c.point);
+  o.u64(fnv1a64(o.bytes));
+
+  std::filesystem::path temporary = path;
+  temporary += fmt::format(".tmp-{}", static_cast<long>(::getpid()));
+  auto fail = [&](int error) {
+    std::error_code ec;
+    std::filesystem::remove(temporary, ec);
+    throw FileError(fmt::format("cannot write the checkpoint {}: {}", path.string(),
+                                std::strerror(error != 0 ? error : EIO)));
+  };
+  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) fail(errno);
+  size_t done = 0;
+  while (done < o.bytes.size()) {
+    const ssize_t n = ::write(fd, o.bytes.data() + done, o.bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int error = errno;
+      ::close(fd);
+      fail(error);
+    }
+    done += static_cast<size_t>(n);
+  }
+  if (::fsync(fd) != 0) {
+    const int error = errno;
+    ::close(fd);
+    fail(error);
+  }
+  if (::close(fd) != 0) fail(errno);
+  if (std::rename(temporary.c_str(), path.c_str()) != 0) fail(errno);
+}
+
+Checkpoint read_checkpoint(const std::filesystem::path& path) {
+  const std::string bytes = read_input_file(path, "checkpoint");
+  const std::string name = path.string();
+  if (bytes.size() < sizeof kMagic || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0) {
+    throw InvalidArgument(
+        fmt::format("{} is not a tumble checkpoint (it does not begin with TUMBLECK)", name));
+  }
+  std::uint32_t head[2] = {0, 0};
+  if (bytes.size() < sizeof kMagic + sizeof head + 8) {
+    throw InvalidArgument(
+        fmt::format("checkpoint {} is truncated ({} bytes); it cannot be resumed", name, bytes.size()));
+  }
+  std::memcpy(head, bytes.data() + sizeof kMagic, sizeof head);
+  if (head[1] != kByteOrder) {
+    throw InvalidArgument(fmt::format(
+        "checkpoint {} was written on a machine of the other byte order; resume it on such a machine", name));
+  }
+  if (head[0] != kVersion) {
+    throw InvalidArgument(fmt::format(
+        "checkpoint {} has format version {}; this tumble reads version {}: resume it with the tumble that "
+        "wrote it",
+        name, head[0], kVersion));
+  }
+  std::uint64_t stored;
+  std::memcpy(&stored, bytes.data() + bytes.size() - 8, 8);
+  const std::string_view body(bytes.data(), bytes.size() - 8);
+  if (fnv1a64(body) != stored) {
+    throw InvalidArgument(fmt::format(
+        "checkpoint {} is truncated or corrupt (its checksum does not match its contents); it cannot be "
+        "resumed",
+        name));
+  }
+  In in(body.substr(sizeof kMagic + sizeof head), path);
+  Checkpoint c;
+  c.tumble_version = in.str();
+  c.scene_path = in.str();
+  c.scene_absolute = in.str();
+  c.scene_text = in.str();
+  c.inputs.resize(in.count(24));
+  for (FileStamp& s : c.inputs) {
+    s.path = in.str();
+    s.size = in.u64();
+    s.hash = in.u64();
+  }
+  RunSettings& r = c.settings;
+  r.duration = in.f64();
+  r.timestep = in.f64();
+  r.output_interval = in.f64();
+  r.formulation = static_cast<Formulation>(in.i64(0, 2));
+  r.integrator = in.str();
+  r.tolerances.relative = in.f64();
+  r.tolerances.absolute = in.f64();
+  r.threads = static_cast<int>(in.i64(0, 4096));
+  c.output = in.str();
+  c.diagnostics = in.str();
+  c.fields.resize(in.count(8));
+  for (std::string& f : c.fields) f = in.str();
+  c.drift_threshold = in.f64();
+  c.strict = in.flag();
+  c.writer_pid = in.i64(1, kMaxLong);
+  c.largest_energy_drift = in.opt();
+  c.largest_angular_momentum_drift = in.opt();
+  c.drift_warning = in.str();
+  c.point = get_point(in);
+  if (!in.at_end()) in.corrupt();
+  return c;
+}
+
+}  // namespace tumble

@@ -1,0 +1,197 @@
+// `tumble run --checkpoint` and `tumble resume`: a run stopped by SIGTERM (or killed) and resumed writes
+// the same files, byte for byte, as a run that was never stopped.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "../support/run.hpp"
+#include "../support/scene_files.hpp"
+
+extern char** environ;
+
+namespace tumble {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// A T-handle (a mesh: its stamp is checked on resume) tumbling for long enough that a signal lands
+/// mid-way; a damped box beside it feels torques, so splitting sets up new flows as well.
+std::string scene_text(const std::string& integrator) {
+  return "[simulation]\nduration = 2.0\ntimestep = 1e-4\noutput_interval = 0.01\nintegrator = \"" +
+         integrator +
+         "\"\n"
+         "[[bodies]]\nname = \"handle\"\nmesh = \"t_handle.stl\"\ndensity = 2700.0\n"
+         "angular_velocity = [0.1, 0.0, 20.0]\n"
+         "[[bodies]]\nname = \"box\"\nshape = { type = \"box\", size = [0.1, 0.2, 0.3] }\nmass = 1.0\n"
+         "position = [1.0, 0.0, 0.0]\nangular_velocity = [1.0, 2.0, 3.0]\n"
+         "[[forces]]\ntype = \"damping\"\nbody = \"box\"\nlinear = 0.1\nangular = 0.02\n";
+}
+
+pid_t spawn(std::vector<std::string> args, const fs::path& stderr_file) {
+  args.insert(args.begin(), TUMBLE_CLI);
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 2, stderr_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = 0;
+  const int spawned = posix_spawn(&pid, TUMBLE_CLI, &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  return spawned == 0 ? pid : -1;
+}
+
+bool wait_for(const std::function<bool()>& condition) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (condition()) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return false;
+}
+
+size_t lines_of_temporary(const fs::path& dir, const std::string& name) {
+  for (const auto& e : fs::directory_iterator(dir)) {
+    const std::string f = e.path().filename().string();
+    if (f.rfind(name + ".tmp-", 0) == 0) {
+      const std::string text = test::read_text(e.path());
+      return static_cast<size_t>(std::count(text.begin(), text.end(), '\n'));
+    }
+  }
+  return 0;
+}
+
+struct Dir {
+  explicit Dir(const std::string& name) : dir(name) {  // NOLINT
+    fs::copy_file(fs::path(TUMBLE_SOURCE_DIR) / "examples/meshes/t_handle.stl", dir / "t_handle.stl");
+  }
+  test::TempDir dir;
+};
+
+/// Runs the scene with a checkpoint and stops it with `signal` once `rows` rows are in the trajectory.
+int stopped_run(const Dir& d, const std::string& integrator, int signal, size_t rows) {
+  const fs::path scene = d.dir.write("s.toml", scene_text(integrator));
+  const pid_t pid = spawn({"run", scene.string(), "-o", (d.dir / "out.csv").string(), "--checkpoint",
+                           (d.dir / "run.ckpt").string(), "--checkpoint-every", "0", "--quiet"},
+                          d.dir / "stderr.txt");
+  EXPECT_GT(pid, 0);
+  EXPECT_TRUE(wait_for([&] { return lines_of_temporary(d.dir.path(), "out.csv") >= rows; }));
+  kill(pid, signal);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return status;
+}
+
+TEST(ResumeCli, StoppedBySigtermAndResumedTheFilesAreThoseOfAnUninterruptedRun) {
+  for (const std::string integrator : {"splitting", "dopri45", "rk4", "midpoint"}) {
+    Dir whole("resume_whole_" + integrator);
+    const fs::path scene = whole.dir.write("s.toml", scene_text(integrator));
+    const auto full =
+        test::run_tumble("run " + scene.string() + " -o " + (whole.dir / "out.csv").string() + " --quiet");
+    ASSERT_EQ(full.status, 0) << full.output;
+
+    Dir part("resume_part_" + integrator);
+    const int status = stopped_run(part, integrator, SIGTERM, 300);
+    ASSERT_TRUE(WIFEXITED(status)) << integrator;
+    EXPECT_EQ(WEXITSTATUS(status), 128 + SIGTERM) << integrator;
+    const std::string err = test::read_text(part.dir / "stderr.txt");
+    EXPECT_NE(err.find("tumble resume"), std::string::npos) << err;
+    ASSERT_TRUE(fs::exists(part.dir / "run.ckpt")) << err;
+    ASSERT_LT(test::read_text(part.dir / "out.csv").size(), test::read_text(whole.dir / "out.csv").size())
+        << integrator << ": the run was stopped mid-way";
+
+    const auto resumed = test::run_tumble("resume " + (part.dir / "run.ckpt").string() + " --quiet");
+    ASSERT_EQ(resumed.status, 0) << resumed.output;
+    EXPECT_TRUE(test::read_text(part.dir / "out.csv") == test::read_text(whole.dir / "out.csv"))
+        << integrator;
+    EXPECT_TRUE(test::read_text(part.dir / "out.diagnostics.csv") ==
+                test::read_text(whole.dir / "out.diagnostics.csv"))
+        << integrator;
+    EXPECT_FALSE(fs::exists(part.dir / "run.ckpt")) << "removed when the run completes";
+  }
+}
+
+TEST(ResumeCli, KilledBeforeItsFilesWereCommittedIsResumedFromTheTemporaries) {
+  Dir whole("resume_kill_whole");
+  const fs::path scene = whole.dir.write("s.toml", scene_text("splitting"));
+  ASSERT_EQ(
+      test::run_tumble("run " + scene.string() + " -o " + (whole.dir / "out.csv").string() + " -q").status,
+      0);
+  Dir part("resume_kill_part");
+  const int status = stopped_run(part, "splitting", SIGKILL, 300);
+  ASSERT_TRUE(WIFSIGNALED(status));
+  ASSERT_FALSE(fs::exists(part.dir / "out.csv"));
+  const auto resumed = test::run_tumble("resume " + (part.dir / "run.ckpt").string() + " -q");
+  ASSERT_EQ(resumed.status, 0) << resumed.output;
+  EXPECT_TRUE(test::read_text(part.dir / "out.csv") == test::read_text(whole.dir / "out.csv"));
+  EXPECT_TRUE(test::read_text(part.dir / "out.diagnostics.csv") ==
+              test::read_text(whole.dir / "out.diagnostics.csv"));
+}
+
+TEST(ResumeCli, CorruptTruncatedAndForeignCheckpointsAndChangedMeshesAreRefused) {
+  Dir d("resume_refused");
+  stopped_run(d, "rk4", SIGTERM, 50);
+  const fs::path ckpt = d.dir / "run.ckpt";
+  const std::string good = test::read_text(ckpt);
+  ASSERT_GT(good.size(), 100u);
+
+  std::string flipped = good;
+  flipped[flipped.size() / 2] ^= 0x10;
+  d.dir.write("flipped.ckpt", flipped);
+  auto r = test::run_tumble("resume " + (d.dir / "flipped.ckpt").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("is truncated or corrupt"), std::string::npos) << r.output;
+
+  d.dir.write("cut.ckpt", good.substr(0, good.size() - 100));
+  r = test::run_tumble("resume " + (d.dir / "cut.ckpt").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("is truncated or corrupt"), std::string::npos) << r.output;
+
+  d.dir.write("other.ckpt", "[simulation]\nduration = 1\n");
+  r = test::run_tumble("resume " + (d.dir / "other.ckpt").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("is not a tumble checkpoint"), std::string::npos) << r.output;
+
+  std::string version = good;
+  version[8] = 7;
+  d.dir.write("version.ckpt", version);
+  r = test::run_tumble("resume " + (d.dir / "version.ckpt").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("has format version 7"), std::string::npos) << r.output;
+
+  // The mesh changed under the checkpoint: one byte of the STL's header.
+  std::string mesh = test::read_text(d.dir / "t_handle.stl");
+  mesh[0] = mesh[0] == 'x' ? 'y' : 'x';
+  d.dir.write("t_handle.stl", mesh);
+  r = test::run_tumble("resume " + ckpt.string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("t_handle.stl, which the scene reads, changed since the checkpoint was written"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(r.output.find('\n'), r.output.size() - 1) << "one line";
+
+  // HDF5 and standard output cannot be continued: refused when the run starts.
+  const fs::path scene = d.dir / "s.toml";
+  r = test::run_tumble("run " + scene.string() + " -o " + (d.dir / "x.h5").string() + " --checkpoint " +
+                       (d.dir / "x.ckpt").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("--checkpoint needs CSV output"), std::string::npos) << r.output;
+  r = test::run_tumble("run " + scene.string() + " -o - --checkpoint " + (d.dir / "x.ckpt").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("--checkpoint needs the trajectory in a file"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace tumble
