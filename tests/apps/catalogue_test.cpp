@@ -834,7 +834,8 @@ const std::vector<Case>& catalogue() {
        {},
        "{t} simulate x.toml",
        2,
-       "tumble: error: unknown command 'simulate': the commands are run, check, inertia; see tumble --help"},
+       "tumble: error: unknown command 'simulate': the commands are run, resume, check, inertia; see tumble "
+       "--help"},
       {"cli: unknown option",
        {{"s.toml", std::string("[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = "
                                "\"box\", size = [1, 2, 3] }\ndensity = 1000\n",
