@@ -20,19 +20,22 @@ from ._tumble import (  # noqa: F401  (re-exported)
     MeshMassProperties,
     Scene,
     box,
+    capsule,
+    cone,
     cylinder,
     ellipsoid,
     load_scene,
     output_fields,
     parse_scene,
     sphere,
+    torus,
 )
 from . import _tumble
 
 __all__ = [
-    "MassProperties", "MeshMassProperties", "Scene", "Trajectory", "bodies", "box", "cylinder", "ellipsoid",
+    "MassProperties", "MeshMassProperties", "Scene", "Trajectory", "bodies", "box", "capsule", "cone", "cylinder", "ellipsoid",
     "euler_poinsot", "inertia", "load_scene", "mesh_mass_properties", "output_fields", "parse_scene",
-    "save_scene", "scene_from_dict", "simulate", "sphere",
+    "save_scene", "scene_from_dict", "simulate", "sphere", "torus",
 ]
 
 
@@ -135,7 +138,9 @@ def inertia(path, density=None, mass=None, scale=1.0, part=0, thickness=None):
     (kg/m^3) or mass (kg) (default unit density); scale multiplies coordinates (0.001 for a file in
     millimetres); part picks one part of a multi-part file (1-based; 0 = all, merged); thickness (m)
     makes it a thin shell. The result has mass, volume, center_of_mass, inertia (about the centre of
-    mass, the file's axes), principal_moments, principal_axes, surface_area and warnings."""
+    mass, the file's axes), principal_moments, principal_axes, surface_area and warnings. density may
+    be a function of points: called once with every quadrature point, an (n, 3) array in the file's
+    frame (m, after scaling), it returns the densities (n,) in kg/m^3."""
     return _MeshMass(_tumble._mesh_file(path, density, mass, float(scale), int(part), thickness))
 
 

@@ -208,3 +208,43 @@ def test_a_scene_built_as_a_dict_is_the_scene_file(tmp_path):
         tumble.scene_from_dict(d)
     with pytest.raises(ValueError, match="made from arrays and has no TOML"):
         tumble.save_scene(tumble.bodies(mass=[1.0], moments=[[1.0, 1.0, 1.0]]), tmp_path / "x.toml")
+
+
+def test_a_density_function_is_called_once_with_every_point():
+    # ρ(x) = 1000 (1 + x/m) on a box a x b x c centred at the origin: the odd term leaves the mass at
+    # 1000 abc and moves the centre of mass to x = ∫x ρ dV / m = a²/12 (∫x² dV = a³bc/12). The rule is
+    # exact for this linear density; rounding only.
+    a, b, c = 0.4, 0.2, 0.1
+    calls = []
+
+    def rho(x):
+        calls.append(x.shape)
+        return 1000.0 * (1.0 + x[:, 0])
+
+    m = tumble.box([a, b, c], density=rho)
+    assert len(calls) == 1 and calls[0][1] == 3 and calls[0][0] > 100
+    assert m.mass == pytest.approx(1000 * a * b * c, rel=1e-14)
+    np.testing.assert_allclose(m.center_of_mass, [a * a / 12, 0, 0], rtol=0, atol=1e-16)
+    # The same field on the box as a mesh file's arrays agrees with the shape's rule.
+    V = np.array([[x, y, z] for z in (-c / 2, c / 2) for y in (-b / 2, b / 2) for x in (-a / 2, a / 2)])
+    F = np.array([[0, 2, 3], [0, 3, 1], [4, 5, 7], [4, 7, 6], [0, 1, 5], [0, 5, 4], [1, 3, 7], [1, 7, 5],
+                  [3, 2, 6], [3, 6, 7], [2, 0, 4], [2, 4, 6]])
+    mesh = tumble.mesh_mass_properties(V, F, density=rho)
+    assert mesh.mass == pytest.approx(m.mass, rel=1e-13)
+    np.testing.assert_allclose(mesh.inertia, m.inertia, rtol=0, atol=1e-13 * np.abs(m.inertia).max())
+    with pytest.raises(ValueError, match=r"returned shape \(1,\) for \d+ points"):
+        tumble.box([a, b, c], density=lambda x: np.ones(1))
+
+
+def test_every_primitive_is_there_with_its_closed_form():
+    m, r, h = 3.0, 0.5, 2.0
+    # Cone about its apex axis: I_z = 3/10 m r²; the centre of mass a quarter of the height up.
+    cone = tumble.cone(r, h, mass=m)
+    assert cone.center_of_mass[2] == pytest.approx(h / 4, rel=1e-14)
+    assert cone.inertia[2, 2] == pytest.approx(0.3 * m * r * r, rel=1e-14)
+    # Torus: I_z = m (R² + 3/4 r²).
+    R, t = 1.0, 0.25
+    assert tumble.torus(R, t, mass=m).inertia[2, 2] == pytest.approx(m * (R * R + 0.75 * t * t), rel=1e-14)
+    # A capsule whose cylinder has (almost) no length is its two hemispheres: a sphere, I = 2/5 m r².
+    cap = tumble.capsule(r, 1e-9, mass=m)
+    assert cap.inertia[0, 0] == pytest.approx(0.4 * m * r * r, rel=1e-8)
