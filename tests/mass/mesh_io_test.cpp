@@ -17,7 +17,7 @@
 namespace tumble {
 namespace {
 
-using test::TempDir;
+using test::TestDir;
 
 /// The T-handle (bar 10 × 2 × 2 along x on top of a 2 × 2 × 6 stem) in centimetres: integer
 /// coordinates, which every format and every float parser stores exactly. Built here independently
@@ -83,7 +83,7 @@ std::string ply(const TriangleMesh& m) {
 }
 
 TEST(MeshIo, AllFormatsGiveTheSameSolidAsTheClosedForm) {
-  TempDir dir;
+  TestDir dir;
   const TriangleMesh mesh = t_handle_cm();
   write_binary_stl(mesh, dir / "binary.stl");
   write_text(dir / "ascii.stl", ascii_stl(mesh));
@@ -104,7 +104,7 @@ TEST(MeshIo, AllFormatsGiveTheSameSolidAsTheClosedForm) {
 TEST(MeshIo, PolygonsAreTriangulatedAndAllObjectsMerged) {
   // Two unit cubes as two OBJ objects with quad faces: V = 2, c midway, and each cube's I₃/6 plus
   // the parallel-axis terms of ±1.5 along x.
-  TempDir dir;
+  TestDir dir;
   std::string s;
   for (int k = 0; k < 2; ++k) {
     s += fmt::format("o cube{}\n", k);
@@ -133,7 +133,7 @@ TEST(MeshIo, PolygonsAreTriangulatedAndAllObjectsMerged) {
 TEST(MeshIo, WeldingClosesABinaryStl) {
   // Binary STL stores three corners per triangle; after welding the sphere is closed again, with the
   // original vertex count.
-  TempDir dir;
+  TestDir dir;
   const TriangleMesh sphere = tessellate(Sphere{0.5}, 24);
   write_binary_stl(sphere, dir / "sphere.stl");
   const TriangleMesh loaded = load_mesh(dir / "sphere.stl").mesh;
@@ -147,7 +147,7 @@ TEST(MeshIo, WeldingClosesABinaryStl) {
 
 TEST(MeshIo, ScaleMultipliesCoordinates) {
   // Mass ∝ s³ and inertia ∝ s⁵ at fixed density; the centre of mass ∝ s.
-  TempDir dir;
+  TestDir dir;
   write_binary_stl(t_handle_cm(), dir / "handle_cm.stl");
   const MassSpec steel = MassSpec::density(7850.0);
   const MeshMassResult one = solid_mass_properties(load_mesh(dir / "handle_cm.stl").mesh, steel);
@@ -175,7 +175,7 @@ std::string file_error(const std::filesystem::path& path) {
 }
 
 TEST(MeshIo, MissingFileNamesThePath) {
-  TempDir dir;
+  TestDir dir;
   const auto path = dir / "no_such_mesh.stl";
   const std::string msg = file_error(path);
   EXPECT_NE(msg.find(path.string()), std::string::npos) << msg;
@@ -183,7 +183,7 @@ TEST(MeshIo, MissingFileNamesThePath) {
 }
 
 TEST(MeshIo, GarbageEmptyAndTriangleFreeFilesNameThePath) {
-  TempDir dir;
+  TestDir dir;
   write_text(dir / "garbage.stl", "this is not a mesh \x01\x02\x03 at all\n");
   write_text(dir / "empty.obj", "");
   write_text(dir / "points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
@@ -206,7 +206,7 @@ TEST(MeshIo, GarbageEmptyAndTriangleFreeFilesNameThePath) {
 }
 
 TEST(MeshIo, NonFiniteCoordinateNamesTheVertex) {
-  TempDir dir;
+  TestDir dir;
   // Text: the line and column of the word.
   write_text(dir / "nan.obj", "v 0 0 0\nv 1 0 0\nv 0 nan 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\n");
   std::string msg = file_error(dir / "nan.obj");
@@ -234,7 +234,7 @@ TEST(MeshIo, NonFiniteCoordinateNamesTheVertex) {
 }
 
 TEST(MeshIo, WriteFailureIsAFileError) {
-  TempDir dir;
+  TestDir dir;
   EXPECT_THROW(write_binary_stl(t_handle_cm(), dir / "no_dir" / "x.stl"), FileError);
 }
 

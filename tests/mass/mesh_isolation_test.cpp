@@ -46,7 +46,7 @@
 namespace tumble {
 namespace {
 
-using test::TempDir;
+using test::TestDir;
 
 #define EXPECT_HAS(text, part) EXPECT_NE((text).find(part), std::string::npos) << "  got: " << (text)
 
@@ -288,7 +288,7 @@ void expect_crash_message(const std::string& msg, const std::filesystem::path& p
 // ---- through load_mesh ----
 
 TEST(MeshIsolation, ValidDaeGlb3mfAndXGiveTheUnitCube) {
-  TempDir dir;
+  TestDir dir;
   write_bytes(dir / "cube.dae", cube_dae());
   write_bytes(dir / "cube.glb", cube_glb());
   write_bytes(dir / "cube.3mf", cube_3mf());
@@ -317,7 +317,7 @@ TEST(MeshIsolation, ValidDaeGlb3mfAndXGiveTheUnitCube) {
 }
 
 TEST(MeshIsolation, PartsOfAnAssimpFileAreCountedNamedAndPicked) {
-  TempDir dir;
+  TestDir dir;
   write_bytes(dir / "cubes.dae", cube_dae(2));
   const LoadedMesh merged = load_mesh(dir / "cubes.dae");
   EXPECT_EQ(merged.parts, 2U);
@@ -337,7 +337,7 @@ TEST(MeshIsolation, PartsOfAnAssimpFileAreCountedNamedAndPicked) {
 }
 
 TEST(MeshIsolation, AssimpErrorsStillComeThroughWithTheFileName) {
-  TempDir dir;
+  TestDir dir;
   write_bytes(dir / "broken.glb", "glTF but not really");
   const std::string msg = load_error(dir / "broken.glb");
   EXPECT_HAS(msg, (dir / "broken.glb").string() + ": cannot read the mesh: ");
@@ -347,7 +347,7 @@ TEST(MeshIsolation, AssimpErrorsStillComeThroughWithTheFileName) {
 }
 
 TEST(MeshIsolation, ACrashOfAssimpIsOneLineAndTumbleGoesOn) {
-  TempDir dir;
+  TestDir dir;
   // The count attribute of <float_array> misspelt: assimp 5.2.5 dereferences a null pointer.
   const auto segv = dir / "segv.dae";
   write_bytes(segv, edited(cube_dae(), "count=\"24\"", "coXnt=\"24\""));
@@ -373,7 +373,7 @@ TEST(MeshIsolation, ACrashOfAssimpIsOneLineAndTumbleGoesOn) {
 }
 
 TEST(MeshIsolation, AHangIsCutAtTheTimeout) {
-  TempDir dir;
+  TestDir dir;
   // A letter among the indices of <p>: assimp 5.2.5 never advances past it.
   const auto hang = dir / "hang.dae";
   write_bytes(hang, edited(cube_dae(), "4 5 7 4 7 6", "4 5 x 4 7 6"));
@@ -391,7 +391,7 @@ TEST(MeshIsolation, AHangIsCutAtTheTimeout) {
 }
 
 TEST(MeshIsolation, AValidFileTimesOutUnderATinyLimit) {
-  TempDir dir;
+  TestDir dir;
   write_binary_stl(tessellate(Sphere{1.0}, 200), dir / "sphere.stl");
   const ScopedEnv timeout(kLoaderTimeoutVariable, "0.001");
   EXPECT_HAS(load_error(dir / "sphere.stl"),
@@ -400,7 +400,7 @@ TEST(MeshIsolation, AValidFileTimesOutUnderATinyLimit) {
 
 TEST(MeshIsolation, RunningOutOfMemoryIsNamedWithTheLimit) {
   if (TUMBLE_TEST_ASAN) GTEST_SKIP() << "AddressSanitizer's allocator reports a failed allocation itself";
-  TempDir dir;
+  TestDir dir;
   write_binary_stl(tessellate(Sphere{1.0}, 100), dir / "sphere.stl");
   const ScopedEnv memory(kLoaderMemoryVariable, "64k");
   EXPECT_EQ(
@@ -430,7 +430,7 @@ TEST(MeshIsolation, LimitsDefaultWithTheFileSizeAndAreChecked) {
 }
 
 TEST(MeshIsolation, TheCommandLineSaysOneLineAndExitsWithOne) {
-  TempDir dir;
+  TestDir dir;
   const auto segv = dir / "segv.dae";
   write_bytes(segv, edited(cube_dae(), "count=\"24\"", "coXnt=\"24\""));
   const test::CommandResult r = test::run_tumble("inertia '" + segv.string() + "'");

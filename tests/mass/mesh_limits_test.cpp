@@ -22,7 +22,7 @@
 namespace tumble {
 namespace {
 
-using test::TempDir;
+using test::TestDir;
 
 void write_bytes(const std::filesystem::path& path, const std::string& bytes) {
   std::ofstream(path, std::ios::binary) << bytes;
@@ -49,7 +49,7 @@ struct InputLimit {
 };
 
 TEST(MeshLimits, FifosDevicesAndDirectoriesAreRefusedWithoutReading) {
-  TempDir dir;
+  TestDir dir;
   // A FIFO with no writer: opening it for reading would wait forever; tumble does not wait.
   for (const char* name : {"pipe.obj", "pipe.stl", "pipe.ply", "pipe.glb"}) {
     ASSERT_EQ(::mkfifo((dir / name).c_str(), 0600), 0);
@@ -69,7 +69,7 @@ TEST(MeshLimits, FifosDevicesAndDirectoriesAreRefusedWithoutReading) {
 }
 
 TEST(MeshLimits, FilesAboveTheInputLimitAreRefusedNamingItAndHowToRaiseIt) {
-  TempDir dir;
+  TestDir dir;
   write_binary_stl(tessellate(Sphere{1.0}, 8), dir / "sphere.stl");
   const auto size = std::filesystem::file_size(dir / "sphere.stl");
   {
@@ -99,7 +99,7 @@ TEST(MeshLimits, FilesAboveTheInputLimitAreRefusedNamingItAndHowToRaiseIt) {
 
 TEST(MeshLimits, HeaderCountsTheFileCannotHoldAreRefusedBeforeAllocating) {
   // A 1 kB file that declares 10^9 vertices: OFF and ASCII PLY refuse it from the header.
-  TempDir dir;
+  TestDir dir;
   std::string off = "OFF\n1000000000 4 0\n";
   for (int i = 0; i < 40; ++i) off += "0.25 0.5 0.75\n";
   off += "3 0 1 2\n";
@@ -134,7 +134,7 @@ std::string binary_stl(std::uint32_t n, std::size_t size) {
 }
 
 TEST(MeshLimits, BinaryStlOfTheWrongSizeSaysTruncatedWithTheCounts) {
-  TempDir dir;
+  TestDir dir;
   write_bytes(dir / "cut.stl", binary_stl(12, 600));
   EXPECT_EQ(load_error(dir / "cut.stl"),
             (dir / "cut.stl").string() +
@@ -187,7 +187,7 @@ TEST(MeshLimits, OneBadNumberInAHugeAsciiStlGivesAShortMessage) {
   const int bad_line = 1 + static_cast<int>(std::count(stl.begin(), stl.end(), '\n'));
   stl += "facet normal 0 0 1 outer loop vertex 0 0 " + std::string(2500000, '7') + "x";
   stl += " vertex 1 0 0 vertex 0 1 0 endloop endfacet\nendsolid big\n";
-  TempDir dir;
+  TestDir dir;
   write_bytes(dir / "big.stl", stl);
   const std::string msg = load_error(dir / "big.stl");
   EXPECT_HAS(msg, fmt::format("big.stl:{}:", bad_line));

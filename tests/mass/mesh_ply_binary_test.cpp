@@ -19,7 +19,7 @@
 namespace tumble {
 namespace {
 
-using test::TempDir;
+using test::TestDir;
 
 /// A binary PLY written value by value in either byte order.
 struct BinaryPly {
@@ -81,7 +81,7 @@ void expect_unit_cube(const LoadedMesh& loaded, const std::string& what) {
 }
 
 TEST(MeshPlyBinary, EveryByteOrderAndCoordinateTypeGivesTheCube) {
-  TempDir dir;
+  TestDir dir;
   write_bytes(dir / "le_float.ply", cube<float>(false, "float").bytes());
   write_bytes(dir / "be_float.ply", cube<float>(true, "float32").bytes());
   write_bytes(dir / "le_double.ply", cube<double>(false, "double").bytes());
@@ -123,7 +123,7 @@ TEST(MeshPlyBinary, DoublesKeepEveryBitAndOtherPropertiesAreSkipped) {
     p.put<std::uint8_t>(9);
   }
   p.put<std::int32_t>(0).put<std::int32_t>(1).put<std::int32_t>(1).put<std::int32_t>(2);
-  TempDir dir;
+  TestDir dir;
   write_bytes(dir / "tet.ply", p.bytes());
   const LoadedMesh loaded = load_mesh(dir / "tet.ply");
   ASSERT_EQ(loaded.mesh.vertices.size(), 4U);
@@ -257,7 +257,7 @@ std::vector<Hostile> hostile_files() {
 }
 
 TEST(MeshPlyBinary, HostileFilesGetTheirOwnMessage) {
-  TempDir dir;
+  TestDir dir;
   for (const Hostile& h : hostile_files()) {
     write_bytes(dir / h.name, h.bytes);
     const std::string msg = load_error(dir / h.name);
@@ -272,7 +272,7 @@ TEST(MeshPlyBinary, MutatedFilesGiveAMeshOrAFileErrorNeverACrash) {
   // The mutations that made assimp crash or hang in nearly half of the cases (random bytes, flipped
   // bits, 32-bit values planted, cuts, insertions): with tumble's reader each one is a mesh or a
   // FileError (or the MeshError of a mesh that is not a solid). Deterministic: a fixed seed.
-  TempDir dir;
+  TestDir dir;
   const std::string seed = cube<float>(false, "float").bytes();
   std::mt19937 rng(20261126);
   int loaded = 0, refused = 0;

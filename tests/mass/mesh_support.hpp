@@ -43,21 +43,22 @@ inline void expect_close(const MassProperties& got, const MassProperties& want, 
       << want.inertia;
 }
 
-/// A fresh directory under the system's temporary directory, removed with the object.
-class TempDir {
+/// A fresh directory named after the running test, under the system's temporary directory, removed with
+/// the object. (Not tests/support/scene_files.hpp's TempDir, which takes a name: one name, one class.)
+class TestDir {
  public:
-  TempDir() {
+  TestDir() {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
     path_ = std::filesystem::temp_directory_path() / (std::string("tumble_") + info->test_suite_name() + "_" +
                                                       info->name() + "_" + std::to_string(::getpid()));
     std::filesystem::create_directories(path_);
   }
-  ~TempDir() {
+  ~TestDir() {
     std::error_code ignored;
     std::filesystem::remove_all(path_, ignored);
   }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
+  TestDir(const TestDir&) = delete;
+  TestDir& operator=(const TestDir&) = delete;
   std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
 
  private:

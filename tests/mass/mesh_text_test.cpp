@@ -23,7 +23,7 @@
 namespace tumble {
 namespace {
 
-using test::TempDir;
+using test::TestDir;
 
 /// A closed polyhedron as decimal text: vertices as the strings written to the files, faces as
 /// polygons (0-based, counter-clockwise seen from outside).
@@ -184,7 +184,7 @@ void expect_exact(const std::filesystem::path& path, const DecimalMesh& m, const
 }
 
 TEST(MeshText, EveryTextFormatGivesTheExactMassPropertiesOfItsDecimals) {
-  TempDir dir;
+  TestDir dir;
   for (const auto& [shape, mesh, want] : {std::tuple{"l_prism", l_prism(), l_prism_exact()},
                                           std::tuple{"tetrahedron", tetrahedron(), tetrahedron_exact()}}) {
     for (const auto& [name, text] : every_text_format(mesh)) {
@@ -219,7 +219,7 @@ TEST(MeshText, FloatCoordinatesWouldFailTheTolerance) {
 TEST(MeshText, ScaleIsAppliedToTheExactCoordinates) {
   // Millimetres to metres: mass ∝ s³, c ∝ s, I ∝ s⁵ at unit density; one more rounding per
   // coordinate (the product with 0.001) stays within kTol.
-  TempDir dir;
+  TestDir dir;
   write_text(dir / "t.off", off(tetrahedron()));
   const double s = 0.001;
   MassProperties want = tetrahedron_exact();
@@ -235,7 +235,7 @@ TEST(MeshText, ScaleIsAppliedToTheExactCoordinates) {
 TEST(MeshText, ObjForms) {
   // v/vt/vn corner forms, negative (relative) indices, comments, CRLF line ends, a continued line, a
   // UTF-8 byte-order mark, colours after the coordinates, and statements tumble does not need.
-  TempDir dir;
+  TestDir dir;
   const std::string text =
       "\xEF\xBB\xBF# exported by hand\r\n"
       "mtllib none.mtl\r\n"
@@ -253,7 +253,7 @@ TEST(MeshText, ObjForms) {
 }
 
 TEST(MeshText, OffAndPlyVariants) {
-  TempDir dir;
+  TestDir dir;
   // OFF: counts on the keyword line, comments, blank lines, per-vertex colours (COFF), face colours.
   write_text(dir / "c.off",
              "COFF 4 4 6 # counts here\n# vertices\n0.1 0.2 0.3 255 0 0 255\n2.05 0.15 0.35 0 255 0 255\n\n"
@@ -296,7 +296,7 @@ std::string two_tetrahedra_obj(const std::string& statement) {
 
 TEST(MeshText, SeveralPartsAreCountedAndOneCanBePicked) {
   // The exact values of the first tetrahedron apply to part 1.
-  TempDir dir;
+  TestDir dir;
   write_text(dir / "objects.obj", two_tetrahedra_obj("o"));
   write_text(dir / "groups.obj", two_tetrahedra_obj("g"));
   write_text(dir / "solids.stl", stl(tetrahedron(), "first") + stl(l_prism(), "second"));
@@ -330,7 +330,7 @@ TEST(MeshText, SeveralPartsAreCountedAndOneCanBePicked) {
 }
 
 TEST(MeshText, PointCloudsGetTumblesOwnMessage) {
-  TempDir dir;
+  TestDir dir;
   const std::string xyz = "0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
   write_text(dir / "cloud.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\np 1 2 3 4\n");
   write_text(dir / "cloud.off", "OFF\n4 0 0\n" + xyz);
@@ -363,7 +363,7 @@ std::string utf16(const std::string& ascii, bool little_endian, bool bom) {
 }
 
 TEST(MeshText, Utf16IsRefusedWithHowToConvert) {
-  TempDir dir;
+  TestDir dir;
   const std::vector<std::pair<std::string, std::string>> files = {{"a.obj", obj(tetrahedron())},
                                                                   {"a.off", off(tetrahedron())},
                                                                   {"a.ply", ply(tetrahedron(), "double")},
@@ -387,7 +387,7 @@ TEST(MeshText, Utf16IsRefusedWithHowToConvert) {
 }
 
 TEST(MeshText, MalformedLinesAreNamedByFileLineAndColumn) {
-  TempDir dir;
+  TestDir dir;
   const std::string tet_v = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n";
   const std::string ply_head =
       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
@@ -445,7 +445,7 @@ TEST(MeshText, MalformedLinesAreNamedByFileLineAndColumn) {
 TEST(MeshText, CountsThatCannotFitAreRefusedBeforeAllocating) {
   // Each claims billions of items in a file of a few bytes: refused at once with the header's line,
   // without reserving memory for them (an allocation of 10⁹ vertices would take 24 GB).
-  TempDir dir;
+  TestDir dir;
   const std::string xyz = "property float x\nproperty float y\nproperty float z\n";
   const std::vector<std::tuple<std::string, std::string, std::string>> cases = {
       {"v.off", "OFF\n4000000000 1 0\n0 0 0\n", ":2:1: the header declares 4000000000 vertices and 1 faces"},
@@ -473,7 +473,7 @@ TEST(MeshText, CountsThatCannotFitAreRefusedBeforeAllocating) {
 TEST(MeshText, DamagedFilesGiveErrorsNeverCrashes) {
   // Every prefix of each format's file, and random byte changes, load or throw tumble::Error (nothing
   // else, no crash, no hang): truncation and corruption are the usual ways a text mesh goes bad.
-  TempDir dir;
+  TestDir dir;
   std::mt19937 rng(20240611);
   std::size_t loaded = 0, refused = 0;
   for (const auto& [name, text] : every_text_format(tetrahedron())) {
