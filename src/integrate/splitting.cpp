@@ -226,15 +226,9 @@ class Strang {
   double t_ = 0.0;
 };
 
-class Splitting2 final : public Integrator {
+/// What the splitting methods share: the Strang step with its kept flows, and their saving for resume.
+class StrangIntegrator : public Integrator {
  public:
-  std::string name() const override { return "splitting"; }
-  int order() const override { return 2; }
-  int evaluations_per_step() const override { return 1; }
-  void step(const Model& model, Formulation F, SystemCoordinates& x, double h) override {
-    strang_.step(model, F, x, h, threads_);
-  }
-
   std::vector<double> save_state() const override {
     std::vector<double> out;
     strang_.save(out);
@@ -246,11 +240,21 @@ class Splitting2 final : public Integrator {
     r.done();
   }
 
- private:
+ protected:
   Strang strang_;
 };
 
-class Splitting4 final : public Integrator {
+class Splitting2 final : public StrangIntegrator {
+ public:
+  std::string name() const override { return "splitting"; }
+  int order() const override { return 2; }
+  int evaluations_per_step() const override { return 1; }
+  void step(const Model& model, Formulation F, SystemCoordinates& x, double h) override {
+    strang_.step(model, F, x, h, threads_);
+  }
+};
+
+class Splitting4 final : public StrangIntegrator {
  public:
   std::string name() const override { return "splitting4"; }
   int order() const override { return 4; }
@@ -264,20 +268,6 @@ class Splitting4 final : public Integrator {
     strang_.step(model, F, x, w1 * h, threads_);
     x.t = t_end;  // the three substeps add to h up to rounding
   }
-
-  std::vector<double> save_state() const override {
-    std::vector<double> out;
-    strang_.save(out);
-    return out;
-  }
-  void load_state(const Model& model, Formulation, const std::vector<double>& state) override {
-    saved::Reader r(state, name());
-    strang_.load(model, r);
-    r.done();
-  }
-
- private:
-  Strang strang_;
 };
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "../support/run.hpp"
 #include "../support/scene_files.hpp"
 
 #include <sys/wait.h>
@@ -37,14 +38,7 @@ std::pair<int, std::string> run_in(const std::filesystem::path& dir, std::string
   // Through a script file, so that the command needs no quoting.
   const std::filesystem::path script = dir / "case.sh";
   std::ofstream(script) << command << "\n";
-  const std::string shell = "cd '" + dir.string() + "' && bash case.sh 2>&1";
-  FILE* pipe = popen(shell.c_str(), "r");
-  if (pipe == nullptr) return {-1, "popen failed"};
-  std::string out;
-  std::array<char, 4096> buffer;
-  size_t n;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) out.append(buffer.data(), n);
-  const int raw = pclose(pipe);
+  const auto [status, out] = test::run_shell_command("cd '" + dir.string() + "' && bash case.sh 2>&1");
   std::string first;
   for (size_t start = 0; start < out.size();) {
     const size_t end = std::min(out.find('\n', start), out.size());
@@ -54,7 +48,7 @@ std::pair<int, std::string> run_in(const std::filesystem::path& dir, std::string
     }
     start = end + 1;
   }
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, first};
+  return {status, first};
 }
 
 const std::vector<Case>& catalogue() {

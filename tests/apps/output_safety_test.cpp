@@ -41,14 +41,7 @@ std::string example(const std::string& name) { return std::string(TUMBLE_SOURCE_
 
 /// A shell command line; its stdout (and stderr, unless the command redirects it) captured.
 test::CommandResult run_shell(const std::string& command, bool merge_stderr = true) {
-  FILE* pipe = popen((command + (merge_stderr ? " 2>&1" : "")).c_str(), "r");
-  if (pipe == nullptr) return {-1, "popen failed"};
-  std::string out;
-  std::array<char, 4096> buffer;
-  size_t n;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) out.append(buffer.data(), n);
-  const int raw = pclose(pipe);
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw), out};
+  return test::run_shell_command(command + (merge_stderr ? " 2>&1" : ""));
 }
 
 size_t line_count(const std::string& text) {

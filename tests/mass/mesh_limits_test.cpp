@@ -24,19 +24,8 @@ namespace {
 
 using test::TestDir;
 
-void write_bytes(const std::filesystem::path& path, const std::string& bytes) {
-  std::ofstream(path, std::ios::binary) << bytes;
-}
-
-std::string load_error(const std::filesystem::path& path) {
-  try {
-    load_mesh(path);
-  } catch (const FileError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no FileError for " << path;
-  return "";
-}
+using test::load_error;
+using test::write_bytes;
 
 #define EXPECT_HAS(text, part) EXPECT_NE((text).find(part), std::string::npos) << "  got: " << (text)
 

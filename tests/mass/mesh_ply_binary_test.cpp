@@ -58,19 +58,8 @@ BinaryPly cube(bool big_endian, const std::string& type) {
   return p;
 }
 
-void write_bytes(const std::filesystem::path& path, const std::string& bytes) {
-  std::ofstream(path, std::ios::binary) << bytes;
-}
-
-std::string load_error(const std::filesystem::path& path) {
-  try {
-    load_mesh(path);
-  } catch (const FileError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no FileError for " << path;
-  return "";
-}
+using test::load_error;
+using test::write_bytes;
 
 void expect_unit_cube(const LoadedMesh& loaded, const std::string& what) {
   EXPECT_EQ(loaded.mesh.vertices.size(), 8U) << what;

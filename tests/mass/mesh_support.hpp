@@ -3,10 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <unistd.h>
 
+#include "tumble/error.hpp"
 #include "tumble/mass/mass_properties.hpp"
+#include "tumble/mass/mesh_io.hpp"
 #include "tumble/mass/triangle_mesh.hpp"
 
 namespace tumble::test {
@@ -41,6 +44,22 @@ inline void expect_close(const MassProperties& got, const MassProperties& want, 
       << what << "\n got I =\n"
       << got.inertia << "\nwant I =\n"
       << want.inertia;
+}
+
+/// Writes `bytes` to `path` as they are (binary).
+inline void write_bytes(const std::filesystem::path& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary) << bytes;
+}
+
+/// The message of the FileError that loading `path` throws (a test failure if none is thrown).
+inline std::string load_error(const std::filesystem::path& path) {
+  try {
+    load_mesh(path);
+  } catch (const FileError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no FileError for " << path;
+  return "";
 }
 
 /// A fresh directory named after the running test, under the system's temporary directory, removed with

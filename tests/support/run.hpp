@@ -12,9 +12,9 @@ struct CommandResult {
   std::string output;  // stdout and stderr together
 };
 
-/// Runs `TUMBLE_CLI args` through the shell (stderr merged into stdout).
-inline CommandResult run_tumble(const std::string& args) {
-  const std::string command = std::string(TUMBLE_CLI) + " " + args + " 2>&1";
+/// Runs a shell command line as given and captures what it prints on stdout. The status is the exit
+/// status, or 128 + N when signal N ended the shell (as shells report it).
+inline CommandResult run_shell_command(const std::string& command) {
   FILE* pipe = popen(command.c_str(), "r");
   if (pipe == nullptr) return {-1, "popen failed"};
   std::string out;
@@ -22,7 +22,12 @@ inline CommandResult run_tumble(const std::string& args) {
   size_t n;
   while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) out.append(buffer.data(), n);
   const int raw = pclose(pipe);
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, out};
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw), out};
+}
+
+/// Runs `TUMBLE_CLI args` through the shell (stderr merged into stdout).
+inline CommandResult run_tumble(const std::string& args) {
+  return run_shell_command(std::string(TUMBLE_CLI) + " " + args + " 2>&1");
 }
 
 /// The numbers that follow `"key":` in JSON text, in order (flattening nested arrays).
