@@ -162,7 +162,8 @@ int execute(Job& j) {
     base.writer_pid = static_cast<long>(::getpid());
   }
   // The writer keeps the scene's text (HDF5 stores it); the run needs it no more, so it is not copied.
-  const TrajectoryInfo info{std::move(scene.text), j.scene_arg, TUMBLE_VERSION, settings, j.fields};
+  const TrajectoryInfo info{std::move(scene.text), j.scene_arg, TUMBLE_VERSION, settings, j.fields,
+                            !scene.events.empty()};
   std::optional<CsvContinuation> continuation;
   if (j.resumed) continuation = CsvContinuation{j.resumed->point.samples, j.resumed->point.t_last_sample};
   const std::unique_ptr<TrajectoryWriter> writer =
@@ -193,6 +194,14 @@ int execute(Job& j) {
     progress.update(state.t);
     interrupted = interrupt.requested();
     return !interrupted;  // stop at this sample: everything written so far stays valid
+  };
+  // Events: each crossing is stored by the writer and counted for the summary.
+  hooks.events = make_events(scene.model, scene.events);
+  std::vector<std::pair<long, double>> crossings(scene.events.size(), {0, 0.0});  // count, first time
+  hooks.on_event = [&](const EventHit& hit) {
+    writer->event(hit.name, scene.events[hit.index].row, hit.state.t);
+    auto& [n, first] = crossings[hit.index];
+    if (n++ == 0) first = hit.state.t;
   };
   // Asked every step: Ctrl-C needs no wait for a sample.
   hooks.stop_requested = [&] { return interrupt.requested(); };
@@ -274,13 +283,24 @@ int execute(Job& j) {
     }
     if (!drift.empty())
       fmt::print(human, "largest relative drift of conserved quantities: {}\n", fmt::join(drift, ", "));
+    const std::vector<std::string> rows = row_names(scene.model);
+    for (size_t e = 0; e < scene.events.size(); ++e) {
+      const auto [n, first] = crossings[e];
+      fmt::print(human, "event {} ({}): {}{}\n", scene.events[e].name, rows[scene.events[e].row],
+                 count(static_cast<size_t>(n), "crossing", "crossings"),
+                 n > 0 ? fmt::format(", the first at t = {:.9g} s", first) : std::string());
+    }
     auto where = [](const std::filesystem::path& p) { return p == "-" ? "standard output" : p.string(); };
     if (hdf5) {
       fmt::print(human, "trajectory and diagnostics: {}\n", files.front().string());
-    } else if (files.size() == 1) {
-      fmt::print(human, "trajectory:  {}\ndiagnostics: none (give --diagnostics FILE)\n", where(files[0]));
     } else {
-      fmt::print(human, "trajectory:  {}\ndiagnostics: {}\n", where(files[0]), where(files[1]));
+      fmt::print(human, "trajectory:  {}\n", where(files[0]));
+      if (diagnostics.empty()) {
+        fmt::print(human, "diagnostics: none (give --diagnostics FILE)\n");
+      } else {
+        fmt::print(human, "diagnostics: {}\n", where(diagnostics));
+      }
+      if (files.size() > (diagnostics.empty() ? 1u : 2u)) fmt::print(human, "events:      {}\n", where(files.back()));
     }
   }
   if (monitor.warning()) {
@@ -353,6 +373,10 @@ int run(const RunOptions& o) {
       outputs.push_back({fmt::format("--diagnostics {}", diagnostics.string()), diagnostics,
                          fmt::format("give another file, e.g. --diagnostics {}.diagnostics.csv", stem)});
     }
+  }
+  if (!hdf5 && !written_through && !scene.events.empty()) {
+    outputs.push_back({fmt::format("the events file {} (named after the output)", events_path(out).string()),
+                       events_path(out), "give another output name with -o"});
   }
   refuse_inputs_as_outputs(outputs, scene);
   if (!o.checkpoint.empty()) {
@@ -440,6 +464,10 @@ int resume(const ResumeOptions& o) {
   std::vector<NamedOutput> outputs{{fmt::format("the trajectory {}", c.output), c.output, "start a new run"}};
   if (!c.diagnostics.empty())
     outputs.push_back({fmt::format("the diagnostics {}", c.diagnostics), c.diagnostics, "start a new run"});
+  if (!j.scene.events.empty()) {
+    outputs.push_back(
+        {fmt::format("the events file {}", events_path(c.output).string()), events_path(c.output), "start a new run"});
+  }
   refuse_inputs_as_outputs(outputs, j.scene);
   print_scene_warnings(j.scene);
   recover_outputs(c);  // a killed run's files, still under their temporary names

@@ -14,6 +14,7 @@
 
 #include "staged_file.hpp"
 #include "tumble/error.hpp"
+#include "tumble/io/trajectory_writer.hpp"
 #include "tumble/mass/input_file.hpp"
 
 namespace tumble {
@@ -190,8 +191,8 @@ void check_inputs_unchanged(const std::vector<FileStamp>& inputs) {
 }
 
 void recover_outputs(const Checkpoint& c) {
-  for (const std::string& out : {c.output, c.diagnostics}) {
-    if (out.empty()) continue;
+  for (const std::string& out : {c.output, c.diagnostics, events_path(c.output).string()}) {
+    if (out.empty() || c.output.empty()) continue;
     const std::filesystem::path temporary = io::temporary_path(out, c.writer_pid);
     std::error_code ec;
     if (!std::filesystem::is_regular_file(std::filesystem::symlink_status(temporary, ec))) continue;

@@ -6,6 +6,8 @@
 //   diagnostics: t and the columns of every SystemField (kinetic_energy, …, angular_momentum_drift) —
 //                one row per sample. A field is empty where the quantity is undefined (no potential,
 //                or zero at t = 0), never "nan".
+// and, when the run watches events and the trajectory is a regular file, a third:
+//   events:      t,event,body — one row per crossing, in time order.
 #include <fmt/format.h>
 
 #include <cerrno>
@@ -14,7 +16,6 @@
 #include <fstream>
 #include <optional>
 
-#include "sample_rows.hpp"
 #include "staged_file.hpp"
 #include "tumble/error.hpp"
 #include "tumble/io/trajectory_writer.hpp"
@@ -27,7 +28,7 @@ namespace {
 /// What a continued file keeps of the file now under its final name (CsvContinuation).
 struct Kept {
   long samples;
-  size_t lines_per_sample;
+  size_t lines_per_sample;  ///< 0: rows by time (events), every row at t ≤ last_t kept
   double last_t;
 };
 
@@ -92,6 +93,10 @@ class CsvFile {
   /// Copies the header and the first kept.samples samples of the file under the final name.
   void copy_kept(const std::string& header, const Kept& kept) {
     const std::filesystem::path source = staged_.target();
+    if (kept.lines_per_sample == 0) {
+      copy_until(header, kept.last_t);
+      return;
+    }
     std::ifstream in(source, std::ios::binary);
     if (!in) {
       throw InvalidArgument(
@@ -127,6 +132,28 @@ class CsvFile {
           "the {} {} has another time at its sample {} than the checkpoint ({} s): it is not the file the "
           "checkpointed run wrote; the run cannot be resumed",
           what_, source.string(), kept.samples, kept.last_t));
+    }
+  }
+
+  /// Copies the header and the rows at t ≤ last_t (crossings after it are found again by the resumed run,
+  /// which repeats the steps from there bit for bit). A file that is missing or foreign is an error, as
+  /// for the other files.
+  void copy_until(const std::string& header, double last_t) {
+    const std::filesystem::path source = staged_.target();
+    std::ifstream in(source, std::ios::binary);
+    std::string line;
+    if (!in || !std::getline(in, line) || line != header) {
+      throw InvalidArgument(fmt::format(
+          "the {} {} that the checkpoint continues is missing or does not have this run's header; the run "
+          "cannot be resumed; start a new run",
+          what_, source.string()));
+    }
+    write(line + "\n");
+    while (std::getline(in, line) && !in.eof()) {
+      char* end = nullptr;
+      const double t = std::strtod(line.c_str(), &end);
+      if (end == line.c_str() || *end != ',' || !(t <= last_t)) break;
+      write(line + "\n");
     }
   }
 
@@ -170,9 +197,9 @@ std::vector<const SystemField*> all_system_fields() {
 class CsvWriter final : public TrajectoryWriter {
  public:
   CsvWriter(const std::filesystem::path& trajectory, const std::filesystem::path& diagnostics,
-            const Model& model, std::vector<const BodyField*> fields,
+            const Model& model, std::vector<const BodyField*> fields, bool watch_events,
             const std::optional<CsvContinuation>& continuation)
-      : names_(io::row_names(model)),
+      : names_(row_names(model)),
         fields_(std::move(fields)),
         trajectory_(trajectory, header({"t", "body"}, fields_), "trajectory",
                     kept(continuation, names_.size())),
@@ -180,11 +207,19 @@ class CsvWriter final : public TrajectoryWriter {
     if (!diagnostics.empty())
       diagnostics_.emplace(diagnostics, header({"t"}, all_system_fields()), "diagnostics",
                            kept(continuation, 1));
+    if (watch_events && trajectory_.staged().kind() == io::OutputKind::staged) {
+      events_.emplace(events_path(trajectory), "t,event,body", "events", kept(continuation, 0));
+    }
+  }
+
+  void event(std::string_view name, size_t row, double t) override {
+    if (events_) events_->write(fmt::format("{:.17g},{},{}\n", t, name, names_[row]));
   }
 
   void sync() override {
     trajectory_.sync();
     if (diagnostics_) diagnostics_->sync();
+    if (events_) events_->sync();
   }
 
   void write(const Model& model, const SystemState& state, const DriftSample& d) override {
@@ -194,7 +229,7 @@ class CsvWriter final : public TrajectoryWriter {
     for (size_t r = 0; r < names_.size(); ++r) {
       fmt::format_to(out, "{:.17g},{}", state.t, names_[r]);
       for (const BodyField* f : fields_) {
-        io::field_values(*f, model, state, r, values);
+        field_of_row(*f, model, state, r, values);
         for (int k = 0; k < f->width; ++k) fmt::format_to(out, ",{:.17g}", values[k]);
       }
       fmt::format_to(out, "\n");
@@ -223,14 +258,20 @@ class CsvWriter final : public TrajectoryWriter {
   }
 
   void commit(bool) override {
-    // Both files are complete before either gets its final name, and they get them together.
-    trajectory_.close();
-    if (!diagnostics_) {
-      trajectory_.staged().commit();
-      return;
+    // Every file is complete before any gets its final name, and they get them together.
+    std::vector<io::StagedFile*> staged;
+    for (CsvFile* f : files()) {
+      f->close();
+      staged.push_back(&f->staged());
     }
-    diagnostics_->close();
-    io::commit_together(trajectory_.staged(), diagnostics_->staged());
+    io::commit_together(staged);
+  }
+
+  std::vector<CsvFile*> files() {
+    std::vector<CsvFile*> out{&trajectory_};
+    if (diagnostics_) out.push_back(&*diagnostics_);
+    if (events_) out.push_back(&*events_);
+    return out;
   }
 
   static std::optional<Kept> kept(const std::optional<CsvContinuation>& c, size_t lines_per_sample) {
@@ -239,8 +280,10 @@ class CsvWriter final : public TrajectoryWriter {
   }
 
   std::vector<std::filesystem::path> outputs() const override {
-    if (!diagnostics_) return {trajectory_.path()};
-    return {trajectory_.path(), diagnostics_->path()};
+    std::vector<std::filesystem::path> out{trajectory_.path()};
+    if (diagnostics_) out.push_back(diagnostics_->path());
+    if (events_) out.push_back(events_->path());
+    return out;
   }
   long samples() const override { return samples_; }
 
@@ -250,6 +293,7 @@ class CsvWriter final : public TrajectoryWriter {
   CsvFile trajectory_;
   long samples_ = 0;
   std::optional<CsvFile> diagnostics_;
+  std::optional<CsvFile> events_;
   fmt::memory_buffer buffer_;
 };
 
@@ -258,6 +302,12 @@ class CsvWriter final : public TrajectoryWriter {
 std::filesystem::path diagnostics_path(const std::filesystem::path& trajectory) {
   std::filesystem::path p = trajectory;
   p.replace_extension(".diagnostics.csv");
+  return p;
+}
+
+std::filesystem::path events_path(const std::filesystem::path& trajectory) {
+  std::filesystem::path p = trajectory;
+  p.replace_extension(".events.csv");
   return p;
 }
 
@@ -281,7 +331,8 @@ std::unique_ptr<TrajectoryWriter> make_csv_writer(const std::filesystem::path& t
         fmt::format("the trajectory {} and the diagnostics {} are the same file: give different files",
                     trajectory.string(), diagnostics.string()));
   }
-  return std::make_unique<CsvWriter>(trajectory, diagnostics, model, body_fields(info.fields), continuation);
+  return std::make_unique<CsvWriter>(trajectory, diagnostics, model, body_fields(info.fields), info.events,
+                                     continuation);
 }
 
 }  // namespace tumble

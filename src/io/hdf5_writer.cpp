@@ -23,7 +23,6 @@
 #include <cstring>
 
 #include "hdf5_file_driver.hpp"
-#include "sample_rows.hpp"
 #include "staged_file.hpp"
 #include "tumble/error.hpp"
 #include "tumble/integrate/integrator.hpp"
@@ -195,8 +194,9 @@ class Hdf5Writer final : public TrajectoryWriter {
   Hdf5Writer(const std::filesystem::path& path, const Model& model, const TrajectoryInfo& info)
       : staged_(path, /*direct_allowed=*/false),
         check_{path.string(), &driver_},
-        names_(io::row_names(model)),
-        fields_(body_fields(info.fields)) {
+        names_(row_names(model)),
+        fields_(body_fields(info.fields)),
+        watch_events_(info.events) {
     // Errors are reported by return codes, turned into one FileError line; HDF5's own stack print
     // to stderr would only add noise.
     H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
@@ -244,7 +244,7 @@ class Hdf5Writer final : public TrajectoryWriter {
       const BodyField& f = *fields_[k];
       const size_t width = static_cast<size_t>(f.width);
       row_.resize(names_.size() * width);
-      for (size_t r = 0; r < names_.size(); ++r) io::field_values(f, model, state, r, &row_[r * width]);
+      for (size_t r = 0; r < names_.size(); ++r) field_of_row(f, model, state, r, &row_[r * width]);
       field_series_[k].append(row_.data());
     }
     double values[3];
@@ -264,8 +264,16 @@ class Hdf5Writer final : public TrajectoryWriter {
     driver_.closing = true;
   }
 
+  void event(std::string_view name, size_t row, double t) override {
+    if (!watch_events_) return;
+    event_names_.emplace_back(name);
+    event_rows_.push_back(static_cast<long long>(row));
+    event_times_.push_back(t);
+  }
+
   void commit(bool complete) override {
     for (Series* s : all_series()) s->flush();
+    if (watch_events_) write_events();
     number_attribute(file_.get(), "complete", complete ? 1 : 0, H5T_NATIVE_INT, check_);
     number_attribute(file_.get(), "t_end", t_end_, H5T_NATIVE_DOUBLE, check_);
     // Everything written now, where an error is still HDF5's to report; from here on the driver
@@ -300,6 +308,34 @@ class Hdf5Writer final : public TrajectoryWriter {
     std::vector<const char*> p;
     for (const auto& s : names_) p.push_back(s.c_str());
     check_(H5Dwrite(set.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, p.data()), "write names");
+  }
+
+  /// The group `events`: t (s), event (its name) and body (its row in `names`), one entry per crossing in
+  /// time order; present, perhaps empty, whenever the run watched events.
+  void write_events() {
+    const Handle group_props = untimed(H5P_GROUP_CREATE, "create group events", check_);
+    const Handle group(
+        check_(H5Gcreate2(file_.get(), "events", H5P_DEFAULT, group_props.get(), H5P_DEFAULT), "create group events"),
+        H5Gclose);
+    const hsize_t n = event_times_.size();
+    const Handle space(check_(H5Screate_simple(1, &n, nullptr), "create a dataspace"), H5Sclose);
+    auto dataset = [&](const char* name, hid_t type, const void* data, const char* unit, const char* meaning) {
+      const std::string what = fmt::format("write events/{}", name);
+      const Handle props = untimed(H5P_DATASET_CREATE, what.c_str(), check_);
+      const Handle set(
+          check_(H5Dcreate2(group.get(), name, type, space.get(), H5P_DEFAULT, props.get(), H5P_DEFAULT), what.c_str()),
+          H5Dclose);
+      if (n > 0) check_(H5Dwrite(set.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), what.c_str());
+      if (unit != nullptr) string_attribute(set.get(), "unit", unit, check_);
+      string_attribute(set.get(), "meaning", meaning, check_);
+    };
+    dataset("t", H5T_NATIVE_DOUBLE, event_times_.data(), "s", "time of the crossing");
+    const Handle type = string_type();
+    std::vector<const char*> names;
+    for (const std::string& e : event_names_) names.push_back(e.c_str());
+    dataset("event", type.get(), names.data(), nullptr, "the event's name ([[events]] name)");
+    dataset("body", H5T_NATIVE_LLONG, event_rows_.data(), nullptr,
+            "index in /names of the body or particle the event watches");
   }
 
   /// Which diagnostics exist is fixed by the model and the state at t = 0: create those datasets.
@@ -342,6 +378,10 @@ class Hdf5Writer final : public TrajectoryWriter {
   std::vector<Series> field_series_;
   std::vector<std::optional<Series>> diagnostic_series_;  ///< one per SystemField, empty if undefined
   std::vector<double> row_;
+  bool watch_events_ = false;
+  std::vector<std::string> event_names_;
+  std::vector<long long> event_rows_;
+  std::vector<double> event_times_;
   double t_end_ = 0.0;
   long samples_ = 0;
 };

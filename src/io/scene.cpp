@@ -90,7 +90,7 @@ Scene read_scene(const toml::table& root, std::string text, const std::filesyste
   scene.input_files.push_back(path);       // then every mesh, as it is read
   const std::string file = path.string();  // for messages; outlives every reader
   const TableReader r(root, "scene", file,
-                      {"simulation", "output", "world", "bodies", "body_tables", "particles", "forces"});
+                      {"simulation", "output", "world", "bodies", "body_tables", "particles", "forces", "events"});
   read_simulation(r, scene);
   read_output(r, scene);
   NameTable names;
@@ -102,6 +102,7 @@ Scene read_scene(const toml::table& root, std::string text, const std::filesyste
     r.fail_here("the scene has nothing to simulate: add [[bodies]], [[body_tables]] or [[particles]]");
   }
   read_forces(r, names, scene);
+  read_events(r, names, scene);
   return scene;
 }
 

@@ -53,6 +53,9 @@ void read_particles(const TableReader& root, NameTable& names, Scene& scene);
 /// from the force models present.
 void read_forces(const TableReader& root, const NameTable& names, Scene& scene);
 
+/// [[events]], which name bodies and particles by `names`.
+void read_events(const TableReader& root, const NameTable& names, Scene& scene);
+
 /// Whether a body or particle name is non-empty and only letters, digits, '_', '-' and '.'.
 bool valid_name(std::string_view name);
 /// Checks a body or particle name (non-empty, letters, digits, '_', '-', '.', unique) and records it

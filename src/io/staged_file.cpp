@@ -10,6 +10,7 @@
 #include <cstring>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "tumble/error.hpp"
 
@@ -153,35 +154,55 @@ void StagedFile::abandon() {
   std::filesystem::remove(temporary_, ec);
 }
 
-void commit_together(StagedFile& first, StagedFile& second) {
+void commit_together(std::span<StagedFile* const> files) {
   const SignalBlock block;
-  // The older first file, kept under a second name (a hard link: the final name is still replaced
-  // atomically) until the second file is in place, to be put back if it cannot be.
-  const bool staged = first.kind() == OutputKind::staged;
-  const std::filesystem::path backup = with_pid_suffix(first.target(), "old");
+  // Each older file, kept under a second name (a hard link: the final name is still replaced
+  // atomically) until every later file is in place, to be put back if one cannot be.
+  struct Done {
+    StagedFile* file;
+    std::filesystem::path backup;
+    bool had_older;
+  };
+  std::vector<Done> done;
   std::error_code ec;
-  const bool had_older =
-      staged && std::filesystem::is_regular_file(std::filesystem::symlink_status(first.target(), ec)) &&
-      ::link(first.target().c_str(), backup.c_str()) == 0;
-  try {
-    first.commit();
-  } catch (...) {
-    if (had_older) std::filesystem::remove(backup, ec);
-    throw;
-  }
-  pause_between_renames();
-  try {
-    second.commit();
-  } catch (const FileError& e) {
-    if (!staged) throw;  // written through: nothing to undo
-    if (had_older) {
-      std::filesystem::rename(backup, first.target(), ec);
-    } else {
-      std::filesystem::remove(first.target(), ec);
+  auto undo = [&] {
+    for (auto d = done.rbegin(); d != done.rend(); ++d) {
+      if (d->file->kind() != OutputKind::staged) continue;  // written through: nothing to undo
+      if (d->had_older) {
+        std::filesystem::rename(d->backup, d->file->target(), ec);
+      } else {
+        std::filesystem::remove(d->file->target(), ec);
+      }
     }
-    throw FileError(fmt::format("{}; {} was not replaced either", e.what(), first.final_path().string()));
+  };
+  for (StagedFile* f : files) {
+    const bool staged = f->kind() == OutputKind::staged;
+    const std::filesystem::path backup = with_pid_suffix(f->target(), "old");
+    const bool had_older =
+        staged && std::filesystem::is_regular_file(std::filesystem::symlink_status(f->target(), ec)) &&
+        ::link(f->target().c_str(), backup.c_str()) == 0;
+    if (!done.empty()) pause_between_renames();
+    try {
+      f->commit();
+    } catch (const FileError& e) {
+      if (had_older) std::filesystem::remove(backup, ec);
+      if (done.empty()) throw;
+      undo();
+      std::vector<std::string> names;
+      for (const Done& d : done) names.push_back(d.file->final_path().string());
+      throw FileError(fmt::format("{}; {} {} not replaced either", e.what(), fmt::join(names, " and "),
+                                  names.size() == 1 ? "was" : "were"));
+    }
+    done.push_back({f, backup, had_older});
   }
-  if (had_older) std::filesystem::remove(backup, ec);
+  for (const Done& d : done) {
+    if (d.had_older) std::filesystem::remove(d.backup, ec);
+  }
+}
+
+void commit_together(StagedFile& first, StagedFile& second) {
+  StagedFile* const files[] = {&first, &second};
+  commit_together(files);
 }
 
 std::filesystem::path output_target(const std::filesystem::path& final_path) {

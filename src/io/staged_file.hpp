@@ -10,6 +10,7 @@
 // stale temporaries that killed runs left beside the same final name (FINAL.tmp-PID and FINAL.old-PID
 // of a PID that is no longer alive, regular files only).
 #include <filesystem>
+#include <span>
 
 namespace tumble::io {
 
@@ -52,6 +53,9 @@ class StagedFile {
 /// first is undone (the older file under the first name is put back, or the new one removed) and
 /// FileError says so. Files written directly are not affected (there is nothing to undo).
 void commit_together(StagedFile& first, StagedFile& second);
+/// The same for any number of files (a trajectory, its diagnostics and its events): all or none, an
+/// earlier one undone if a later one cannot be moved.
+void commit_together(std::span<StagedFile* const> files);
 
 /// The file that holds `final_path`'s output: the path with symlinks followed.
 std::filesystem::path output_target(const std::filesystem::path& final_path);

@@ -241,4 +241,29 @@ std::vector<const BodyField*> body_fields(const std::vector<std::string>& names)
 
 std::span<const SystemField> system_fields() { return kSystemFields; }
 
+std::vector<std::string> row_names(const Model& model) {
+  std::vector<std::string> names;
+  for (const RigidBody& b : model.bodies) names.push_back(b.name());
+  for (const Particle& p : model.particles) names.push_back(p.name);
+  return names;
+}
+
+void field_of_row(const BodyField& field, const Model& model, const SystemState& state, size_t r, double* out) {
+  const size_t n = model.bodies.size();
+  if (r < n) {
+    field.of_body(model.bodies[r], state.bodies[r], out);
+  } else {
+    field.of_particle(state.particles[r - n], out);
+  }
+}
+
+std::optional<std::pair<const BodyField*, int>> find_column(std::string_view column) {
+  for (const BodyField& f : kBodyFields) {
+    for (int k = 0; k < f.width; ++k) {
+      if (f.columns[static_cast<size_t>(k)] == column) return std::pair{&f, k};
+    }
+  }
+  return std::nullopt;
+}
+
 }  // namespace tumble

@@ -182,7 +182,7 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
   // Reports the crossings of one step in time order; the state of a stopping event ends the run.
   auto report = [&](const Hit& hit, SystemState& out) {
     out = to_state(settings.formulation, hit.x);
-    if (hooks.on_event) hooks.on_event(EventHit{events[hit.event].name, out});
+    if (hooks.on_event) hooks.on_event(EventHit{events[hit.event].name, hit.event, out});
     if (!events[hit.event].stop) return false;
     emit(out);
     return true;

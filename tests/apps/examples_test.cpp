@@ -87,6 +87,25 @@ TEST(Examples, THandleFlipsAtTheClosedFormInterval) {
   }
 }
 
+// The scene's own [[events]] flip: located inside the step, ω₂ = 0 at (k + ½)·T (ω₂ starts at its
+// extreme). Located by bisection on the run's RK4 states, the times carry only RK4's phase error:
+// 3e-12 s at the first flip, 9e-11 s by the fourth (ω h = 0.02, phase error growing with t); 1e-8 s
+// leaves a factor 100 for other machines' rounding.
+TEST(Examples, THandleEventsCatchEveryFlipAtTheClosedFormTime) {
+  const Scene s = load_scene(examples() / "t_handle.toml");
+  ASSERT_EQ(s.events.size(), 1u);
+  const double T = test::intermediate_axis_flip_interval(s.model.bodies[0].Lambda(), s.initial.bodies[0].omega_b());
+  RunHooks hooks;
+  hooks.events = make_events(s.model, s.events);
+  std::vector<double> flips;
+  hooks.on_event = [&](const EventHit& hit) { flips.push_back(hit.state.t); };
+  simulate(s.model, s.initial, s.settings, hooks);
+  ASSERT_EQ(flips.size(), 4u) << "20 s at 4.6 s per flip, the first at 2.3 s";
+  for (size_t k = 0; k < flips.size(); ++k) {
+    EXPECT_NEAR(flips[k], (static_cast<double>(k) + 0.5) * T, 1e-8) << "flip " << k;
+  }
+}
+
 TEST(Examples, SymmetricTopPrecessesAsTheClosedForm) {
   const ExampleRun r = run(examples() / "symmetric_top.toml");
   const RigidBody& b = r.scene.model.bodies[0];

@@ -27,7 +27,8 @@ namespace {
 namespace fs = std::filesystem;
 
 /// A T-handle (a mesh: its stamp is checked on resume) tumbling for long enough that a signal lands
-/// mid-way; a damped box beside it feels torques, so splitting sets up new flows as well.
+/// mid-way; a damped box beside it feels torques, so splitting sets up new flows as well. Two events
+/// watch them, so that the events file is continued too.
 std::string scene_text(const std::string& integrator) {
   return "[simulation]\nduration = 2.0\ntimestep = 1e-4\noutput_interval = 0.01\nintegrator = \"" +
          integrator +
@@ -36,7 +37,10 @@ std::string scene_text(const std::string& integrator) {
          "angular_velocity = [0.1, 0.0, 20.0]\n"
          "[[bodies]]\nname = \"box\"\nshape = { type = \"box\", size = [0.1, 0.2, 0.3] }\nmass = 1.0\n"
          "position = [1.0, 0.0, 0.0]\nangular_velocity = [1.0, 2.0, 3.0]\n"
-         "[[forces]]\ntype = \"damping\"\nbody = \"box\"\nlinear = 0.1\nangular = 0.02\n";
+         "[[forces]]\ntype = \"damping\"\nbody = \"box\"\nlinear = 0.1\nangular = 0.02\n"
+         "[[events]]\nname = \"slowing\"\nbody = \"handle\"\ncolumn = \"w2\"\nvalue = 19.99\n"
+         "[[events]]\nname = \"tilt\"\nbody = \"box\"\naxis = [0, 1, 0]\ntoward = [0, 1, 0]\nangle_deg = 30\n"
+         "[[events]]\nname = \"turning\"\nbody = \"handle\"\ncolumn = \"w2\"\nvalue = 15\n";
 }
 
 pid_t spawn(std::vector<std::string> args, const fs::path& stderr_file) {
@@ -119,6 +123,10 @@ TEST(ResumeCli, StoppedBySigtermAndResumedTheFilesAreThoseOfAnUninterruptedRun) 
     EXPECT_TRUE(test::read_text(part.dir / "out.diagnostics.csv") ==
                 test::read_text(whole.dir / "out.diagnostics.csv"))
         << integrator;
+    const std::string events = test::read_text(whole.dir / "out.events.csv");
+    // Crossings at 0.27, 0.88 and 1.97 s; the stop comes near 1.5 s (300 rows of 2 bodies).
+    EXPECT_EQ(std::count(events.begin(), events.end(), '\n'), 4) << events;
+    EXPECT_TRUE(test::read_text(part.dir / "out.events.csv") == events) << integrator;
     EXPECT_FALSE(fs::exists(part.dir / "run.ckpt")) << "removed when the run completes";
   }
 }

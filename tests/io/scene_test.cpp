@@ -8,6 +8,7 @@
 
 #include "../support/scene_files.hpp"
 #include "tumble/forces/forces.hpp"
+#include "tumble/integrate/euler_poinsot.hpp"
 #include "tumble/io/scene.hpp"
 #include "tumble/math/rotations.hpp"
 #include "tumble/sim/diagnostics.hpp"
@@ -472,6 +473,85 @@ stiffness = 1.0
     EXPECT_NE(std::string(e.what()).find("no particle named \"pp\"; did you mean \"p\"?"), std::string::npos)
         << e.what();
   }
+}
+
+}  // namespace
+}  // namespace tumble
+
+namespace tumble {
+namespace {
+
+/// The crossings of a scene's [[events]] in a run of it.
+std::vector<EventHit> crossings(const Scene& s) {
+  RunHooks hooks;
+  hooks.events = make_events(s.model, s.events);
+  std::vector<EventHit> hits;
+  hooks.on_event = [&](const EventHit& hit) { hits.push_back(hit); };
+  simulate(s.model, s.initial, s.settings, hooks);
+  return hits;
+}
+
+// A box spun near its intermediate axis: ω₂ (column w2) changes sign at (k + ½)·2K/λ, the exact
+// Euler–Poinsot flip interval (ω₂ starts at its extreme). The exact integrator's states are the closed
+// form to rounding and the crossing is bisected to 4 ulp of t, so the times agree to ~1e-12 s; 1e-9 s
+// leaves room for the rounding of the elliptic functions near a zero of ω₂ (slope ~ |ω|²).
+TEST(SceneEvents, AColumnCrossingFindsEveryFlipAtTheExactSolutionsTimes) {
+  const Scene s = parse_scene(R"([simulation]
+duration = 10.0
+timestep = 0.01
+integrator = "exact"
+[[bodies]]
+name = "racket"
+shape = { type = "box", size = [0.1, 0.2, 0.3] }
+mass = 1.0
+angular_velocity = [0.01, 5.0, 0.0]
+angular_velocity_frame = "principal"
+[[events]]
+name = "flip"
+body = "racket"
+column = "w2"
+)",
+                              "flips.toml");
+  ASSERT_EQ(s.events.size(), 1u);
+  const RigidBody& b = s.model.bodies[0];
+  const double T = EulerPoinsot(b.Lambda(), Quat::Identity(), Vec3(0.01, 5.0, 0.0)).flip_interval();
+  const std::vector<EventHit> hits = crossings(s);
+  ASSERT_EQ(hits.size(), static_cast<size_t>(std::floor(10.0 / T + 0.5))) << "T = " << T;
+  for (size_t k = 0; k < hits.size(); ++k) {
+    EXPECT_EQ(hits[k].name, "flip");
+    EXPECT_EQ(hits[k].index, 0u);
+    EXPECT_NEAR(hits[k].state.t, (static_cast<double>(k) + 0.5) * T, 1e-9) << k;
+  }
+}
+
+// A body spinning steadily about its z axis at ω: its x axis makes the angle ωt with the world x axis
+// until t = π/ω, so 60° (rising) is reached at t = (π/3)/ω and, with stop = true, ends the run there.
+// RK4 at ωh = 0.02 rad: the steady spin about a principal axis is integrated with O((ωh)⁴) phase error per
+// unit time, ~1e-9 rad over the run; with bisection to 4 ulp the time is within ~1e-9 s.
+TEST(SceneEvents, AnAngleCrossingStopsTheRunAtTheClosedFormTime) {
+  const double omega = 2.0;
+  const Scene s = parse_scene(fmt::format(R"([simulation]
+duration = 5.0
+timestep = 0.01
+[[bodies]]
+name = "top"
+shape = {{ type = "cylinder", radius = 0.1, length = 0.05 }}
+mass = 1.0
+angular_velocity = [0, 0, {}]
+[[events]]
+name = "sixty"
+body = "top"
+axis = [1, 0, 0]
+toward = [1, 0, 0]
+angle_deg = 60
+direction = "rising"
+stop = true
+)",
+                                          omega),
+                              "angle.toml");
+  const std::vector<EventHit> hits = crossings(s);
+  ASSERT_EQ(hits.size(), 1u);
+  EXPECT_NEAR(hits[0].state.t, (pi / 3) / omega, 1e-9);
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include "tumble/error.hpp"
 #include "tumble/forces/model.hpp"
 #include "tumble/sim/drift_monitor.hpp"
+#include "tumble/sim/event_specs.hpp"
 #include "tumble/sim/simulate.hpp"
 
 namespace tumble {
@@ -43,6 +44,8 @@ struct Scene {
   double drift_threshold = 1e-6;
   /// Per-body output fields ([output] fields; sim/output_fields.hpp); empty: the defaults.
   std::vector<std::string> output_fields;
+  /// [[events]]: conditions watched during a run (make_events() turns them into RunHooks::events).
+  std::vector<EventSpec> events;
   /// Things the user should know that are not errors (e.g. a mesh was inside-out and was flipped).
   std::vector<std::string> warnings;
 };

@@ -21,6 +21,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "tumble/forces/model.hpp"
@@ -36,6 +37,7 @@ struct TrajectoryInfo {
   std::string tumble_version;       ///< e.g. "0.1.0"
   RunSettings settings;             ///< as run (after command-line overrides)
   std::vector<std::string> fields;  ///< per-body output fields (output_fields.hpp); empty: the defaults
+  bool events = false;  ///< the run watches events: the writer stores every crossing given to event()
 };
 
 class TrajectoryWriter {
@@ -43,6 +45,10 @@ class TrajectoryWriter {
   virtual ~TrajectoryWriter() = default;
   /// One output sample (bodies first, then particles, in model order).
   virtual void write(const Model& model, const SystemState& state, const DriftSample& drift) = 0;
+  /// An event crossing: its name, the row (body or particle) it watches and its time. Stored only
+  /// when TrajectoryInfo::events: CSV in OUT.events.csv beside a regular trajectory file (t,event,body,
+  /// one row per crossing in time order), HDF5 in the group `events` (datasets t, event, body).
+  virtual void event(std::string_view name, size_t row, double t) = 0;
   /// Finishes the files and moves them to their final names. `complete` is false when the run was
   /// interrupted before its end. Throws FileError if writing failed (the temporaries are removed).
   virtual void commit(bool complete) = 0;
@@ -85,5 +91,7 @@ bool same_file(const std::filesystem::path& a, const std::filesystem::path& b);
 
 /// The default diagnostics path for a CSV trajectory: out/x.csv → out/x.diagnostics.csv.
 std::filesystem::path diagnostics_path(const std::filesystem::path& trajectory);
+/// OUT.events.csv for OUT.csv: where a CSV run's event crossings go.
+std::filesystem::path events_path(const std::filesystem::path& trajectory);
 
 }  // namespace tumble

@@ -8,6 +8,8 @@
 //  - SystemField: one vector per sample for the whole system (the diagnostics), e.g. the total
 //    angular momentum and its drift. It may be undefined (no potential, a zero scale at t = 0).
 #include <array>
+#include <optional>
+#include <utility>
 #include <span>
 #include <string>
 #include <string_view>
@@ -15,6 +17,7 @@
 
 #include "tumble/dynamics/particle.hpp"
 #include "tumble/dynamics/state.hpp"
+#include "tumble/forces/model.hpp"
 #include "tumble/sim/drift_monitor.hpp"
 
 namespace tumble {
@@ -51,6 +54,14 @@ std::vector<const BodyField*> default_body_fields();
 /// The fields with these names, in the order given; an empty list gives the defaults. Throws
 /// InvalidArgument naming an unknown or repeated field and listing the known ones.
 std::vector<const BodyField*> body_fields(const std::vector<std::string>& names);
+
+/// The names of a sample's rows: each body, then each particle, in model order.
+std::vector<std::string> row_names(const Model& model);
+/// The `field.width` values of a field for row r of a sample (a body, or a particle after the bodies).
+void field_of_row(const BodyField& field, const Model& model, const SystemState& state, size_t r, double* out);
+/// The field and the component that a CSV column name stands for, e.g. "w2" → angular_velocity_principal,
+/// 1; nullopt for a name no field has.
+std::optional<std::pair<const BodyField*, int>> find_column(std::string_view column);
 
 /// Every diagnostics field (energies, momenta, drifts), in the order they are written.
 std::span<const SystemField> system_fields();

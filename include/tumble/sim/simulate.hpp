@@ -43,6 +43,7 @@ struct Event {
 /// An event that happened: its name and the state just after the crossing.
 struct EventHit {
   std::string name;
+  size_t index = 0;  ///< of the event in RunHooks::events
   SystemState state;
 };
 
