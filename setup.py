@@ -1,5 +1,5 @@
 """Builds the compiled half of the Python package `tumble` with CMake, for the interpreter running
-pip, and installs it with python/tumble/__init__.py.
+pip, and installs it with the pure-Python half (python/tumble/*.py), its type stubs and py.typed.
 
     python3 -m venv --system-site-packages .venv && . .venv/bin/activate
     pip install --no-build-isolation .
@@ -43,6 +43,7 @@ class CMakeBuild(build_ext):
 setup(
     packages=["tumble"],
     package_dir={"tumble": "python/tumble"},
+    package_data={"tumble": ["*.pyi", "py.typed"]},
     ext_modules=[Extension("tumble._tumble", sources=[])],
     cmdclass={"build_ext": CMakeBuild},
 )

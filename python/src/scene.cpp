@@ -5,6 +5,7 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -14,6 +15,7 @@
 #include "tumble/forces/forces.hpp"
 #include "tumble/integrate/integrator.hpp"
 #include "tumble/io/scene.hpp"
+#include "tumble/sim/event_specs.hpp"
 #include "tumble/sim/output_fields.hpp"
 
 namespace py = pybind11;
@@ -25,17 +27,65 @@ namespace {
 struct Series {
   std::vector<double> values;
   std::vector<py::ssize_t> shape;  // of one sample
-  py::array_t<double> array() const {
+  /// The samples as a NumPy array that *is* this buffer (no copy: the vector moves into a capsule that
+  /// the array owns), so a long run is never held twice. Leaves `values` empty.
+  py::array_t<double> release() {
     std::vector<py::ssize_t> full{0};
     py::ssize_t per = 1;
     for (const py::ssize_t n : shape) per *= n;
     full[0] = per == 0 ? 0 : static_cast<py::ssize_t>(values.size()) / per;
     full.insert(full.end(), shape.begin(), shape.end());
-    py::array_t<double> a(full);
-    std::copy(values.begin(), values.end(), a.mutable_data());
-    return a;
+    auto* buffer = new std::vector<double>(std::move(values));
+    const py::capsule owner(buffer, [](void* p) { delete static_cast<std::vector<double>*>(p); });
+    return py::array_t<double>(full, buffer->data(), owner);
   }
 };
+
+/// The world quantities of every body at a state as NumPy arrays (n, 3) and (n, 4): centre of mass,
+/// w-first quaternion of the principal frame, centre-of-mass velocity, angular velocity.
+py::tuple body_arrays(const SystemState& s) {
+  const auto n = static_cast<py::ssize_t>(s.bodies.size());
+  py::array_t<double> o({n, py::ssize_t{3}}), q({n, py::ssize_t{4}}), v({n, py::ssize_t{3}}),
+      w({n, py::ssize_t{3}});
+  auto O = o.mutable_unchecked<2>();
+  auto Q = q.mutable_unchecked<2>();
+  auto V = v.mutable_unchecked<2>();
+  auto W = w.mutable_unchecked<2>();
+  for (py::ssize_t j = 0; j < n; ++j) {
+    const BodyState& b = s.bodies[static_cast<size_t>(j)];
+    for (int k = 0; k < 3; ++k) {
+      O(j, k) = b.o(k);
+      V(j, k) = b.v(k);
+      W(j, k) = b.omega_w(k);
+    }
+    Q(j, 0) = b.q.w();
+    Q(j, 1) = b.q.x();
+    Q(j, 2) = b.q.y();
+    Q(j, 3) = b.q.z();
+  }
+  return py::make_tuple(o, q, v, w);
+}
+
+/// An event written in Python: g(t, position, orientation, velocity, omega) over every body (the arrays
+/// of body_arrays), a float whose sign change is the event. It watches no one row.
+Event python_event(const py::tuple& e) {
+  if (e.size() != 4) throw InvalidArgument("a Python event is (name, g, direction, stop)");
+  Event out{e[0].cast<std::string>(), {}, e[2].cast<int>(), e[3].cast<bool>()};
+  out.g = [g = e[1].cast<py::function>(), name = out.name](const SystemState& s) {
+    py::gil_scoped_acquire python;
+    const py::tuple a = body_arrays(s);
+    const py::object r = g(s.t, a[0], a[1], a[2], a[3]);
+    try {
+      return r.cast<double>();
+    } catch (const py::cast_error&) {
+      throw InvalidArgument(py::str("event '{}': its function returned {!r}; it must return a number whose "
+                                    "sign changes at the event")
+                                .format(name, r)
+                                .cast<std::string>());
+    }
+  };
+  return out;
+}
 
 /// A force law written in Python, called once per block of bodies (never once per body) with the time,
 /// the bodies' indices and their world quantities as (n, 3) and (n, 4) arrays; it returns the force
@@ -91,7 +141,8 @@ py::dict simulate(const Scene& scene_in, std::optional<std::string> integrator,
                   std::optional<std::string> formulation, std::optional<double> timestep,
                   std::optional<double> duration, std::optional<double> output_interval,
                   std::optional<double> rtol, std::optional<double> atol, std::optional<int> threads,
-                  std::optional<std::vector<std::string>> field_names, std::optional<py::function> force) {
+                  std::optional<std::vector<std::string>> field_names, std::optional<py::function> force,
+                  const std::vector<EventSpec>& event_specs, const std::vector<py::tuple>& python_events) {
   // A Python force joins a copy of the model (the force list is shared, the bodies copied); what it
   // conserves is unknown, so no drift is judged, and it runs on one thread (one interpreter).
   std::optional<Scene> with_force;
@@ -124,9 +175,45 @@ py::dict simulate(const Scene& scene_in, std::optional<std::string> integrator,
   std::vector<Series> diagnostics(system.size());
   for (size_t f = 0; f < system.size(); ++f) diagnostics[f].shape = {system[f].width};
   DriftMonitor monitor(model, scene.initial, scene.conserved, scene.drift_threshold, s);
+
+  // Events: the scene's, those given as specs, then those written in Python; each crossing is kept as
+  // (name, t, row), the row -1 for a Python event.
+  std::vector<EventSpec> specs = scene.events;
+  specs.insert(specs.end(), event_specs.begin(), event_specs.end());
+  RunHooks hooks;
+  hooks.events = make_events(model, specs);
+  for (const py::tuple& e : python_events) hooks.events.push_back(python_event(e));
+  std::vector<std::string> event_names;
+  std::vector<double> event_t;
+  std::vector<long> event_rows;
+  hooks.on_event = [&](const EventHit& hit) {
+    event_names.push_back(hit.name);
+    event_t.push_back(hit.state.t);
+    event_rows.push_back(hit.index < specs.size() ? static_cast<long>(specs[hit.index].row) : -1L);
+  };
+  // Ctrl-C: Python's handler only sets a flag while the run holds no GIL; it is looked at every 50 ms
+  // (taking the GIL for that moment), and the run then stops with the samples so far, which the caller
+  // gets with the KeyboardInterrupt (python/tumble/trajectory.py).
+  bool interrupted = false;
+  auto next_check = std::chrono::steady_clock::now();
+  hooks.stop_requested = [&] {
+    const auto now = std::chrono::steady_clock::now();
+    if (now < next_check) return false;
+    next_check = now + std::chrono::milliseconds(50);
+    py::gil_scoped_acquire python;
+    if (PyErr_CheckSignals() != 0) {
+      if (PyErr_ExceptionMatches(PyExc_KeyboardInterrupt)) {
+        PyErr_Clear();
+        interrupted = true;
+      } else {
+        throw py::error_already_set();
+      }
+    }
+    return interrupted;
+  };
   {
-    py::gil_scoped_release free_python;  // the run touches no Python object
-    simulate(model, scene.initial, s, [&](const SystemState& state) {
+    py::gil_scoped_release free_python;  // the run touches no Python object but the callbacks, which take it
+    hooks.on_sample = [&](const SystemState& state) {
       t.push_back(state.t);
       for (size_t f = 0; f < fields.size(); ++f) {
         std::vector<double>& v = body[f].values;
@@ -151,18 +238,20 @@ py::dict simulate(const Scene& scene_in, std::optional<std::string> integrator,
         }
       }
       return true;
-    });
+    };
+    simulate(model, scene.initial, s, hooks);
   }
   py::dict out, arrays, units, frames, diag;
-  out["t"] = py::array_t<double>(static_cast<py::ssize_t>(t.size()), t.data());
+  Series times{std::move(t), {}};
+  out["t"] = times.release();
   for (size_t f = 0; f < fields.size(); ++f) {
     const std::string name(fields[f]->name);
-    arrays[name.c_str()] = body[f].array();
+    arrays[name.c_str()] = body[f].release();
     units[name.c_str()] = std::string(fields[f]->unit);
     frames[name.c_str()] = std::string(fields[f]->frame);
   }
   for (size_t f = 0; f < system.size(); ++f) {
-    py::array_t<double> a = diagnostics[f].array();
+    py::array_t<double> a = diagnostics[f].release();
     diag[std::string(system[f].name).c_str()] = system[f].width == 1 ? py::object(a.attr("reshape")(-1))
                                                                      : py::object(a);
   }
@@ -178,6 +267,10 @@ py::dict simulate(const Scene& scene_in, std::optional<std::string> integrator,
   out["formulation"] = formulation_name(s.formulation);
   out["timestep"] = s.timestep;
   if (auto w = monitor.warning()) out["warning"] = *w;
+  out["event_names"] = event_names;
+  out["event_t"] = event_t;
+  out["event_rows"] = event_rows;
+  out["interrupted"] = interrupted;
   return out;
 }
 
@@ -208,7 +301,16 @@ void bind_scene(py::module_& m) {
       .def_property_readonly(
           "timestep", [](const Scene& s) { return s.settings.timestep; }, "s")
       .def_property_readonly("integrator", [](const Scene& s) { return s.settings.integrator; })
-      .def_readonly("warnings", &Scene::warnings);
+      .def_readonly("warnings", &Scene::warnings)
+      .def_readonly("output_fields", &Scene::output_fields, "the scene's [output] fields (empty: the defaults)")
+      .def_property_readonly(
+          "events",
+          [](const Scene& s) {
+            std::vector<std::string> names;
+            for (const EventSpec& e : s.events) names.push_back(e.name);
+            return names;
+          },
+          "the names of the scene's [[events]]");
   m.def("load_scene", &load_scene, py::arg("path"),
         "Read and validate a scene file (TOML, docs/scene-format.md); ValueError 'file:line:column: ...' "
         "for anything wrong in it, OSError if it cannot be read.");
@@ -216,7 +318,34 @@ void bind_scene(py::module_& m) {
         "A scene from TOML text; `path` names it in messages and anchors relative mesh paths.");
   m.def("_simulate", &simulate, py::arg("scene"), py::arg("integrator"), py::arg("formulation"),
         py::arg("timestep"), py::arg("duration"), py::arg("output_interval"), py::arg("rtol"),
-        py::arg("atol"), py::arg("threads"), py::arg("fields"), py::arg("force"));
+        py::arg("atol"), py::arg("threads"), py::arg("fields"), py::arg("force"), py::arg("event_specs"),
+        py::arg("python_events"));
+  py::class_<EventSpec>(m, "EventSpec", "An event checked against a scene (tumble.Event makes them).")
+      .def_readonly("name", &EventSpec::name)
+      .def_readonly("row", &EventSpec::row, "the body or particle watched: its index in the trajectory");
+  m.def("_parse_events", &parse_events, py::arg("scene"), py::arg("text"), py::arg("path") = "events.toml");
+  m.def(
+      "_field_table",
+      [] {
+        py::list bodies, system;
+        auto describe = [](const auto& f) {
+          py::dict d;
+          d["name"] = std::string(f.name);
+          d["width"] = f.width;
+          std::vector<std::string> columns;
+          for (int k = 0; k < f.width; ++k) columns.emplace_back(f.columns[static_cast<size_t>(k)]);
+          d["columns"] = columns;
+          d["unit"] = std::string(f.unit);
+          d["frame"] = std::string(f.frame);
+          d["meaning"] = std::string(f.meaning);
+          return d;
+        };
+        for (const BodyField& f : body_fields()) bodies.append(describe(f));
+        for (const SystemField& f : system_fields()) system.append(describe(f));
+        return py::make_tuple(bodies, system);
+      },
+      "the output-field table (sim/output_fields.hpp): per-body fields and diagnostics, each with its name, "
+      "width, CSV columns, unit, frame and meaning");
   m.def(
       "output_fields",
       [] {

@@ -9,9 +9,15 @@ omega_b (body angular velocity), R (orientation). docs/python.md has a tour.
     traj = tumble.simulate(scene, integrator="rk4", formulation="mixed", timestep=1e-3,
                            duration=20.0, output_interval=0.1)
     traj.t, traj.quaternion, traj.omega_world      # (T,), (T, N, 4) w first, (T, N, 3)
+    traj.omega_principal, traj.energy_drift, traj.events
     part = tumble.inertia("part.stl", density=2700, scale=0.001)
     part.mass, part.volume, part.center_of_mass, part.inertia, part.principal_moments, part.principal_axes
 """
+
+from __future__ import annotations
+
+import os as _os
+from typing import Callable, Sequence
 
 import numpy as _np
 
@@ -31,89 +37,119 @@ from ._tumble import (  # noqa: F401  (re-exported)
     torus,
 )
 from . import _tumble
+from .model import (  # noqa: F401
+    Body, Damping, Drag, Event, Gravity, GravityGradient, Part, Particle, PointForce, Shape, Spring, Torque,
+    make_scene, scene_dict, spring_end,
+)
+from .trajectory import (  # noqa: F401
+    EventCrossing, Interrupted, Trajectory, field_table, from_xyzw, read_trajectory, to_xyzw,
+)
 
 __all__ = [
-    "MassProperties", "MeshMassProperties", "Scene", "Trajectory", "bodies", "box", "capsule", "cone", "cylinder", "ellipsoid",
-    "euler_poinsot", "inertia", "load_scene", "mesh_mass_properties", "output_fields", "parse_scene",
-    "save_scene", "scene_from_dict", "simulate", "sphere", "torus",
+    "Body", "Damping", "Drag", "Event", "EventCrossing", "Gravity", "GravityGradient", "Interrupted",
+    "MassProperties", "MeshMassProperties", "Part", "Particle", "PointForce", "Scene", "Shape", "Spring",
+    "Torque", "Trajectory", "bodies", "box", "capsule", "cone", "cylinder", "ellipsoid", "euler_poinsot",
+    "field_table", "from_xyzw", "inertia", "load_scene", "make_scene", "mesh_mass_properties",
+    "output_fields", "parse_scene", "read_trajectory", "save_scene", "scene_dict", "scene_from_dict",
+    "simulate", "sphere", "spring_end", "to_xyzw", "torus",
 ]
 
 
-class Trajectory:
-    """The samples of a run: ``t`` (T,) in s and one array (T, N, width) per output field, N the
-    bodies then the particles in file order (``names``). Fields are attributes by their names
-    (``position``, ``orientation``, ``velocity``, ``angular_velocity``, and any others asked for);
-    ``units`` and ``frames`` say what each holds. Aliases: ``quaternion`` = ``orientation`` (w first,
-    reference frame -> world), ``omega_world`` = ``angular_velocity`` (rad/s, world).
-    ``diagnostics`` maps each system quantity (kinetic_energy, angular_momentum, their drifts, ...)
-    to an array (T,) or (T, 3), NaN where undefined."""
-
-    _aliases = {"quaternion": "orientation", "omega_world": "angular_velocity"}
-
-    def __init__(self, raw):
-        self.t = raw["t"]
-        self.names = list(raw["names"])
-        self.fields = dict(raw["fields"])
-        self.units = dict(raw["units"])
-        self.frames = dict(raw["frames"])
-        self.diagnostics = dict(raw["diagnostics"])
-        self.integrator = raw["integrator"]
-        self.formulation = raw["formulation"]
-        self.timestep = raw["timestep"]
-        self.warning = raw.get("warning")
-
-    def __getattr__(self, name):
-        fields = self.__dict__.get("fields", {})
-        key = self._aliases.get(name, name)
-        if key in fields:
-            return fields[key]
-        raise AttributeError(
-            f"the trajectory has no field '{name}': it holds {', '.join(fields)} "
-            f"(ask simulate(..., fields=[...]) for others: {', '.join(output_fields())})")
-
-    def body(self, name):
-        """The index of a body or particle by name."""
-        return self.names.index(name)
-
-    def __repr__(self):
-        return (f"Trajectory({len(self.t)} samples of {len(self.names)} bodies/particles, "
-                f"fields {list(self.fields)})")
-
-
-def simulate(scene, integrator=None, formulation=None, timestep=None, duration=None,
-             output_interval=None, rtol=None, atol=None, threads=None, fields=None, force=None):
+def simulate(scene: Scene | str | _os.PathLike, integrator: str | None = None, formulation: str | None = None,
+             timestep: float | None = None, duration: float | None = None, output_interval: float | None = None,
+             rtol: float | None = None, atol: float | None = None, threads: int | None = None,
+             fields: Sequence[str] | None = None, force: Callable | None = None,
+             events: Sequence[Event | dict] | None = None) -> Trajectory:
     """Run a scene and return its Trajectory. Arguments left None take the scene's [simulation]
     values (as `tumble run` options do): integrator (e.g. "rk4", "splitting", "dopri45", "exact"),
     formulation ("world", "mixed", "body"), timestep and duration and output_interval (s; 0 = every
-    step), rtol/atol for adaptive integrators, threads, and fields (a list of output field names,
-    default the scene's [output] fields or position, orientation, velocity, angular_velocity).
+    step), rtol/atol for adaptive integrators, threads, and fields (a list of output field names;
+    default the scene's [output] fields, else position, orientation, velocity, angular_velocity and
+    omega in the reference and principal axes).
 
     force: a force law in Python, added to the scene's forces, called once per block of bodies (not
     once per body) as force(t, index, position, orientation, velocity, omega) with the bodies' indices
     (n,) and world arrays (n, 3) and (n, 4) (centre of mass, w-first quaternion of the principal
     frame, centre-of-mass velocity, angular velocity); it returns (force, torque), two (n, 3) arrays
     in N and N m, world axes, the torque about the centre of mass. Such a run uses one thread and
-    judges no drift (what the force conserves is unknown)."""
+    judges no drift (what the force conserves is unknown).
+
+    events: Event objects (or dicts with the keys of [[events]]) watched besides the scene's own; their
+    crossings are Trajectory.events. Ctrl-C stops the run and raises tumble.Interrupted (a
+    KeyboardInterrupt) whose .trajectory holds the samples computed so far."""
     if isinstance(scene, (str, bytes)) or hasattr(scene, "__fspath__"):
         scene = load_scene(scene)
-    return Trajectory(_tumble._simulate(scene, integrator, formulation, timestep, duration,
-                                        output_interval, rtol, atol, threads,
-                                        None if fields is None else list(fields), force))
+    specs, python_events = [], []
+    for e in events or ():
+        if isinstance(e, dict):
+            e = Event(**e)
+        if not isinstance(e, Event):
+            raise TypeError(f"events must be tumble.Event objects or dicts; got {type(e).__name__}")
+        if e.g is not None:
+            if not callable(e.g):
+                raise TypeError(f"event '{e.name}': g must be a function g(t, position, orientation, velocity, omega)")
+            direction = {"both": 0, None: 0, "rising": 1, "falling": -1}.get(e.direction)
+            if direction is None:
+                raise ValueError(f"event '{e.name}': direction {e.direction!r}: choose 'both', 'rising' or 'falling'")
+            python_events.append((e.name, e.g, direction, bool(e.stop)))
+        else:
+            specs.append(e.to_dict())
+    if specs:
+        specs = _event_specs(scene, specs)
+    if fields is None and not scene.output_fields:
+        fields = ["position", "orientation", "velocity", "angular_velocity", "angular_velocity_reference",
+                  "angular_velocity_principal"]
+    raw = _tumble._simulate(scene, integrator, formulation, timestep, duration, output_interval, rtol, atol,
+                            threads, None if fields is None else list(fields), force, specs, python_events)
+    trajectory = Trajectory._from_run(raw)
+    if not trajectory.complete:
+        raise Interrupted(trajectory)
+    return trajectory
 
 
-def bodies(mass, moments, position=None, orientation=None, velocity=None, omega=None, omega_frame="world",
-           gravity=None, duration=1.0, timestep=1e-3, output_interval=0.01, integrator="rk4"):
+def _event_specs(scene, tables):
+    """The events given as tables, checked by the scene-file reader against the scene; a mistake names
+    the event as events[i] (the TOML made here has no lines worth citing)."""
+    import re
+    import tomli_w
+    specs = []
+    for i, table in enumerate(tables):
+        where = f"events[{i}]"
+        try:
+            specs += _tumble._parse_events(scene, tomli_w.dumps({"events": [table]}), where)
+        except ValueError as e:
+            raise ValueError(re.sub(r"^(events\[\d+\]):\d+:\d+:", r"\1:", str(e))) from None
+    return specs
+
+
+def bodies(mass, moments, position=None, orientation=None, velocity=None, omega=None, omega_frame: str = "world",
+           gravity=None, duration: float = 1.0, timestep: float = 1e-3, output_interval: float = 0.01,
+           integrator: str = "rk4") -> Scene:
     """A scene of N rigid bodies from arrays, for the batched engine: mass (N,) kg; moments (N, 3)
     principal moments (kg m^2) about each body's reference axes, which are its principal axes at its
     centre of mass; position (N, 3) m, orientation (N, 4) w first, velocity (N, 3) m/s, omega (N, 3)
     rad/s in omega_frame ("world", "reference" or "principal"); optional uniform gravity (3,) m/s^2.
     Bodies are named body_0 ... body_N-1. Returns a Scene for simulate()."""
-    def rows(a, width):
-        return None if a is None else _np.ascontiguousarray(_np.reshape(a, (-1, width)), dtype=_np.float64)
+    m = _np.ascontiguousarray(mass, dtype=_np.float64)
+    if m.ndim != 1:
+        raise ValueError(f"mass must be (N,), one per body, in kg; got shape {m.shape}")
+    n = m.shape[0]
+
+    def rows(name, a, width, what):
+        if a is None:
+            return None
+        a = _np.asarray(a, dtype=_np.float64)
+        if a.shape == (width,):
+            a = _np.broadcast_to(a, (n, width))  # one row for every body
+        if a.shape != (n, width):
+            raise ValueError(f"{name} must be (N, {width}) = ({n}, {width}), {what}, or ({width},) for every "
+                             f"body; got shape {a.shape}")
+        return _np.ascontiguousarray(a)
     return _tumble._scene_from_arrays(
-        _np.ascontiguousarray(_np.ravel(mass), dtype=_np.float64), rows(moments, 3), rows(position, 3),
-        rows(orientation, 4), rows(velocity, 3), rows(omega, 3), omega_frame,
-        None if gravity is None else _np.asarray(gravity, dtype=_np.float64),
+        m, rows("moments", moments, 3, "principal moments in kg m^2"),
+        rows("position", position, 3, "m, world"), rows("orientation", orientation, 4, "quaternions w, x, y, z"),
+        rows("velocity", velocity, 3, "m/s, world"), rows("omega", omega, 3, f"rad/s, {omega_frame} axes"),
+        omega_frame, None if gravity is None else _np.asarray(gravity, dtype=_np.float64),
         float(duration), float(timestep), float(output_interval), integrator)
 
 
@@ -133,7 +169,8 @@ class _MeshMass:
         return repr(self.properties)
 
 
-def inertia(path, density=None, mass=None, scale=1.0, part=0, thickness=None):
+def inertia(path: str | _os.PathLike, density: float | Callable | None = None, mass: float | None = None,
+            scale: float = 1.0, part: int = 0, thickness: float | None = None) -> _MeshMass:
     """Mass properties of a closed triangle mesh file (OBJ, OFF, PLY, STL, ...): give density
     (kg/m^3) or mass (kg) (default unit density); scale multiplies coordinates (0.001 for a file in
     millimetres); part picks one part of a multi-part file (1-based; 0 = all, merged); thickness (m)
@@ -144,7 +181,8 @@ def inertia(path, density=None, mass=None, scale=1.0, part=0, thickness=None):
     return _MeshMass(_tumble._mesh_file(path, density, mass, float(scale), int(part), thickness))
 
 
-def mesh_mass_properties(vertices, faces, density=None, mass=None, thickness=None):
+def mesh_mass_properties(vertices, faces, density: float | Callable | None = None, mass: float | None = None,
+                         thickness: float | None = None) -> _MeshMass:
     """Mass properties of a closed mesh given as arrays: vertices (V, 3) in m and faces (F, 3) of
     vertex indices from 0, counter-clockwise seen from outside."""
     V = _np.ascontiguousarray(vertices, dtype=_np.float64)
@@ -165,7 +203,7 @@ class FreeMotion:
             setattr(self, key, value)
 
 
-def euler_poinsot(moments, omega_b0, t, q0=(1.0, 0.0, 0.0, 0.0)):
+def euler_poinsot(moments, omega_b0, t, q0=(1.0, 0.0, 0.0, 0.0)) -> FreeMotion:
     """The exact Euler-Poinsot solution (Jacobi elliptic functions and the angle about L) for
     principal moments Lambda (kg m^2), initial body angular velocity omega_b0 (rad/s, principal
     axes) and orientation q0 (w first), evaluated at the times t (s, any array)."""
@@ -175,7 +213,7 @@ def euler_poinsot(moments, omega_b0, t, q0=(1.0, 0.0, 0.0, 0.0)):
     return FreeMotion(times, raw)
 
 
-def scene_from_dict(scene, path="scene.toml"):
+def scene_from_dict(scene: dict, path: str | _os.PathLike = "scene.toml") -> Scene:
     """A scene built in Python: a dict with the keys of a scene file (docs/scene-format.md), e.g.
     {"simulation": {"duration": 10.0}, "bodies": [{"name": "a", "shape": {"type": "box", "size":
     [0.1, 0.2, 0.3]}, "density": 2700}]}. It is written as TOML (tomli_w) and read by the same
@@ -184,7 +222,7 @@ def scene_from_dict(scene, path="scene.toml"):
     return parse_scene(tomli_w.dumps(scene), str(path))
 
 
-def save_scene(scene, path):
+def save_scene(scene: Scene | dict, path: str | _os.PathLike) -> None:
     """Write a scene as TOML to `path`: a Scene read from a file or text (its TOML, as given), or a
     dict as scene_from_dict takes (validated first). Scenes made by bodies() from arrays have no TOML:
     give their bodies as a [[body_tables]] CSV file instead."""

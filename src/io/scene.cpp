@@ -102,7 +102,7 @@ Scene read_scene(const toml::table& root, std::string text, const std::filesyste
     r.fail_here("the scene has nothing to simulate: add [[bodies]], [[body_tables]] or [[particles]]");
   }
   read_forces(r, names, scene);
-  read_events(r, names, scene);
+  scene.events = read_events(r, names, scene);
   return scene;
 }
 

@@ -7,7 +7,8 @@
 #include "scene_sections.hpp"
 #include "tumble/sim/event_specs.hpp"
 
-namespace tumble::scene {
+namespace tumble {
+namespace scene {
 namespace {
 
 /// Every column of the output-field table, for a message.
@@ -43,7 +44,8 @@ int crossing_direction(const TableReader& t) {
 
 }  // namespace
 
-void read_events(const TableReader& root, const NameTable& names, Scene& scene) {
+std::vector<EventSpec> read_events(const TableReader& root, const NameTable& names, const Scene& scene) {
+  std::vector<EventSpec> specs;
   const auto events = root.tables("events");
   for (size_t i = 0; i < events.size(); ++i) {
     const auto untitled =
@@ -91,8 +93,25 @@ void read_events(const TableReader& root, const NameTable& names, Scene& scene) 
       e.angle = deg * std::numbers::pi / 180;
       if (t.has("value")) t.fail_here("value goes with column; an angle event crosses angle_deg");
     }
-    scene.events.push_back(std::move(e));
+    specs.push_back(std::move(e));
   }
+  return specs;
 }
 
-}  // namespace tumble::scene
+}  // namespace scene
+
+std::vector<EventSpec> parse_events(const Scene& s, const std::string& text, const std::filesystem::path& path) {
+  const std::string file = path.string();
+  const toml::table root = scene::parse_toml(text, file);
+  const scene::TableReader r(root, "events", file, {"events"});
+  // The names as the scene file registered them: bodies, then particles.
+  const std::vector<std::string> rows = row_names(s.model);
+  scene::NameTable names;
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const bool particle = i >= s.model.bodies.size();
+    names.emplace(rows[i], scene::NameEntry{{}, particle, particle ? i - s.model.bodies.size() : i});
+  }
+  return scene::read_events(r, names, s);
+}
+
+}  // namespace tumble

@@ -54,7 +54,7 @@ void read_particles(const TableReader& root, NameTable& names, Scene& scene);
 void read_forces(const TableReader& root, const NameTable& names, Scene& scene);
 
 /// [[events]], which name bodies and particles by `names`.
-void read_events(const TableReader& root, const NameTable& names, Scene& scene);
+std::vector<EventSpec> read_events(const TableReader& root, const NameTable& names, const Scene& scene);
 
 /// Whether a body or particle name is non-empty and only letters, digits, '_', '-' and '.'.
 bool valid_name(std::string_view name);

@@ -57,4 +57,9 @@ Scene load_scene(const std::filesystem::path& path);
 /// The same for scene text already in memory; `path` names it in messages and anchors mesh paths.
 Scene parse_scene(const std::string& text, const std::filesystem::path& path);
 
+/// Events for a scene given apart from its file: TOML text holding [[events]] tables (the keys of a
+/// scene file's, docs/scene-format.md), checked against the scene's bodies and particles. SceneError
+/// (`path`:line:column) for anything wrong.
+std::vector<EventSpec> parse_events(const Scene& scene, const std::string& text, const std::filesystem::path& path);
+
 }  // namespace tumble

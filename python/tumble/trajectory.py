@@ -1,0 +1,245 @@
+"""Trajectories as NumPy arrays: the result of `simulate`, and the reader of tumble's own CSV and HDF5
+files, which gives the same object. What each array holds (name, unit, frame, CSV columns) comes from
+the library's output-field table, the one the CSV and HDF5 writers use."""
+
+from __future__ import annotations
+
+import csv
+import os
+from typing import NamedTuple
+
+import numpy as np
+
+from . import _tumble
+
+#: Spellings of the tutorial beside the field names: ω in world, in the body's own (reference) axes and
+#: in its principal axes {b} (^bω, Euler's equations' ω₁ ω₂ ω₃), and the quaternion (w first).
+ALIASES = {
+    "quaternion": "orientation",
+    "omega_world": "angular_velocity",
+    "omega_body": "angular_velocity_reference",
+    "omega_principal": "angular_velocity_principal",
+}
+
+
+def field_table():
+    """The output-field table: (body_fields, system_fields), each a list of dicts with name, width,
+    columns (CSV), unit, frame and meaning."""
+    return _tumble._field_table()
+
+
+class EventCrossing(NamedTuple):
+    """One crossing of an event: its name, time (s) and the body or particle it watches (None for an
+    event written in Python, which watches the whole state)."""
+    name: str
+    t: float
+    body: str | None
+
+
+class Trajectory:
+    """The samples of a run: ``t`` (T,) in s and one array (T, N, width) per output field, N the bodies
+    then the particles in file order (``names``). Fields are attributes by their names (``position``,
+    ``orientation``, ``velocity``, ``angular_velocity``, ...) and by the tutorial's: ``quaternion``
+    (w, x, y, z: reference frame -> world), ``omega_world`` (rad/s, world), ``omega_body`` (rad/s, the
+    body's reference axes) and ``omega_principal`` (rad/s, principal axes, moments ascending).
+    ``units`` and ``frames`` say what each holds.
+
+    System quantities (``kinetic_energy``, ``potential_energy``, ``total_energy``, ``linear_momentum``,
+    ``angular_momentum`` (world, about the origin), ``energy_drift``, ``linear_momentum_drift``,
+    ``angular_momentum_drift``) are attributes too, arrays (T,) or (T, 3), NaN where undefined; all of
+    them are in ``diagnostics``. ``events`` lists every event crossing in time order.
+
+    Arrays from ``simulate`` are the library's own buffers handed to NumPy (no copy)."""
+
+    def __init__(self, t, names, fields, units, frames, diagnostics, events=(), integrator=None,
+                 formulation=None, timestep=None, warning=None, complete=True):
+        self.t = t
+        self.names = list(names)
+        self.fields = dict(fields)
+        self.units = dict(units)
+        self.frames = dict(frames)
+        self.diagnostics = dict(diagnostics)
+        self.events = list(events)
+        self.integrator = integrator
+        self.formulation = formulation
+        self.timestep = timestep
+        self.warning = warning
+        self.complete = complete
+
+    @classmethod
+    def _from_run(cls, raw):
+        rows = list(raw["names"])
+        events = [EventCrossing(n, t, rows[r] if r >= 0 else None)
+                  for n, t, r in zip(raw["event_names"], raw["event_t"], raw["event_rows"])]
+        return cls(raw["t"], rows, raw["fields"], raw["units"], raw["frames"], raw["diagnostics"], events,
+                   raw["integrator"], raw["formulation"], raw["timestep"], raw.get("warning"),
+                   complete=not raw["interrupted"])
+
+    def __getattr__(self, name):
+        fields = self.__dict__.get("fields", {})
+        key = ALIASES.get(name, name)
+        if key in fields:
+            return fields[key]
+        diagnostics = self.__dict__.get("diagnostics", {})
+        if key in diagnostics:
+            return diagnostics[key]
+        raise AttributeError(
+            f"the trajectory has no field '{name}'"
+            + (f" ('{key}')" if key != name else "")
+            + f": it holds {', '.join(fields)}; ask simulate(..., fields=[...]) for others: "
+            + ", ".join(f["name"] for f in field_table()[0]))
+
+    def body(self, name):
+        """The index of a body or particle by name (its position along the N axis)."""
+        try:
+            return self.names.index(name)
+        except ValueError:
+            raise KeyError(f"no body or particle named '{name}'; the trajectory has {', '.join(self.names)}") from None
+
+    def event_times(self, name, body=None):
+        """The times (s) of the crossings of the event `name` (of one body if given), an array."""
+        return np.array([e.t for e in self.events if e.name == name and (body is None or e.body == body)])
+
+    def __repr__(self):
+        return (f"Trajectory({len(self.t)} samples of {len(self.names)} bodies/particles, "
+                f"fields {list(self.fields)}, {len(self.events)} event crossings"
+                + ("" if self.complete else ", interrupted") + ")")
+
+
+class Interrupted(KeyboardInterrupt):
+    """Ctrl-C during `simulate`: a KeyboardInterrupt that keeps what was computed, as ``trajectory``
+    (the samples up to the moment of the interrupt, the state reached as the last one)."""
+
+    def __init__(self, trajectory):
+        super().__init__(f"interrupted at t = {trajectory.t[-1]:g} s; the samples so far are in .trajectory")
+        self.trajectory = trajectory
+
+
+def to_xyzw(q):
+    """Quaternions (..., 4) from tumble's order (w, x, y, z) to the scalar-last order of SciPy's
+    Rotation.from_quat and of ROS/Eigen coefficients (x, y, z, w)."""
+    q = np.asarray(q)
+    _check_quaternions(q)
+    return np.concatenate([q[..., 1:], q[..., :1]], axis=-1)
+
+
+def from_xyzw(q):
+    """Quaternions (..., 4) from scalar-last (x, y, z, w), e.g. Rotation.as_quat(), to tumble's (w, x, y, z)."""
+    q = np.asarray(q)
+    _check_quaternions(q)
+    return np.concatenate([q[..., 3:], q[..., :3]], axis=-1)
+
+
+def _check_quaternions(q):
+    if q.ndim == 0 or q.shape[-1] != 4:
+        raise ValueError(f"quaternions must be an array (..., 4); got shape {q.shape}")
+
+
+def read_trajectory(path):
+    """Read a trajectory that `tumble run` wrote: an HDF5 file (.h5, .hdf5; needs h5py, Debian's
+    python3-h5py) or a CSV file with its companions OUT.diagnostics.csv and OUT.events.csv when they
+    exist. Returns the same Trajectory that `simulate` gives (arrays (T, N, width), names, units,
+    frames, diagnostics, events)."""
+    path = os.fspath(path)
+    if not os.path.isfile(path):
+        raise FileNotFoundError(f"no trajectory file {path}")
+    with open(path, "rb") as f:
+        hdf5 = f.read(8) == b"\x89HDF\r\n\x1a\n"
+    return _read_hdf5(path) if hdf5 else _read_csv(path)
+
+
+def _companion(path, suffix):
+    stem, _ = os.path.splitext(path)
+    return stem + suffix
+
+
+def _read_csv(path):
+    body_fields, system_fields = field_table()
+    with open(path, newline="") as f:
+        reader = csv.reader(f)
+        try:
+            header = next(reader)
+        except StopIteration:
+            raise ValueError(f"{path}: empty file; a tumble trajectory starts with the header t,body,...") from None
+        if header[:2] != ["t", "body"]:
+            raise ValueError(f"{path}:1: the header starts with {','.join(header[:2])!r}, not 't,body': "
+                             "not a trajectory that tumble run wrote")
+        rows = list(reader)
+    # The header's columns, field by field, as the writer put them (one table, one order).
+    fields, at = [], 2
+    by_first = {f["columns"][0]: f for f in body_fields}
+    while at < len(header):
+        f = by_first.get(header[at])
+        if f is None or header[at:at + f["width"]] != f["columns"]:
+            raise ValueError(f"{path}:1: column {at + 1} ({header[at]!r}) begins no output field")
+        fields.append(f)
+        at += f["width"]
+    names = []
+    for r in rows:
+        if r[1] in names:
+            break
+        names.append(r[1])
+    N = len(names)
+    if N == 0 or len(rows) % N != 0:
+        raise ValueError(f"{path}: {len(rows)} rows are not whole samples of {N} bodies")
+    T = len(rows) // N
+    try:
+        values = np.array([[float(x) for x in [r[0]] + r[2:]] for r in rows]).reshape(T, N, -1)
+    except ValueError as e:
+        raise ValueError(f"{path}: a value is not a number ({e}) or a row is short") from None
+    t = values[:, 0, 0]
+    arrays, at = {}, 1
+    for f in fields:
+        arrays[f["name"]] = np.ascontiguousarray(values[:, :, at:at + f["width"]])
+        at += f["width"]
+    diagnostics = {}
+    dpath = _companion(path, ".diagnostics.csv")
+    if os.path.isfile(dpath):
+        with open(dpath, newline="") as f:
+            dr = list(csv.reader(f))
+        columns = dr[0]
+        table = np.array([[float(x) if x != "" else np.nan for x in r] for r in dr[1:]]).reshape(-1, len(columns))
+        at = 1
+        for f in system_fields:
+            block = table[:, at:at + f["width"]]
+            diagnostics[f["name"]] = block[:, 0].copy() if f["width"] == 1 else block.copy()
+            at += f["width"]
+    events = []
+    epath = _companion(path, ".events.csv")
+    if os.path.isfile(epath):
+        with open(epath, newline="") as f:
+            er = list(csv.reader(f))
+        events = [EventCrossing(r[1], float(r[0]), r[2]) for r in er[1:]]
+    return Trajectory(t, names, arrays, {f["name"]: f["unit"] for f in fields},
+                      {f["name"]: f["frame"] for f in fields}, diagnostics, events)
+
+
+def _read_hdf5(path):
+    try:
+        import h5py
+    except ImportError:
+        raise ImportError("reading HDF5 trajectories needs h5py: apt-get install python3-h5py") from None
+    body_fields, system_fields = field_table()
+    with h5py.File(path, "r") as f:
+        names = [n.decode() if isinstance(n, bytes) else n for n in f["names"][:]]
+        t = f["t"][:]
+        arrays, units, frames = {}, {}, {}
+        for field in body_fields:
+            if field["name"] in f:
+                arrays[field["name"]] = f[field["name"]][:]
+                units[field["name"]] = field["unit"]
+                frames[field["name"]] = field["frame"]
+        diagnostics = {}
+        for field in system_fields:
+            key = "diagnostics/" + field["name"]
+            diagnostics[field["name"]] = f[key][:] if key in f else np.full((len(t),) + (() if field["width"] == 1 else (field["width"],)), np.nan)
+        events = []
+        if "events" in f:
+            g = f["events"]
+            for name, time, row in zip(g["event"][:], g["t"][:], g["body"][:]):
+                events.append(EventCrossing(name.decode() if isinstance(name, bytes) else name, float(time), names[row]))
+        attrs = f.attrs
+        text = lambda key: (attrs[key].decode() if isinstance(attrs[key], bytes) else str(attrs[key])) if key in attrs else None
+        return Trajectory(t, names, arrays, units, frames, diagnostics, events, text("integrator"),
+                          text("formulation"), float(attrs["timestep"]) if "timestep" in attrs else None,
+                          complete=bool(attrs.get("complete", 1)))

@@ -1,0 +1,257 @@
+"""Runs from Python: events, scenes built from classes, the readers of tumble's own files, quaternion
+order converters, zero-copy results and Ctrl-C."""
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+
+import numpy as np
+import pytest
+
+import tumble
+from tumble import Body, Damping, Drag, Event, Gravity, GravityGradient, Particle, PointForce, Shape, Spring, Torque
+
+SOURCE = os.environ.get("TUMBLE_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+EXAMPLES = os.path.join(SOURCE, "examples")
+T_HANDLE = os.path.join(EXAMPLES, "t_handle.toml")
+
+
+def racket(**extra):
+    """A box spun near its intermediate axis: omega_2 starts at its extreme (omega_3 = 0)."""
+    return Body("racket", shape=Shape("box", size=[0.1, 0.2, 0.3]), mass=1.0,
+                angular_velocity=[0.01, 5.0, 0.0], angular_velocity_frame="principal", **extra)
+
+
+def test_events_find_every_flip_at_the_exact_solutions_times():
+    # omega_2 changes sign at (k + 1/2) 2K/lambda. The exact integrator samples the closed form and the
+    # crossing is bisected to 4 ulp of t: 1e-9 s allows for the rounding of the elliptic functions.
+    scene = tumble.make_scene(bodies=[racket()], duration=10.0, timestep=0.01, integrator="exact")
+    traj = tumble.simulate(scene, events=[Event("flip", body="racket", column="w2")])
+    T = tumble.euler_poinsot(tumble.box([0.1, 0.2, 0.3], mass=1.0).principal_moments, [0.01, 5.0, 0.0],
+                             [0.0]).flip_interval
+    flips = traj.event_times("flip")
+    assert len(flips) == int(10.0 / T + 0.5)
+    np.testing.assert_allclose(flips, (np.arange(len(flips)) + 0.5) * T, rtol=0, atol=1e-9)
+    assert all(e.body == "racket" and e.name == "flip" for e in traj.events)
+
+
+def test_a_python_event_sees_every_body_and_can_stop_the_run():
+    # A ball thrown up at 10 m/s from 2 m lands at t* = (v0 + sqrt(v0^2 + 2 g z0)) / g; the event is a
+    # Python function of the whole state (centre-of-mass height of body 0), falling, stopping the run.
+    # RK4 integrates the parabola exactly (a cubic in t is within its order), so only the bisection's
+    # 4 ulp and rounding remain.
+    g, z0, v0 = 9.81, 2.0, 10.0
+    scene = tumble.make_scene(bodies=[Body("ball", shape=Shape("sphere", radius=0.1), mass=1.0,
+                                           position=[0, 0, z0], velocity=[0, 0, v0])],
+                              forces=[Gravity([0, 0, -g])], duration=10.0, timestep=0.01)
+    calls = []
+
+    def height(t, position, orientation, velocity, omega):
+        calls.append(position.shape)
+        return position[0, 2]
+
+    traj = tumble.simulate(scene, events=[Event("landing", g=height, direction="falling", stop=True)])
+    t_star = (v0 + np.sqrt(v0 ** 2 + 2 * g * z0)) / g
+    assert traj.event_times("landing") == pytest.approx([t_star], abs=1e-12)
+    assert traj.t[-1] == pytest.approx(t_star, abs=1e-12), "the run ends at the crossing"
+    assert traj.events[0].body is None and set(calls) == {(1, 3)}
+
+
+def test_event_mistakes_raise_the_scene_files_message():
+    scene = tumble.make_scene(bodies=[racket()], duration=1.0)
+    with pytest.raises(ValueError, match=r"^events\[0\]: event 'e': no body or particle named \"rocket\"; did you mean \"racket\"\?"):
+        tumble.simulate(scene, events=[Event("e", body="rocket", column="w2")])
+    with pytest.raises(ValueError, match=r"^events\[0\]: event 'e': no output column \"w9\""):
+        tumble.simulate(scene, events=[{"name": "e", "body": "racket", "column": "w9"}])
+    with pytest.raises(TypeError, match="events must be tumble.Event objects or dicts"):
+        tumble.simulate(scene, events=["flip"])
+    with pytest.raises(ValueError, match="must return a number"):
+        tumble.simulate(scene, events=[Event("e", g=lambda *a: "up")])
+    with pytest.raises(ValueError, match="is a Python function: give it to simulate"):
+        tumble.make_scene(bodies=[racket()], events=[Event("e", g=lambda *a: 0.0)], duration=1.0)
+
+
+def test_a_scene_built_from_classes_is_the_scene_file_bit_for_bit(tmp_path):
+    # Every force model as a class, against the same scene written as TOML by hand.
+    bodies = [Body("a", shape=Shape("box", size=[0.1, 0.2, 0.3]), density=2700, position=[0, 0, 1],
+                   angular_velocity=[1, 2, 3]),
+              Body("b", mass=2.0, inertia=[0.1, 0.2, 0.25], position=[1, 0, 0], velocity=[0, 1, 0])]
+    forces = [Gravity([0, 0, -9.81]), PointForce("a", [1, 0, 0], point=[0.05, 0, 0]), Torque("b", [0, 0, 0.1], frame="reference"),
+              Damping("a", linear=0.1, angular=0.01), Drag(linear=0.01),
+              Spring(tumble.spring_end(body="a", point=[0, 0, 0.15]), tumble.spring_end(particle="p"), stiffness=50.0,
+                     rest_length=0.5),
+              GravityGradient(mu=1.0, center=[0, 0, -10])]
+    built = tumble.make_scene(bodies=bodies, particles=[Particle("p", 0.5, position=[0, 1, 1])], forces=forces,
+                              duration=0.5, timestep=1e-3, output_interval=0.1)
+    text = textwrap.dedent("""\
+        [simulation]
+        duration = 0.5
+        timestep = 1e-3
+        output_interval = 0.1
+        [world]
+        gravity = [0, 0, -9.81]
+        [[bodies]]
+        name = "a"
+        shape = { type = "box", size = [0.1, 0.2, 0.3] }
+        density = 2700
+        position = [0, 0, 1]
+        angular_velocity = [1, 2, 3]
+        [[bodies]]
+        name = "b"
+        mass = 2.0
+        inertia = [0.1, 0.2, 0.25]
+        position = [1, 0, 0]
+        velocity = [0, 1, 0]
+        [[particles]]
+        name = "p"
+        mass = 0.5
+        position = [0, 1, 1]
+        [[forces]]
+        type = "force"
+        body = "a"
+        force = [1, 0, 0]
+        point = [0.05, 0, 0]
+        [[forces]]
+        type = "torque"
+        body = "b"
+        torque = [0, 0, 0.1]
+        frame = "reference"
+        [[forces]]
+        type = "damping"
+        body = "a"
+        linear = 0.1
+        angular = 0.01
+        [[forces]]
+        type = "drag"
+        linear = 0.01
+        [[forces]]
+        type = "spring"
+        a = { body = "a", point = [0, 0, 0.15] }
+        b = { particle = "p" }
+        stiffness = 50.0
+        rest_length = 0.5
+        [[forces]]
+        type = "gravity_gradient"
+        mu = 1.0
+        center = [0, 0, -10]
+        """)
+    by_hand = tumble.parse_scene(text)
+    one, two = tumble.simulate(built), tumble.simulate(by_hand)
+    assert one.names == ["a", "b", "p"]
+    for name in one.fields:
+        np.testing.assert_array_equal(one.fields[name], two.fields[name], err_msg=name)
+    # Saved and read back: the same scene again.
+    tumble.save_scene(tumble.scene_dict(bodies=bodies, particles=[Particle("p", 0.5, position=[0, 1, 1])],
+                                        forces=forces, duration=0.5, timestep=1e-3, output_interval=0.1),
+                      tmp_path / "built.toml")
+    three = tumble.simulate(tumble.load_scene(tmp_path / "built.toml"))
+    np.testing.assert_array_equal(three.position, one.position)
+    # A mistake is the file's message.
+    with pytest.raises(ValueError, match=r"stiffness is -1 N/m: it must be positive"):
+        tumble.make_scene(bodies=bodies[:1], forces=[Spring(tumble.spring_end(body="a"), tumble.spring_end(anchor=[0, 0, 0]),
+                                                            stiffness=-1)], duration=1.0)
+    with pytest.raises(TypeError, match="unknown \\[simulation\\] keys \\['step'\\]"):
+        tumble.scene_dict(bodies=bodies, step=1e-3)
+
+
+@pytest.mark.parametrize("suffix", [".csv", ".h5"])
+def test_reading_the_command_lines_file_gives_the_same_trajectory(tmp_path, suffix):
+    # CSV holds 17 significant digits and HDF5 the doubles themselves: every value reads back exactly.
+    cli = os.environ.get("TUMBLE_CLI")
+    if not cli:
+        pytest.skip("TUMBLE_CLI (the program) not given")
+    out = tmp_path / ("t" + suffix)
+    fields = "position,orientation,angular_velocity_principal,com_position"
+    subprocess.run([cli, "run", T_HANDLE, "-o", str(out), "--quiet", "--duration", "8", "--fields", fields], check=True)
+    read = tumble.read_trajectory(out)
+    run = tumble.simulate(T_HANDLE, duration=8.0, fields=fields.split(","))
+    assert read.names == run.names == ["handle"]
+    np.testing.assert_array_equal(read.t, run.t)
+    for name in fields.split(","):
+        np.testing.assert_array_equal(read.fields[name], run.fields[name], err_msg=name)
+        assert read.units[name] == run.units[name] and read.frames[name] == run.frames[name]
+    for name in ("kinetic_energy", "angular_momentum", "energy_drift"):
+        np.testing.assert_array_equal(read.diagnostics[name], run.diagnostics[name], err_msg=name)
+    assert read.events == run.events and [e.name for e in read.events] == ["flip", "flip"]
+    assert read.omega_principal.shape == (len(run.t), 1, 3)
+
+
+def test_reading_something_else_says_what_is_wrong(tmp_path):
+    bad = tmp_path / "x.csv"
+    bad.write_text("a,b,c\n1,2,3\n")
+    with pytest.raises(ValueError, match=r"x.csv:1: the header starts with 'a,b', not 't,body'"):
+        tumble.read_trajectory(bad)
+    with pytest.raises(FileNotFoundError, match="no trajectory file"):
+        tumble.read_trajectory(tmp_path / "missing.csv")
+
+
+def test_quaternion_order_converters_match_the_rotation_they_stand_for():
+    # Half-turn-free rotation about (1, 2, 3) by 0.7 rad: w = cos(0.35), (x, y, z) = sin(0.35) n.
+    n = np.array([1.0, 2.0, 3.0]) / np.sqrt(14.0)
+    q = np.concatenate([[np.cos(0.35)], np.sin(0.35) * n])
+    xyzw = tumble.to_xyzw(q)
+    assert xyzw[3] == q[0] and np.array_equal(xyzw[:3], q[1:])
+    np.testing.assert_array_equal(tumble.from_xyzw(xyzw), q)
+    batch = np.tile(q, (5, 2, 1))
+    assert tumble.to_xyzw(batch).shape == (5, 2, 4)
+    np.testing.assert_array_equal(tumble.from_xyzw(tumble.to_xyzw(batch)), batch)
+    with pytest.raises(ValueError, match=r"quaternions must be an array \(\.\.\., 4\); got shape \(3,\)"):
+        tumble.to_xyzw([1, 0, 0])
+
+
+def test_results_are_the_librarys_buffers_and_name_the_tutorials_symbols():
+    traj = tumble.simulate(T_HANDLE, duration=1.0)
+    for a in (traj.t, traj.position, traj.omega_principal, traj.kinetic_energy):
+        assert a.dtype == np.float64 and not a.flags.owndata and a.base is not None, "no copy"
+    T = len(traj.t)
+    assert traj.quaternion is traj.orientation and traj.omega_world is traj.angular_velocity
+    assert traj.omega_body.shape == traj.omega_principal.shape == (T, 1, 3)
+    assert traj.angular_momentum.shape == (T, 3) and traj.energy_drift.shape == (T,)
+    # omega in principal axes = R^T omega_world with R from the principal-frame quaternion; the T-handle's
+    # reference axes are its principal axes up to their order, so |omega| agrees in every frame.
+    np.testing.assert_allclose(np.linalg.norm(traj.omega_body, axis=2), np.linalg.norm(traj.omega_world, axis=2),
+                               rtol=1e-14)
+    with pytest.raises(AttributeError, match="has no field 'euler_zyx'"):
+        traj.euler_zyx
+
+
+def test_arrays_of_the_wrong_shape_name_the_expected_shape():
+    with pytest.raises(ValueError, match=r"orientation must be \(N, 4\) = \(3, 4\), quaternions w, x, y, z, "
+                                         r"or \(4,\) for every body; got shape \(3, 3\)"):
+        tumble.bodies(mass=np.ones(3), moments=np.ones((3, 3)), orientation=np.ones((3, 3)))
+    with pytest.raises(ValueError, match=r"mass must be \(N,\)"):
+        tumble.bodies(mass=np.ones((3, 1)), moments=np.ones((3, 3)))
+    # One row stands for every body.
+    scene = tumble.bodies(mass=np.ones(3), moments=[1.0, 2.0, 3.0], omega=[0, 1, 0], duration=0.01)
+    assert tumble.simulate(scene).omega_world.shape == (2, 3, 3)
+
+
+def test_ctrl_c_raises_keyboard_interrupt_with_the_samples_so_far(tmp_path):
+    # A run of minutes, interrupted after it has started: the child catches tumble.Interrupted (a
+    # KeyboardInterrupt) and reports what it kept.
+    script = tmp_path / "long.py"
+    script.write_text(textwrap.dedent(f"""
+        import sys, numpy as np, tumble
+        scene = tumble.bodies(mass=np.ones(1000), moments=np.tile([1.0, 2.0, 3.0], (1000, 1)),
+                              omega=[0.1, 3.0, 0.0], duration=1e4, timestep=1e-3, output_interval=0.5)
+        print("started", flush=True)
+        try:
+            tumble.simulate(scene, integrator="rk4", threads=1)
+        except KeyboardInterrupt as e:
+            t = e.trajectory
+            assert isinstance(e, tumble.Interrupted) and not t.complete
+            print(len(t.t), t.t[-1], t.position.shape[1], flush=True)
+            sys.exit(0)
+        sys.exit(3)
+        """))
+    child = subprocess.Popen([sys.executable, str(script)], stdout=subprocess.PIPE, text=True,
+                             env=dict(os.environ))
+    assert child.stdout.readline().strip() == "started"
+    import time
+    time.sleep(1.0)
+    child.send_signal(signal.SIGINT)
+    out, _ = child.communicate(timeout=60)
+    assert child.returncode == 0, out
+    samples, t_last, n = out.split()
+    assert int(samples) >= 1 and 0 < float(t_last) < 1e4 and int(n) == 1000
