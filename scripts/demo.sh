@@ -12,8 +12,9 @@ echo "== tumble run examples/t_handle.toml -o out/t_handle.csv (the handle flips
 build/release/bin/tumble run examples/t_handle.toml -o out/t_handle.csv
 echo
 echo "The trajectory is in out/t_handle.csv (t, body, position, quaternion w,x,y,z, velocity and angular"
-echo "velocity, world) and the energy and momenta in out/t_handle.diagnostics.csv. More scenes: examples/*.toml;"
-echo "validate one with 'build/release/bin/tumble check FILE'; the format is docs/scene-format.md."
+echo "velocity, world), the energy and momenta in out/t_handle.diagnostics.csv and the flips in"
+echo "out/t_handle.events.csv. More scenes: examples/*.toml; validate one with"
+echo "'build/release/bin/tumble check FILE'; the format is docs/scene-format.md."
 echo
-echo "== the same from Python (Debian's /usr/bin/python3 with NumPy): examples/python/t_handle_flips.py =="
-PYTHONPATH=build/release/python /usr/bin/python3 examples/python/t_handle_flips.py
+echo "== the same from Python (Debian's /usr/bin/python3 with NumPy): python/examples/t_handle_flips.py =="
+PYTHONPATH=build/release/python /usr/bin/python3 python/examples/t_handle_flips.py out/t_handle_omega.png

@@ -17,6 +17,7 @@
 #include "tumble/io/scene.hpp"
 #include "tumble/sim/event_specs.hpp"
 #include "tumble/sim/output_fields.hpp"
+#include "tumble/sim/run_plan.hpp"
 
 namespace py = pybind11;
 
@@ -168,9 +169,20 @@ py::dict simulate(const Scene& scene_in, std::optional<std::string> integrator,
   const Model& model = scene.model;
   const auto rows = static_cast<py::ssize_t>(model.bodies.size() + model.particles.size());
 
+  // Room for every planned sample at once: growing by doubling would hold up to twice the final size.
+  // Up to 1 GiB per array reserved (address space, touched only as samples arrive); beyond, or for an
+  // adaptive run's extra samples, the vectors grow.
+  const double planned = plan_run(s, model.bodies.size(), model.particles.size(), 0).samples;
+  const auto reserve = [planned](std::vector<double>& v, double per_sample) {
+    v.reserve(static_cast<size_t>(std::min(planned * per_sample, 0x1p27)));
+  };
   std::vector<double> t;
+  reserve(t, 1);
   std::vector<Series> body(fields.size());
-  for (size_t f = 0; f < fields.size(); ++f) body[f].shape = {rows, fields[f]->width};
+  for (size_t f = 0; f < fields.size(); ++f) {
+    body[f].shape = {rows, fields[f]->width};
+    reserve(body[f].values, static_cast<double>(rows * fields[f]->width));
+  }
   const auto system = system_fields();
   std::vector<Series> diagnostics(system.size());
   for (size_t f = 0; f < system.size(); ++f) diagnostics[f].shape = {system[f].width};
