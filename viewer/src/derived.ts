@@ -2,8 +2,8 @@
 // world, its angular momentum vector, the scale of the arrows, the magnitude of the system's L.
 // Pure functions of the decoded report, so the unit tests check them without a browser.
 
-import { column, matVec, norm, rotate } from './quat';
-import { quatAt, quatAtSegment, lerpRow, vecAt, type Segment } from './timeline';
+import { column, matVec, rotate } from './quat';
+import { quatAtSegment, lerpRow, type Segment } from './timeline';
 import type { Body, Meta, QuatWXYZ, Report, Vec3 } from './types';
 
 /** World position of a point given in the body's reference frame: x + R p. */
@@ -12,17 +12,36 @@ export function toWorld(position: Vec3, q: QuatWXYZ, p: Vec3): Vec3 {
   return [position[0] + r[0], position[1] + r[1], position[2] + r[2]];
 }
 
-/** The centre-of-mass track of one body, T*3 floats (world), for its trail and the camera bounds. */
+/**
+ * The centre-of-mass track of one body, T*3 floats (world), for its trail and the camera bounds.
+ * Written out without temporaries: it runs over every sample (1e5 and more) before the first frame.
+ */
 export function comTrack(r: Report, body: number): Float32Array {
   const T = r.t.length;
   const N = r.bodies.length;
-  const com = r.bodies[body].com;
+  const [cx, cy, cz] = r.bodies[body].com;
+  const pos = r.series.position;
+  const quat = r.series.quaternion;
   const out = new Float32Array(T * 3);
   for (let i = 0; i < T; i++) {
-    const c = toWorld(vecAt(r.series.position, N, body, i), quatAt(r.series.quaternion, N, body, i), com);
-    out[i * 3] = c[0];
-    out[i * 3 + 1] = c[1];
-    out[i * 3 + 2] = c[2];
+    const a = (i * N + body) * 4;
+    let w = quat[a];
+    let x = quat[a + 1];
+    let y = quat[a + 2];
+    let z = quat[a + 3];
+    const n = Math.hypot(w, x, y, z) || 1;
+    w /= n;
+    x /= n;
+    y /= n;
+    z /= n;
+    // R c by the two-cross-product form (quat.ts rotate).
+    const tx = 2 * (y * cz - z * cy);
+    const ty = 2 * (z * cx - x * cz);
+    const tz = 2 * (x * cy - y * cx);
+    const p = (i * N + body) * 3;
+    out[i * 3] = pos[p] + cx + w * tx + (y * tz - z * ty);
+    out[i * 3 + 1] = pos[p + 1] + cy + w * ty + (z * tx - x * tz);
+    out[i * 3 + 2] = pos[p + 2] + cz + w * tz + (x * ty - y * tx);
   }
   return out;
 }
@@ -91,15 +110,38 @@ export function bodyVectors(r: Report, body: number, seg: Segment, q?: QuatWXYZ)
 /**
  * The largest |ω| and |L| of a body over the run. Arrows are drawn at a fixed scale per body (the
  * largest value maps to a fixed length), so a change of magnitude shows as a change of length.
+ * Rotations keep lengths, so |ω| = |ω_p| and |L| = |Λ ω_p|: no orientation is needed here.
  */
 export function vectorMaxima(r: Report, body: number): { omega: number; L: number } {
-  let omega = 0;
-  let L = 0;
+  const b = r.bodies[body];
+  if (b.kind !== 'body') return { omega: 0, L: 0 };
   const T = r.t.length;
-  for (let i = 0; i < T; i++) {
-    const v = bodyVectors(r, body, { i, s: 0 });
-    if (v.omega) omega = Math.max(omega, norm(v.omega) || 0);
-    if (v.L) L = Math.max(L, norm(v.L) || 0);
+  const N = r.bodies.length;
+  const [m1, m2, m3] = b.principal_moments;
+  const wp = r.series.omega_principal;
+  const ww = r.series.omega_world ?? wp;
+  let omega = 0;
+  if (ww) {
+    for (let i = 0; i < T; i++) {
+      const a = (i * N + body) * 3;
+      const v = Math.hypot(ww[a], ww[a + 1], ww[a + 2]);
+      if (v > omega) omega = v;
+    }
+  }
+  let L = 0;
+  const src = lSource(r, body);
+  if (src === 'system') {
+    const l = r.system.angular_momentum!;
+    for (let i = 0; i < T; i++) {
+      const v = Math.hypot(l[3 * i], l[3 * i + 1], l[3 * i + 2]);
+      if (v > L) L = v;
+    }
+  } else if (src === 'principal' && wp) {
+    for (let i = 0; i < T; i++) {
+      const a = (i * N + body) * 3;
+      const v = Math.hypot(m1 * wp[a], m2 * wp[a + 1], m3 * wp[a + 2]);
+      if (v > L) L = v;
+    }
   }
   return { omega, L };
 }

@@ -61,6 +61,7 @@ function fragmentWriter(): (t: number) => void {
 }
 
 function start(report: Report): void {
+  performance.mark('tumble:start');
   document.getElementById('app')!.hidden = false;
   const scenePath = report.meta.scene_path;
   document.getElementById('title-scene')!.textContent = scenePath ? `— ${scenePath}` : '';
@@ -68,9 +69,34 @@ function start(report: Report): void {
 
   const timeline = new Timeline(report.t);
   const playback = new Playback(timeline);
+  let scene: Scene3D | null = null;
+
+  // The text parts first: the canvas and the plots are sized to the layout they leave, and a later
+  // change of layout would redraw every plot (1e5 points each) a second time.
+  buildFacts(document.getElementById('facts')!, report, (t) => playback.seek(t), bodyColor);
+  new Controls(document.getElementById('controls')!, report, playback, {
+    onTrails: (on) => scene?.setTrails(on),
+    onFollow: (b) => scene?.setFollow(b),
+  });
+  installKeys(playback);
+  let plotBody = defaultPlotBody(report);
+  const hasOmegaPlots = !!(report.series.omega_world || report.series.omega_principal);
+  let plots: Plots | null = null;
+  if (hasOmegaPlots && report.bodies.length > 1) {
+    const label = document.createElement('label');
+    label.textContent = 'ω plots for ';
+    const select = document.createElement('select');
+    select.className = 'plot-body';
+    report.bodies.forEach((b, i) => select.appendChild(new Option(b.name, String(i), i === plotBody, i === plotBody)));
+    select.addEventListener('change', () => {
+      plotBody = Number(select.value);
+      plots?.setBody(plotBody);
+    });
+    label.appendChild(select);
+    document.getElementById('plots-header')!.appendChild(label);
+  }
 
   const viewEl = document.getElementById('view')!;
-  let scene: Scene3D | null = null;
   try {
     scene = new Scene3D(viewEl, report);
   } catch (e) {
@@ -83,29 +109,11 @@ function start(report: Report): void {
   const timeLabel = document.createElement('div');
   timeLabel.className = 'time-label';
   viewEl.appendChild(timeLabel);
+  performance.measure('tumble:scene', 'tumble:start');
 
-  let plotBody = defaultPlotBody(report);
-  const plots = new Plots(document.getElementById('plots')!, report, (t) => playback.seek(t), plotBody);
-  if (plots.ids().some((id) => id.startsWith('omega')) && report.bodies.length > 1) {
-    const label = document.createElement('label');
-    label.textContent = 'ω plots for ';
-    const select = document.createElement('select');
-    select.className = 'plot-body';
-    report.bodies.forEach((b, i) => select.appendChild(new Option(b.name, String(i), i === plotBody, i === plotBody)));
-    select.addEventListener('change', () => {
-      plotBody = Number(select.value);
-      plots.setBody(plotBody);
-    });
-    label.appendChild(select);
-    document.getElementById('plots-header')!.appendChild(label);
-  }
-
-  buildFacts(document.getElementById('facts')!, report, (t) => playback.seek(t), bodyColor);
-  new Controls(document.getElementById('controls')!, report, playback, {
-    onTrails: (on) => scene?.setTrails(on),
-    onFollow: (b) => scene?.setFollow(b),
-  });
-  installKeys(playback);
+  performance.mark('tumble:plots');
+  plots = new Plots(document.getElementById('plots')!, report, (t) => playback.seek(t), plotBody);
+  performance.measure('tumble:plots', 'tumble:plots');
 
   const writeFragment = fragmentWriter();
   let started = false;
@@ -114,7 +122,7 @@ function start(report: Report): void {
   const apply = () => {
     const seg = timeline.locate(playback.time);
     scene?.update(seg);
-    plots.setTime(playback.time);
+    plots!.setTime(playback.time);
     timeLabel.textContent = `t = ${playback.time.toFixed(3)} s`;
     if (started && !playback.playing) writeFragment(playback.time);
   };
@@ -138,16 +146,23 @@ function start(report: Report): void {
     if (!scene) throw new Error('no 3D view');
     return scene.bodyQuaternion(i);
   };
-  hook.plotCount = () => plots.count();
-  hook.plotPointCount = (i) => plots.pointCount(i);
+  hook.plotCount = () => plots!.count();
+  hook.plotPointCount = (i) => plots!.pointCount(i);
+
+  // The first frame is drawn now, not on the first animation frame (which waits for the layout of
+  // the whole page): "ready" then means the canvas shows the opening time.
+  scene?.render(true);
+  started = true;
+  // uPlot draws in microtasks queued when the plots were made; this one runs after them, so
+  // "ready" also means the plots are drawn.
+  queueMicrotask(() => {
+    hook.ready = true;
+    performance.measure('tumble:ready', 'tumble:start');
+  });
 
   const loop = (now: number) => {
     playback.tick(now);
     scene?.render();
-    if (!started) {
-      started = true;
-      hook.ready = true;
-    }
     requestAnimationFrame(loop);
   };
   requestAnimationFrame(loop);
@@ -156,7 +171,12 @@ function start(report: Report): void {
 function main(): void {
   let embedded;
   try {
-    embedded = readEmbedded(document.getElementById('tumble-data')?.textContent);
+    performance.mark('tumble:read');
+    const element = document.getElementById('tumble-data');
+    embedded = readEmbedded(element?.textContent);
+    // The text (tens of MB for a long run) is decoded now; dropping it halves the page's memory.
+    if (element && embedded.kind === 'report') element.textContent = '';
+    performance.measure('tumble:read', 'tumble:read');
   } catch (e) {
     fail(`internal error while reading the data: ${(e as Error).message}`);
     console.error(e);

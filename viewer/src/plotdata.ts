@@ -11,7 +11,7 @@ export interface SeriesDef {
   color: string;
   /** 'y' (left axis) or 'y2' (right axis). */
   scale: 'y' | 'y2';
-  values: (number | null)[];
+  values: PlotValues;
 }
 
 export interface PlotDef {
@@ -25,10 +25,21 @@ export interface PlotDef {
 }
 
 /**
- * uPlot draws null as a gap but chokes on NaN (its min/max and paths go NaN): every NaN, whether it
- * came as JSON null or as NaN bits in the base64, becomes null here.
+ * uPlot draws null as a gap but chokes on NaN (its min/max and paths go NaN): a series with any NaN
+ * (JSON null or NaN bits in the base64) becomes an array with null there. A series without is
+ * passed as a typed array, uncopied: uPlot reads those directly, and a long run has 1e5+ values.
  */
-export function toPlotValues(a: ArrayLike<number>): (number | null)[] {
+export type PlotValues = (number | null)[] | Float64Array | Float32Array;
+
+export function toPlotValues(a: Float64Array | Float32Array): PlotValues {
+  let finite = true;
+  for (let i = 0; i < a.length; i++) {
+    if (!Number.isFinite(a[i])) {
+      finite = false;
+      break;
+    }
+  }
+  if (finite) return a;
   const out = new Array<number | null>(a.length);
   for (let i = 0; i < a.length; i++) {
     const v = a[i];
@@ -38,13 +49,10 @@ export function toPlotValues(a: ArrayLike<number>): (number | null)[] {
 }
 
 /** Component k of body b's row in a (T, N, 3) series. */
-function component(data: ArrayLike<number>, T: number, N: number, b: number, k: number): (number | null)[] {
-  const out = new Array<number | null>(T);
-  for (let i = 0; i < T; i++) {
-    const v = data[(i * N + b) * 3 + k];
-    out[i] = Number.isFinite(v) ? v : null;
-  }
-  return out;
+function component(data: Float64Array | Float32Array, T: number, N: number, b: number, k: number): PlotValues {
+  const out = new Float64Array(T);
+  for (let i = 0; i < T; i++) out[i] = data[(i * N + b) * 3 + k];
+  return toPlotValues(out);
 }
 
 /** The plots this report can show, in their fixed order; `body` selects the per-body ones. */

@@ -27,7 +27,7 @@ interface PlotView {
 export class Plots {
   private views: PlotView[] = [];
   private time: number;
-  private x: number[];
+  private x: Float64Array | Float32Array;
   /** Set while one plot's zoom is copied to the others, so the copies do not echo back. */
   private syncingScale = false;
   private resizeObserver: ResizeObserver;
@@ -39,7 +39,7 @@ export class Plots {
     body: number,
   ) {
     this.time = report.t[0];
-    this.x = Array.from(report.t);
+    this.x = report.t;
     for (const def of plotDefs(report, body)) this.views.push(this.makePlot(def));
     this.resizeObserver = new ResizeObserver(() => this.resize());
     this.resizeObserver.observe(container);

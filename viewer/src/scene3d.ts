@@ -19,7 +19,9 @@ interface BodyView {
   group: THREE.Group;
   omegaArrow: THREE.ArrowHelper | null;
   LArrow: THREE.ArrowHelper | null;
-  trail: THREE.Line;
+  /** The centre of mass's path, made when trails are first shown (a pass over every sample). */
+  trail: THREE.Line | null;
+  color: THREE.Color;
   /** Length scales of the arrows: the largest |ω| (|L|) of the run is drawn `arrowLength` long. */
   omegaScale: number;
   LScale: number;
@@ -66,6 +68,34 @@ export function niceCeil(x: number): number {
   return 10 * p;
 }
 
+/** Names of WebGL implementations that rasterise on the CPU. */
+const SOFTWARE_GL = /swiftshader|llvmpipe|softpipe|software|basic render/i;
+
+/**
+ * A renderer with antialiasing on a GPU and without it where WebGL runs in software (SwiftShader on
+ * a machine without a GPU, as in CI): there multisampling costs more than the rest of the frame.
+ * The probe context is kept in the software case, so asking costs nothing there.
+ *
+ * preserveDrawingBuffer: the browser tests and screenshots read the canvas back after the frame was
+ * shown; its cost is small.
+ */
+function createRenderer(): THREE.WebGLRenderer {
+  const canvas = document.createElement('canvas');
+  const attributes = { antialias: false, alpha: false, depth: true, stencil: false, preserveDrawingBuffer: true };
+  const gl = canvas.getContext('webgl2', attributes) as WebGL2RenderingContext | null;
+  if (!gl) throw new Error('this browser has no WebGL 2');
+  let name = String(gl.getParameter(gl.RENDERER));
+  if (!SOFTWARE_GL.test(name)) {
+    // Chrome masks RENDERER ("WebKit WebGL"); the unmasked name needs the extension (which Firefox
+    // deprecates, hence asked only when the plain name says nothing).
+    const info = gl.getExtension('WEBGL_debug_renderer_info');
+    if (info) name = String(gl.getParameter(info.UNMASKED_RENDERER_WEBGL));
+  }
+  if (SOFTWARE_GL.test(name)) return new THREE.WebGLRenderer({ canvas, context: gl, ...attributes });
+  gl.getExtension('WEBGL_lose_context')?.loseContext();
+  return new THREE.WebGLRenderer({ ...attributes, antialias: true });
+}
+
 export class Scene3D {
   readonly renderer: THREE.WebGLRenderer;
   readonly camera: THREE.PerspectiveCamera;
@@ -76,7 +106,7 @@ export class Scene3D {
   private dirty = true;
   private followIndex = -1;
   private followPoint = new THREE.Vector3();
-  private tracks: Float32Array[];
+  private lastSegment: Segment = { i: 0, s: 0 };
   private resizeObserver: ResizeObserver;
   /** Radius of the bodies at the start: the unit for default sizes. */
   readonly radius: number;
@@ -85,32 +115,47 @@ export class Scene3D {
     private container: HTMLElement,
     private report: Report,
   ) {
-    // preserveDrawingBuffer: the browser tests (and screenshots) read the canvas back after the
-    // frame was shown; its cost is small next to a software rasteriser's.
-    this.renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+    this.renderer = createRenderer();
     this.renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, 2));
     this.renderer.setClearColor(COLORS.background);
     container.appendChild(this.renderer.domElement);
 
     const N = report.bodies.length;
-    this.tracks = report.bodies.map((_, i) => comTrack(report, i));
-
     // Frame the bodies as they are at the start; the far plane and the grid cover the whole run.
+    // The run's extent comes from the reference-frame origins, widened by each body's reach (|com|
+    // + size): no orientation is needed, which matters over 1e5+ samples before the first frame.
     const start = new THREE.Box3();
     const all = new THREE.Box3();
+    const pos = report.series.position;
+    const seg0 = { i: 0, s: 0 };
     for (let b = 0; b < N; b++) {
-      const size = Math.max(report.bodies[b].size, 0);
-      const tr = this.tracks[b];
-      const c0 = new THREE.Vector3(tr[0], tr[1], tr[2]);
-      start.expandByPoint(c0.clone().addScalar(size));
-      start.expandByPoint(c0.clone().addScalar(-size));
-      for (let i = 0; i < tr.length; i += 3) {
-        if (Number.isFinite(tr[i] + tr[i + 1] + tr[i + 2])) {
-          all.expandByPoint(new THREE.Vector3(tr[i] - size, tr[i + 1] - size, tr[i + 2] - size));
-          all.expandByPoint(new THREE.Vector3(tr[i] + size, tr[i + 1] + size, tr[i + 2] + size));
+      const body = report.bodies[b];
+      const size = Math.max(body.size, 0);
+      const reach = Math.hypot(...body.com) + size;
+      const lo = [Infinity, Infinity, Infinity];
+      const hi = [-Infinity, -Infinity, -Infinity];
+      for (let i = b * 3; i < pos.length; i += N * 3) {
+        for (let k = 0; k < 3; k++) {
+          const v = pos[i + k];
+          // NaN fails both tests: a sample that blew up does not stretch the view to infinity.
+          if (v < lo[k]) lo[k] = v;
+          if (v > hi[k]) hi[k] = v;
         }
       }
+      if (lo[0] <= hi[0] && lo[1] <= hi[1] && lo[2] <= hi[2]) {
+        all.expandByPoint(new THREE.Vector3(lo[0] - reach, lo[1] - reach, lo[2] - reach));
+        all.expandByPoint(new THREE.Vector3(hi[0] + reach, hi[1] + reach, hi[2] + reach));
+      }
+      const x0 = lerpRow(pos, N, b, 3, seg0, [0, 0, 0]) as Vec3;
+      const c = toWorld(x0, quatAtSegment(report.series.quaternion, N, b, seg0), body.com);
+      const c0 = new THREE.Vector3(c[0], c[1], c[2]);
+      if (Number.isFinite(c0.x + c0.y + c0.z)) {
+        start.expandByPoint(c0.clone().addScalar(size));
+        start.expandByPoint(c0.clone().addScalar(-size));
+      }
     }
+    if (start.isEmpty()) start.set(new THREE.Vector3(-1, -1, -1), new THREE.Vector3(1, 1, 1));
+    if (all.isEmpty()) all.copy(start);
     const sphere = start.getBoundingSphere(new THREE.Sphere());
     this.radius = Math.max(sphere.radius, 1e-3);
     const allSphere = all.getBoundingSphere(new THREE.Sphere());
@@ -180,13 +225,9 @@ export class Scene3D {
       geometry = new THREE.SphereGeometry(r, 20, 14);
       geometry.translate(body.com[0], body.com[1], body.com[2]);
     }
-    const material = new THREE.MeshStandardMaterial({
-      color,
-      flatShading: true,
-      roughness: 0.65,
-      metalness: 0.05,
-      side: THREE.DoubleSide,
-    });
+    // Lambert, not a PBR material: flat faces show the shape as well, and its shader compiles and
+    // runs several times faster where WebGL is rendered in software (SwiftShader, no GPU).
+    const material = new THREE.MeshLambertMaterial({ color, flatShading: true, side: THREE.DoubleSide });
     group.add(new THREE.Mesh(geometry, material));
 
     if (body.kind === 'body') {
@@ -228,18 +269,12 @@ export class Scene3D {
       this.scene.add(LArrow);
     }
 
-    const tg = new THREE.BufferGeometry();
-    tg.setAttribute('position', new THREE.BufferAttribute(this.tracks[b], 3));
-    const trail = new THREE.Line(tg, new THREE.LineBasicMaterial({ color, transparent: true, opacity: 0.7 }));
-    trail.frustumCulled = false;
-    trail.visible = false;
-    this.scene.add(trail);
-
     return {
       group,
       omegaArrow,
       LArrow,
-      trail,
+      trail: null,
+      color,
       omegaScale: max.omega > 0 ? (arrowLength * 1.3) / max.omega : 0,
       LScale: max.L > 0 ? arrowLength / max.L : 0,
       head: arrowLength * 0.16,
@@ -258,6 +293,7 @@ export class Scene3D {
 
   /** Poses everything for the time at `seg` (sample i, fraction s towards i + 1). */
   update(seg: Segment): void {
+    this.lastSegment = seg;
     const r = this.report;
     const N = r.bodies.length;
     const poses: { x: Vec3; q: QuatWXYZ }[] = [];
@@ -272,7 +308,7 @@ export class Scene3D {
       const vec = bodyVectors(r, b, seg, q);
       if (v.omegaArrow) setArrow(v.omegaArrow, com, vec.omega, v.omegaScale, v.head);
       if (v.LArrow) setArrow(v.LArrow, com, vec.L, v.LScale, v.head);
-      v.trail.geometry.setDrawRange(0, seg.i + 1);
+      v.trail?.geometry.setDrawRange(0, seg.i + 1);
     }
     if (this.springs) {
       const attr = this.springs.geometry.getAttribute('position') as THREE.BufferAttribute;
@@ -319,7 +355,17 @@ export class Scene3D {
   }
 
   setTrails(on: boolean): void {
-    for (const v of this.views) v.trail.visible = on;
+    this.views.forEach((v, b) => {
+      if (on && !v.trail) {
+        const g = new THREE.BufferGeometry();
+        g.setAttribute('position', new THREE.BufferAttribute(comTrack(this.report, b), 3));
+        g.setDrawRange(0, this.lastSegment.i + 1);
+        v.trail = new THREE.Line(g, new THREE.LineBasicMaterial({ color: v.color, transparent: true, opacity: 0.7 }));
+        v.trail.frustumCulled = false;
+        this.scene.add(v.trail);
+      }
+      if (v.trail) v.trail.visible = on;
+    });
     this.dirty = true;
   }
 
@@ -331,6 +377,9 @@ export class Scene3D {
   private resize(): void {
     const w = Math.max(1, this.container.clientWidth);
     const h = Math.max(1, this.container.clientHeight);
+    // The observer also reports the first, unchanged size: no redraw for that.
+    const size = this.renderer.getSize(new THREE.Vector2());
+    if (size.x === w && size.y === h) return;
     this.renderer.setSize(w, h);
     this.camera.aspect = w / h;
     this.camera.updateProjectionMatrix();
