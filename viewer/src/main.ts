@@ -113,6 +113,8 @@ function start(report: Report): void {
 
   performance.mark('tumble:plots');
   plots = new Plots(document.getElementById('plots')!, report, (t) => playback.seek(t), plotBody);
+  // A report with none of the plotted series (they are optional) shows no empty plot area.
+  if (plots.count() === 0) document.getElementById('plots-section')!.hidden = true;
   performance.measure('tumble:plots', 'tumble:plots');
 
   const writeFragment = fragmentWriter();

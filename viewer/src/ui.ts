@@ -2,6 +2,7 @@
 // mirror its state; what to draw at a time is main.ts's business.
 
 import { COLORS } from './colors';
+import { lSource } from './derived';
 import { SPEEDS, type Playback } from './playback';
 import type { Report } from './types';
 
@@ -82,7 +83,10 @@ export class Controls {
       k.style.color = color;
       return k;
     };
-    legend.append(key(COLORS.omega, 'ω'), ' ', key(COLORS.L, 'L'), ' principal axes ', ...COLORS.axes.map((c, k) => key(c, String(k + 1))));
+    // Only the vectors this report has (ω and L need optional series).
+    if (report.series.omega_world || report.series.omega_principal) legend.append(key(COLORS.omega, 'ω'), ' ');
+    if (report.bodies.some((_, i) => lSource(report, i) !== null)) legend.append(key(COLORS.L, 'L'), ' ');
+    legend.append('principal axes ', ...COLORS.axes.map((c, k) => key(c, String(k + 1))));
     row2.append(trailsLabel, followLabel, legend);
 
     const help = el('div', { className: 'help', textContent: HELP });

@@ -271,6 +271,27 @@ async function main() {
       await page.close();
     }
 
+    // Only what the contract requires (t, position, quaternion): the bodies, no plots, no errors.
+    {
+      const j = syntheticReport({ T: 50 });
+      for (const k of ['omega_world', 'omega_principal']) delete j.series[k];
+      delete j.system;
+      delete j.events;
+      const file = resolve(outDir, 'minimal.html');
+      writeFileSync(file, injectReport(tpl, JSON.stringify(j)));
+      const { page, errors, external } = await open(context, file);
+      const r = await page.evaluate(() => ({
+        ready: window.__tumble.ready,
+        plots: window.__tumble.plotCount(),
+        section: document.getElementById('plots-section').hidden,
+      }));
+      const drawn = await grab(page, 'minimal');
+      check('a minimal report draws its bodies and hides the plots', r.ready && r.plots === 0 && r.section && drawn.nonBackground > 1000,
+        `${JSON.stringify(r)}, ${drawn.nonBackground} pixels drawn`);
+      check('a minimal report: no console errors or requests', errors.length + external.length === 0, [...errors, ...external].join(' | '));
+      await page.close();
+    }
+
     // The synthetic T-handle with a particle on a spring: every check.
     {
       const file = resolve(outDir, 'synthetic.html');
