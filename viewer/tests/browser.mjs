@@ -136,7 +136,8 @@ async function checkReport(context, file, { synthetic = false } = {}) {
 
   // The canvas draws something, and something else at another time.
   const first = await grab(page, 'start');
-  check('3D canvas is not blank', first.nonBackground > 0.005 * first.width * first.height && first.colors > 20,
+  // Flat shading without antialiasing (software GL) draws a lone body in a handful of colours.
+  check('3D canvas is not blank', first.nonBackground > 0.005 * first.width * first.height && first.colors >= 4,
     `${first.nonBackground} of ${first.width * first.height} pixels drawn, ${first.colors} colours`);
   await page.evaluate((x) => window.__tumble.seek(x), t0 + 0.37 * (tEnd - t0));
   await grab(page, 'later');
