@@ -81,8 +81,3 @@ export interface Report {
   system: SystemSeries;
   events: TumbleEvent[];
 }
-
-/** Number of samples and bodies, the two dimensions every series is checked against. */
-export function dims(r: Report): { T: number; N: number } {
-  return { T: r.t.length, N: r.bodies.length };
-}
