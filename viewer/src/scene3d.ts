@@ -1,0 +1,395 @@
+// The three.js view: each body's mesh (or a sphere for a particle) posed by the report, its principal
+// axes through the centre of mass, its ω and L arrows, an optional trail of the centre of mass,
+// springs, a ground grid and an orbit camera that can follow a body.
+//
+// tumble's world is z-up (gravity along -z in the examples), so the camera's up is +z and the grid
+// lies in the xy-plane. Rendering happens only when something changed (time, camera, size): a
+// software-rendered WebGL (no GPU) would otherwise burn a core redrawing a still picture.
+
+import * as THREE from 'three';
+import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+import { COLORS, bodyColor } from './colors';
+import { bodyVectors, comTrack, principalAxes, toWorld, vectorMaxima } from './derived';
+import { norm, wxyzToXyzw, xyzwToWxyz } from './quat';
+import { lerpRow, quatAtSegment, type Segment } from './timeline';
+import type { QuatWXYZ, Report, Vec3 } from './types';
+
+interface BodyView {
+  /** Posed by the report: position = origin of the reference frame, quaternion = R. */
+  group: THREE.Group;
+  omegaArrow: THREE.ArrowHelper | null;
+  LArrow: THREE.ArrowHelper | null;
+  /** The centre of mass's path, made when trails are first shown (a pass over every sample). */
+  trail: THREE.Line | null;
+  color: THREE.Color;
+  /** Length scales of the arrows: the largest |ω| (|L|) of the run is drawn `arrowLength` long. */
+  omegaScale: number;
+  LScale: number;
+  head: number;
+}
+
+/** Arrows and axes drawn on top of the meshes: they sit inside the body, where they belong. */
+function overlayMaterial<T extends THREE.Material>(m: T): T {
+  m.depthTest = false;
+  m.transparent = true;
+  return m;
+}
+
+function makeArrow(color: string): THREE.ArrowHelper {
+  const a = new THREE.ArrowHelper(new THREE.Vector3(0, 0, 1), new THREE.Vector3(), 1, color);
+  overlayMaterial(a.line.material as THREE.Material);
+  overlayMaterial(a.cone.material as THREE.Material);
+  a.renderOrder = 10;
+  a.line.renderOrder = 10;
+  a.cone.renderOrder = 10;
+  return a;
+}
+
+/** Points `a` along v from `origin`, |v| * scale long; the head is `head` long (less on short arrows). */
+function setArrow(a: THREE.ArrowHelper, origin: Vec3, v: Vec3 | null, scale: number, head: number): void {
+  const n = v ? norm(v) : 0;
+  const length = n * scale;
+  if (!v || !(length > 1e-9) || !Number.isFinite(length)) {
+    a.visible = false;
+    return;
+  }
+  a.visible = true;
+  a.position.set(origin[0], origin[1], origin[2]);
+  a.setDirection(new THREE.Vector3(v[0] / n, v[1] / n, v[2] / n));
+  const h = Math.min(head, length * 0.5);
+  a.setLength(length, h, h * 0.5);
+}
+
+/** A round number (1, 2 or 5 times a power of ten) at or above x: grid cells of readable size. */
+export function niceCeil(x: number): number {
+  if (!(x > 0)) return 1;
+  const p = Math.pow(10, Math.floor(Math.log10(x)));
+  for (const m of [1, 2, 5, 10]) if (m * p >= x) return m * p;
+  return 10 * p;
+}
+
+/** Names of WebGL implementations that rasterise on the CPU. */
+const SOFTWARE_GL = /swiftshader|llvmpipe|softpipe|software|basic render/i;
+
+/**
+ * A renderer with antialiasing on a GPU and without it where WebGL runs in software (SwiftShader on
+ * a machine without a GPU, as in CI): there multisampling costs more than the rest of the frame.
+ * The probe context is kept in the software case, so asking costs nothing there.
+ *
+ * preserveDrawingBuffer: the browser tests and screenshots read the canvas back after the frame was
+ * shown; its cost is small.
+ */
+function createRenderer(): THREE.WebGLRenderer {
+  const canvas = document.createElement('canvas');
+  const attributes = { antialias: false, alpha: false, depth: true, stencil: false, preserveDrawingBuffer: true };
+  const gl = canvas.getContext('webgl2', attributes) as WebGL2RenderingContext | null;
+  if (!gl) throw new Error('this browser has no WebGL 2');
+  let name = String(gl.getParameter(gl.RENDERER));
+  if (!SOFTWARE_GL.test(name)) {
+    // Chrome masks RENDERER ("WebKit WebGL"); the unmasked name needs the extension (which Firefox
+    // deprecates, hence asked only when the plain name says nothing).
+    const info = gl.getExtension('WEBGL_debug_renderer_info');
+    if (info) name = String(gl.getParameter(info.UNMASKED_RENDERER_WEBGL));
+  }
+  if (SOFTWARE_GL.test(name)) return new THREE.WebGLRenderer({ canvas, context: gl, ...attributes });
+  gl.getExtension('WEBGL_lose_context')?.loseContext();
+  return new THREE.WebGLRenderer({ ...attributes, antialias: true });
+}
+
+export class Scene3D {
+  readonly renderer: THREE.WebGLRenderer;
+  readonly camera: THREE.PerspectiveCamera;
+  readonly controls: OrbitControls;
+  private scene = new THREE.Scene();
+  private views: BodyView[] = [];
+  private springs: THREE.LineSegments | null = null;
+  private dirty = true;
+  private followIndex = -1;
+  private followPoint = new THREE.Vector3();
+  private lastSegment: Segment = { i: 0, s: 0 };
+  private resizeObserver: ResizeObserver;
+  /** Radius of the bodies at the start: the unit for default sizes. */
+  readonly radius: number;
+
+  constructor(
+    private container: HTMLElement,
+    private report: Report,
+  ) {
+    this.renderer = createRenderer();
+    this.renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, 2));
+    this.renderer.setClearColor(COLORS.background);
+    container.appendChild(this.renderer.domElement);
+
+    const N = report.bodies.length;
+    // Frame the bodies as they are at the start; the far plane and the grid cover the whole run.
+    // The run's extent comes from the reference-frame origins, widened by each body's reach (|com|
+    // + size): no orientation is needed, which matters over 1e5+ samples before the first frame.
+    const start = new THREE.Box3();
+    const all = new THREE.Box3();
+    const pos = report.series.position;
+    const seg0 = { i: 0, s: 0 };
+    for (let b = 0; b < N; b++) {
+      const body = report.bodies[b];
+      const size = Math.max(body.size, 0);
+      const reach = Math.hypot(...body.com) + size;
+      const lo = [Infinity, Infinity, Infinity];
+      const hi = [-Infinity, -Infinity, -Infinity];
+      for (let i = b * 3; i < pos.length; i += N * 3) {
+        for (let k = 0; k < 3; k++) {
+          const v = pos[i + k];
+          // NaN fails both tests: a sample that blew up does not stretch the view to infinity.
+          if (v < lo[k]) lo[k] = v;
+          if (v > hi[k]) hi[k] = v;
+        }
+      }
+      if (lo[0] <= hi[0] && lo[1] <= hi[1] && lo[2] <= hi[2]) {
+        all.expandByPoint(new THREE.Vector3(lo[0] - reach, lo[1] - reach, lo[2] - reach));
+        all.expandByPoint(new THREE.Vector3(hi[0] + reach, hi[1] + reach, hi[2] + reach));
+      }
+      const x0 = lerpRow(pos, N, b, 3, seg0, [0, 0, 0]) as Vec3;
+      const c = toWorld(x0, quatAtSegment(report.series.quaternion, N, b, seg0), body.com);
+      const c0 = new THREE.Vector3(c[0], c[1], c[2]);
+      if (Number.isFinite(c0.x + c0.y + c0.z)) {
+        start.expandByPoint(c0.clone().addScalar(size));
+        start.expandByPoint(c0.clone().addScalar(-size));
+      }
+    }
+    if (start.isEmpty()) start.set(new THREE.Vector3(-1, -1, -1), new THREE.Vector3(1, 1, 1));
+    if (all.isEmpty()) all.copy(start);
+    const sphere = start.getBoundingSphere(new THREE.Sphere());
+    this.radius = Math.max(sphere.radius, 1e-3);
+    const allSphere = all.getBoundingSphere(new THREE.Sphere());
+
+    this.camera = new THREE.PerspectiveCamera(40, 1, this.radius * 0.01, 1);
+    this.camera.up.set(0, 0, 1);
+    const fov = THREE.MathUtils.degToRad(this.camera.fov);
+    const dist = (this.radius / Math.sin(fov / 2)) * 1.15;
+    const dir = new THREE.Vector3(1, -1.6, 0.9).normalize();
+    this.camera.position.copy(sphere.center).addScaledVector(dir, dist);
+    this.camera.far = (dist + allSphere.radius + allSphere.center.distanceTo(sphere.center)) * 20;
+    this.camera.updateProjectionMatrix();
+
+    this.controls = new OrbitControls(this.camera, this.renderer.domElement);
+    this.controls.target.copy(sphere.center);
+    this.controls.update();
+    this.controls.addEventListener('change', () => (this.dirty = true));
+
+    this.addLights();
+    this.addGrid(all, sphere);
+    for (let b = 0; b < N; b++) this.views.push(this.makeBody(b));
+    this.makeSprings();
+
+    this.resizeObserver = new ResizeObserver(() => this.resize());
+    this.resizeObserver.observe(container);
+    this.resize();
+  }
+
+  private addLights(): void {
+    this.scene.add(new THREE.HemisphereLight(0xffffff, 0x404050, 1.6));
+    // The key light rides with the camera so the side the user looks at is always lit.
+    const key = new THREE.DirectionalLight(0xffffff, 1.8);
+    key.position.set(0.5, 1, 1);
+    this.camera.add(key);
+    this.scene.add(this.camera);
+  }
+
+  private addGrid(all: THREE.Box3, start: THREE.Sphere): void {
+    const extent = Math.max(all.max.x - all.min.x, all.max.y - all.min.y, start.radius * 4);
+    const cell = niceCeil(extent / 12);
+    const divisions = 24;
+    const grid = new THREE.GridHelper(cell * divisions, divisions, 0x5a6270, 0x3a404a);
+    grid.rotation.x = Math.PI / 2; // GridHelper lies in xz (y-up); tumble's ground is the xy-plane
+    const cx = Math.round((all.min.x + all.max.x) / 2 / cell) * cell;
+    const cy = Math.round((all.min.y + all.max.y) / 2 / cell) * cell;
+    // Just below the lowest point any body reaches.
+    const z = Number.isFinite(all.min.z) ? all.min.z - start.radius * 0.05 : 0;
+    grid.position.set(Number.isFinite(cx) ? cx : 0, Number.isFinite(cy) ? cy : 0, z);
+    this.scene.add(grid);
+  }
+
+  private makeBody(b: number): BodyView {
+    const body = this.report.bodies[b];
+    const color = new THREE.Color(bodyColor(b));
+    const group = new THREE.Group();
+    group.name = body.name;
+    const size = body.size > 0 ? body.size : this.radius * 0.3;
+
+    let geometry: THREE.BufferGeometry;
+    if (body.mesh) {
+      geometry = new THREE.BufferGeometry();
+      geometry.setAttribute('position', new THREE.BufferAttribute(body.mesh.positions, 3));
+      geometry.setIndex(new THREE.BufferAttribute(body.mesh.indices, 1));
+    } else {
+      // Particles (and bodies without a mesh): a sphere at the centre of mass.
+      const r = body.kind === 'particle' ? size * 0.5 : size * 0.6;
+      geometry = new THREE.SphereGeometry(r, 20, 14);
+      geometry.translate(body.com[0], body.com[1], body.com[2]);
+    }
+    // Lambert, not a PBR material: flat faces show the shape as well, and its shader compiles and
+    // runs several times faster where WebGL is rendered in software (SwiftShader, no GPU).
+    const material = new THREE.MeshLambertMaterial({ color, flatShading: true, side: THREE.DoubleSide });
+    group.add(new THREE.Mesh(geometry, material));
+
+    if (body.kind === 'body') {
+      // The principal axes: three short lines through the centre of mass, in the reference frame, so
+      // the group's pose carries them along.
+      const axes = principalAxes(body);
+      const pts: number[] = [];
+      const cols: number[] = [];
+      const half = size * 0.9;
+      axes.forEach((a, k) => {
+        const c = new THREE.Color(COLORS.axes[k]);
+        for (const sgn of [-1, 1]) {
+          pts.push(body.com[0] + sgn * half * a[0], body.com[1] + sgn * half * a[1], body.com[2] + sgn * half * a[2]);
+          cols.push(c.r, c.g, c.b);
+        }
+      });
+      const g = new THREE.BufferGeometry();
+      g.setAttribute('position', new THREE.Float32BufferAttribute(pts, 3));
+      g.setAttribute('color', new THREE.Float32BufferAttribute(cols, 3));
+      const lines = new THREE.LineSegments(g, overlayMaterial(new THREE.LineBasicMaterial({ vertexColors: true })));
+      lines.renderOrder = 5;
+      group.add(lines);
+    }
+    this.scene.add(group);
+
+    const max = vectorMaxima(this.report, b);
+    // ω a little longer than L: about a principal axis the two are parallel, and the longer ω then
+    // still shows past the tip of L (drawn over it).
+    const arrowLength = size * 1.5;
+    let omegaArrow: THREE.ArrowHelper | null = null;
+    let LArrow: THREE.ArrowHelper | null = null;
+    if (max.omega > 0) {
+      omegaArrow = makeArrow(COLORS.omega);
+      this.scene.add(omegaArrow);
+    }
+    if (max.L > 0) {
+      LArrow = makeArrow(COLORS.L);
+      LArrow.renderOrder = LArrow.line.renderOrder = LArrow.cone.renderOrder = 11;
+      this.scene.add(LArrow);
+    }
+
+    return {
+      group,
+      omegaArrow,
+      LArrow,
+      trail: null,
+      color,
+      omegaScale: max.omega > 0 ? (arrowLength * 1.3) / max.omega : 0,
+      LScale: max.L > 0 ? arrowLength / max.L : 0,
+      head: arrowLength * 0.16,
+    };
+  }
+
+  private makeSprings(): void {
+    const S = this.report.springs.length;
+    if (S === 0) return;
+    const g = new THREE.BufferGeometry();
+    g.setAttribute('position', new THREE.BufferAttribute(new Float32Array(S * 6), 3));
+    this.springs = new THREE.LineSegments(g, new THREE.LineBasicMaterial({ color: 0xd0d4dc }));
+    this.springs.frustumCulled = false;
+    this.scene.add(this.springs);
+  }
+
+  /** Poses everything for the time at `seg` (sample i, fraction s towards i + 1). */
+  update(seg: Segment): void {
+    this.lastSegment = seg;
+    const r = this.report;
+    const N = r.bodies.length;
+    const poses: { x: Vec3; q: QuatWXYZ }[] = [];
+    for (let b = 0; b < N; b++) {
+      const v = this.views[b];
+      const x = lerpRow(r.series.position, N, b, 3, seg, [0, 0, 0]) as Vec3;
+      const q = quatAtSegment(r.series.quaternion, N, b, seg);
+      poses.push({ x, q });
+      v.group.position.set(x[0], x[1], x[2]);
+      v.group.quaternion.fromArray(wxyzToXyzw(q));
+      const com = toWorld(x, q, r.bodies[b].com);
+      const vec = bodyVectors(r, b, seg, q);
+      if (v.omegaArrow) setArrow(v.omegaArrow, com, vec.omega, v.omegaScale, v.head);
+      if (v.LArrow) setArrow(v.LArrow, com, vec.L, v.LScale, v.head);
+      v.trail?.geometry.setDrawRange(0, seg.i + 1);
+    }
+    if (this.springs) {
+      const attr = this.springs.geometry.getAttribute('position') as THREE.BufferAttribute;
+      r.springs.forEach((s, k) => {
+        const pa = toWorld(poses[s.a].x, poses[s.a].q, s.point_a);
+        const pb = s.b === null ? s.point_b : toWorld(poses[s.b].x, poses[s.b].q, s.point_b);
+        attr.setXYZ(2 * k, pa[0], pa[1], pa[2]);
+        attr.setXYZ(2 * k + 1, pb[0], pb[1], pb[2]);
+      });
+      attr.needsUpdate = true;
+    }
+    this.applyFollow();
+    this.dirty = true;
+  }
+
+  /** Keeps the camera's target on the followed body's centre of mass, moving the camera with it. */
+  private applyFollow(): void {
+    if (this.followIndex < 0) return;
+    const p = this.comOf(this.followIndex);
+    const delta = p.clone().sub(this.followPoint);
+    this.followPoint.copy(p);
+    this.camera.position.add(delta);
+    this.controls.target.add(delta);
+    this.controls.update();
+  }
+
+  private comOf(b: number): THREE.Vector3 {
+    const v = this.views[b];
+    const com = this.report.bodies[b].com;
+    return new THREE.Vector3(com[0], com[1], com[2]).applyQuaternion(v.group.quaternion).add(v.group.position);
+  }
+
+  /** Follow body `b` (its centre of mass becomes the orbit target), or stop following with -1. */
+  setFollow(b: number): void {
+    this.followIndex = b;
+    if (b < 0) return;
+    const p = this.comOf(b);
+    const delta = p.clone().sub(this.controls.target);
+    this.camera.position.add(delta);
+    this.controls.target.copy(p);
+    this.followPoint.copy(p);
+    this.controls.update();
+    this.dirty = true;
+  }
+
+  setTrails(on: boolean): void {
+    this.views.forEach((v, b) => {
+      if (on && !v.trail) {
+        const g = new THREE.BufferGeometry();
+        g.setAttribute('position', new THREE.BufferAttribute(comTrack(this.report, b), 3));
+        g.setDrawRange(0, this.lastSegment.i + 1);
+        v.trail = new THREE.Line(g, new THREE.LineBasicMaterial({ color: v.color, transparent: true, opacity: 0.7 }));
+        v.trail.frustumCulled = false;
+        this.scene.add(v.trail);
+      }
+      if (v.trail) v.trail.visible = on;
+    });
+    this.dirty = true;
+  }
+
+  /** The orientation as drawn, read back from the three.js object: [w, x, y, z]. */
+  bodyQuaternion(b: number): QuatWXYZ {
+    return xyzwToWxyz(this.views[b].group.quaternion.toArray());
+  }
+
+  private resize(): void {
+    const w = Math.max(1, this.container.clientWidth);
+    const h = Math.max(1, this.container.clientHeight);
+    // The observer also reports the first, unchanged size: no redraw for that.
+    const size = this.renderer.getSize(new THREE.Vector2());
+    if (size.x === w && size.y === h) return;
+    this.renderer.setSize(w, h);
+    this.camera.aspect = w / h;
+    this.camera.updateProjectionMatrix();
+    this.dirty = true;
+  }
+
+  /** Draws if anything changed since the last frame. */
+  render(force = false): void {
+    if (!this.dirty && !force) return;
+    this.dirty = false;
+    this.renderer.render(this.scene, this.camera);
+  }
+}
