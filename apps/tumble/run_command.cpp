@@ -18,6 +18,8 @@
 #include "scene_summary.hpp"
 #include "tumble/integrate/integrator.hpp"
 #include "tumble/io/checkpoint.hpp"
+#include "tumble/io/geometry.hpp"
+#include "tumble/io/report.hpp"
 #include "tumble/io/scene.hpp"
 #include "tumble/io/trajectory_writer.hpp"
 
@@ -48,6 +50,7 @@ struct RunOptions {
   bool force = false;
   std::string checkpoint;
   double checkpoint_every = 60.0;
+  std::string report;
 };
 
 /// What `tumble resume` takes.
@@ -68,6 +71,7 @@ struct Job {
   double threshold = 0.0;
   bool hdf5 = false;
   std::filesystem::path out, diagnostics;
+  std::filesystem::path report;  // --report: the HTML report to write after the run (empty: none)
   std::vector<std::string> fields;
   bool quiet = false, progress = false, strict = false;
   std::filesystem::path checkpoint;  // empty: none
@@ -161,9 +165,27 @@ int execute(Job& j) {
     base.strict = j.strict;
     base.writer_pid = static_cast<long>(::getpid());
   }
+  auto geometry = std::make_shared<const SceneGeometry>(scene_geometry(scene));
+  // A report (--report) keeps every stride-th sample as the run goes, and the run's facts.
+  std::optional<Report> report;
+  std::optional<ReportRecorder> recorder;
+  if (!j.report.empty()) {
+    report.emplace();
+    report->tumble_version = TUMBLE_VERSION;
+    report->scene_path = j.scene_arg;
+    report->scene_text = scene.text;
+    report->integrator = settings.integrator;
+    report->formulation = formulation_name(settings.formulation);
+    report->timestep = settings.timestep;
+    report->duration = settings.duration;
+    report->names = row_names(scene.model);
+    report->geometry = *geometry;
+    recorder.emplace(*report, plan_run(settings, scene.model.bodies.size(), scene.model.particles.size(), 0).samples);
+  }
   // The writer keeps the scene's text (HDF5 stores it); the run needs it no more, so it is not copied.
   const TrajectoryInfo info{std::move(scene.text), j.scene_arg, TUMBLE_VERSION, settings, j.fields,
-                            !scene.events.empty()};
+                            !scene.events.empty(), geometry};
+  const auto started = std::chrono::steady_clock::now();
   std::optional<CsvContinuation> continuation;
   if (j.resumed) continuation = CsvContinuation{j.resumed->point.samples, j.resumed->point.t_last_sample};
   const std::unique_ptr<TrajectoryWriter> writer =
@@ -188,6 +210,7 @@ int execute(Job& j) {
   hooks.on_sample = [&](const SystemState& state) {
     const DriftSample d = monitor.observe(state);
     writer->write(scene.model, state, d);
+    if (recorder) recorder->sample(scene.model, state, d);
     extremes.add(d);
     t_reached = state.t;
     if (auto warning = monitor.take_warning()) progress.message("tumble: warning: " + *warning);
@@ -200,6 +223,7 @@ int execute(Job& j) {
   std::vector<std::pair<long, double>> crossings(scene.events.size(), {0, 0.0});  // count, first time
   hooks.on_event = [&](const EventHit& hit) {
     writer->event(hit.name, scene.events[hit.index].row, hit.state.t);
+    if (report) report->events.push_back({hit.name, hit.state.t, static_cast<long>(scene.events[hit.index].row)});
     auto& [n, first] = crossings[hit.index];
     if (n++ == 0) first = hit.state.t;
   };
@@ -235,6 +259,10 @@ int execute(Job& j) {
   if (j.resumed) hooks.resume_from = &j.resumed->point;
   simulate(scene.model, scene.initial, settings, hooks);
   progress.finish();
+  const double wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  std::vector<std::string> warnings = scene.warnings;
+  if (monitor.warning()) warnings.push_back(*monitor.warning());
+  writer->outcome(wall_time_s, warnings);
   {
     // A second Ctrl-C now waits until both files are in place (interrupt.hpp).
     const InterruptGuard::Deferral deferral;
@@ -249,6 +277,13 @@ int execute(Job& j) {
       std::error_code ec;
       std::filesystem::remove(j.checkpoint, ec);  // the run is complete: nothing to resume
     }
+  }
+
+  if (report) {
+    recorder->finish(scene.model);
+    report->wall_time_s = wall_time_s;
+    report->warnings = warnings;
+    write_report(j.report, *report);
   }
 
   const auto files = writer->outputs();
@@ -300,8 +335,12 @@ int execute(Job& j) {
       } else {
         fmt::print(human, "diagnostics: {}\n", where(diagnostics));
       }
-      if (files.size() > (diagnostics.empty() ? 1u : 2u)) fmt::print(human, "events:      {}\n", where(files.back()));
+      for (const auto& f : files) {
+        if (f == events_path(out)) fmt::print(human, "events:      {}\n", f.string());
+        if (f == run_facts_path(out)) fmt::print(human, "run facts:   {} (for tumble report)\n", f.string());
+      }
     }
+    if (report) fmt::print(human, "report:      {}\n", where(j.report));
   }
   if (monitor.warning()) {
     // Said again at the end, where it is not lost in the progress output: the files are complete, but
@@ -378,6 +417,21 @@ int run(const RunOptions& o) {
     outputs.push_back({fmt::format("the events file {} (named after the output)", events_path(out).string()),
                        events_path(out), "give another output name with -o"});
   }
+  if (!hdf5 && !written_through) {
+    outputs.push_back({fmt::format("the run file {} (named after the output)", run_facts_path(out).string()),
+                       run_facts_path(out), "give another output name with -o"});
+  }
+  if (!o.report.empty()) {
+    for (const NamedOutput& other : outputs) {
+      if (same_file(other.path, o.report)) {
+        throw InvalidArgument(fmt::format("--report {} is {}: give another file, e.g. --report {}.html", o.report,
+                                          other.label, stem));
+      }
+    }
+    if (report_template().empty()) report_html(Report{});  // says how to get the viewer, before the run
+    outputs.push_back({fmt::format("--report {}", o.report), o.report,
+                       fmt::format("give another file, e.g. --report {}.html", stem)});
+  }
   refuse_inputs_as_outputs(outputs, scene);
   if (!o.checkpoint.empty()) {
     if (hdf5) {
@@ -419,6 +473,7 @@ int run(const RunOptions& o) {
   j.strict = o.strict;
   j.checkpoint = o.checkpoint;
   j.checkpoint_every = o.checkpoint_every;
+  j.report = o.report;
   j.scene = std::move(scene);
   return execute(j);
 }
@@ -468,6 +523,8 @@ int resume(const ResumeOptions& o) {
     outputs.push_back(
         {fmt::format("the events file {}", events_path(c.output).string()), events_path(c.output), "start a new run"});
   }
+  outputs.push_back(
+      {fmt::format("the run file {}", run_facts_path(c.output).string()), run_facts_path(c.output), "start a new run"});
   refuse_inputs_as_outputs(outputs, j.scene);
   print_scene_warnings(j.scene);
   recover_outputs(c);  // a killed run's files, still under their temporary names
@@ -563,6 +620,10 @@ Runner add_run_command(CLI::App& app) {
   cmd->add_flag("--force", o->force,
                 "run even if it would take more than a day or write more than 100 GB (`tumble check` "
                 "prints the steps, samples, output size and time a run would take)");
+  cmd->add_option("--report", o->report,
+                  "also write an interactive 3D report of the run: ONE self-contained HTML file (opens from "
+                  "disk, no network) with the bodies tumbling, ω and L, playback, energy, momentum and ω "
+                  "plots and the events; long runs are down-sampled for display (docs/report.md)");
   cmd->add_option("--checkpoint", o->checkpoint,
                   "write a checkpoint to this file every --checkpoint-every seconds and when interrupted "
                   "(Ctrl-C, SIGTERM, SIGHUP); `tumble resume FILE` continues the run, and its CSV files end "

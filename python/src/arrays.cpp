@@ -78,7 +78,7 @@ Scene from_arrays(const Eigen::VectorXd& mass, const Rows3& moments, std::option
     };
     scene.initial.bodies.push_back(
         state_from_reference(body, row(position), q, row(velocity), row(omega), frame));
-    scene.body_info.push_back({"arrays", body.mass_properties()});
+    scene.body_info.push_back({"arrays", body.mass_properties(), {}});
     scene.model.add_body(std::move(body));
   }
   if (gravity && gravity->norm() > 0) {

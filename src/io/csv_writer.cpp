@@ -6,8 +6,10 @@
 //   diagnostics: t and the columns of every SystemField (kinetic_energy, …, angular_momentum_drift) —
 //                one row per sample. A field is empty where the quantity is undefined (no potential,
 //                or zero at t = 0), never "nan".
-// and, when the run watches events and the trajectory is a regular file, a third:
-//   events:      t,event,body — one row per crossing, in time order.
+// and, when the trajectory is a regular file:
+//   events:      t,event,body — one row per crossing, in time order (when the run watches events);
+//   run facts:   OUT.run.json — the scene, settings, wall time, warnings and geometry (run_facts.hpp),
+//                written at commit (when TrajectoryInfo::geometry is set).
 #include <fmt/format.h>
 
 #include <cerrno>
@@ -16,8 +18,10 @@
 #include <fstream>
 #include <optional>
 
+#include "run_facts.hpp"
 #include "staged_file.hpp"
 #include "tumble/error.hpp"
+#include "tumble/io/report.hpp"
 #include "tumble/io/trajectory_writer.hpp"
 
 #include <unistd.h>
@@ -197,17 +201,17 @@ std::vector<const SystemField*> all_system_fields() {
 class CsvWriter final : public TrajectoryWriter {
  public:
   CsvWriter(const std::filesystem::path& trajectory, const std::filesystem::path& diagnostics,
-            const Model& model, std::vector<const BodyField*> fields, bool watch_events,
-            const std::optional<CsvContinuation>& continuation)
-      : names_(row_names(model)),
-        fields_(std::move(fields)),
+            const Model& model, const TrajectoryInfo& info, const std::optional<CsvContinuation>& continuation)
+      : info_(info),
+        names_(row_names(model)),
+        fields_(body_fields(info.fields)),
         trajectory_(trajectory, header({"t", "body"}, fields_), "trajectory",
                     kept(continuation, names_.size())),
         samples_(continuation ? continuation->samples : 0) {
     if (!diagnostics.empty())
       diagnostics_.emplace(diagnostics, header({"t"}, all_system_fields()), "diagnostics",
                            kept(continuation, 1));
-    if (watch_events && trajectory_.staged().kind() == io::OutputKind::staged) {
+    if (info.events && trajectory_.staged().kind() == io::OutputKind::staged) {
       events_.emplace(events_path(trajectory), "t,event,body", "events", kept(continuation, 0));
     }
   }
@@ -257,7 +261,16 @@ class CsvWriter final : public TrajectoryWriter {
     ++samples_;
   }
 
+  void outcome(double wall_time_s, const std::vector<std::string>& warnings) override {
+    wall_time_s_ = wall_time_s;
+    warnings_ = warnings;
+  }
+
   void commit(bool) override {
+    if (info_.geometry && trajectory_.staged().kind() == io::OutputKind::staged) {
+      facts_.emplace(run_facts_path(trajectory_.path()),
+                     io::run_facts(info_, names_, wall_time_s_, warnings_).dump(1), "run facts");
+    }
     // Every file is complete before any gets its final name, and they get them together.
     std::vector<io::StagedFile*> staged;
     for (CsvFile* f : files()) {
@@ -271,6 +284,7 @@ class CsvWriter final : public TrajectoryWriter {
     std::vector<CsvFile*> out{&trajectory_};
     if (diagnostics_) out.push_back(&*diagnostics_);
     if (events_) out.push_back(&*events_);
+    if (facts_) out.push_back(&*facts_);
     return out;
   }
 
@@ -283,17 +297,22 @@ class CsvWriter final : public TrajectoryWriter {
     std::vector<std::filesystem::path> out{trajectory_.path()};
     if (diagnostics_) out.push_back(diagnostics_->path());
     if (events_) out.push_back(events_->path());
+    if (facts_) out.push_back(facts_->path());
     return out;
   }
   long samples() const override { return samples_; }
 
  private:
+  TrajectoryInfo info_;  // the scene text is a copy: small beside the samples
   std::vector<std::string> names_;
   std::vector<const BodyField*> fields_;
   CsvFile trajectory_;
   long samples_ = 0;
   std::optional<CsvFile> diagnostics_;
   std::optional<CsvFile> events_;
+  std::optional<CsvFile> facts_;
+  std::optional<double> wall_time_s_;
+  std::vector<std::string> warnings_;
   fmt::memory_buffer buffer_;
 };
 
@@ -331,8 +350,7 @@ std::unique_ptr<TrajectoryWriter> make_csv_writer(const std::filesystem::path& t
         fmt::format("the trajectory {} and the diagnostics {} are the same file: give different files",
                     trajectory.string(), diagnostics.string()));
   }
-  return std::make_unique<CsvWriter>(trajectory, diagnostics, model, body_fields(info.fields), info.events,
-                                     continuation);
+  return std::make_unique<CsvWriter>(trajectory, diagnostics, model, info, continuation);
 }
 
 }  // namespace tumble

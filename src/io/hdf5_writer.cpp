@@ -231,6 +231,7 @@ class Hdf5Writer final : public TrajectoryWriter {
                                                   std::vector<hsize_t>{N, width}, check_);
       describe(series.id(), *f);
     }
+    if (info.geometry) write_geometry(*info.geometry);
     const Handle group_props = untimed(H5P_GROUP_CREATE, "create group diagnostics", check_);
     diagnostics_ = Handle(check_(H5Gcreate2(root, "diagnostics", H5P_DEFAULT, group_props.get(), H5P_DEFAULT),
                                  "create group diagnostics"),
@@ -271,8 +272,15 @@ class Hdf5Writer final : public TrajectoryWriter {
     event_times_.push_back(t);
   }
 
+  void outcome(double wall_time_s, const std::vector<std::string>& warnings) override {
+    wall_time_s_ = wall_time_s;
+    warnings_ = warnings;
+  }
+
   void commit(bool complete) override {
     for (Series* s : all_series()) s->flush();
+    if (wall_time_s_) number_attribute(file_.get(), "wall_time_s", *wall_time_s_, H5T_NATIVE_DOUBLE, check_);
+    if (!warnings_.empty()) string_attribute(file_.get(), "warnings", fmt::format("{}", fmt::join(warnings_, "\n")), check_);
     if (watch_events_) write_events();
     number_attribute(file_.get(), "complete", complete ? 1 : 0, H5T_NATIVE_INT, check_);
     number_attribute(file_.get(), "t_end", t_end_, H5T_NATIVE_DOUBLE, check_);
@@ -338,6 +346,61 @@ class Hdf5Writer final : public TrajectoryWriter {
             "index in /names of the body or particle the event watches");
   }
 
+  /// A fixed-size dataset `name` in `loc` of the given shape and native type, written from `data`.
+  void dataset(hid_t loc, const char* name, hid_t type, const std::vector<hsize_t>& shape, const void* data) {
+    const std::string what = fmt::format("write geometry/{}", name);
+    const Handle space(check_(H5Screate_simple(static_cast<int>(shape.size()), shape.data(), nullptr), what.c_str()),
+                       H5Sclose);
+    const Handle props = untimed(H5P_DATASET_CREATE, what.c_str(), check_);
+    const Handle set(check_(H5Dcreate2(loc, name, type, space.get(), H5P_DEFAULT, props.get(), H5P_DEFAULT), what.c_str()),
+                     H5Dclose);
+    size_t n = 1;
+    for (hsize_t d : shape) n *= d;
+    if (n > 0) check_(H5Dwrite(set.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), what.c_str());
+  }
+
+  /// The group `geometry`, for `tumble report`: per body (B of them) mass (B), center_of_mass (B, 3),
+  /// principal_axes (B, 3, 3: columns are the axes), principal_moments (B, 3), all in the reference
+  /// frame; the display meshes concatenated, vertices (V, 3) in m and triangles (F, 3) of indices into
+  /// the body's own vertices, body i owning vertices [vertex_offsets[i], vertex_offsets[i+1]) and
+  /// likewise triangles; springs (S, 2) rows of their ends (−1: a world anchor) and spring_points (S, 2, 3).
+  void write_geometry(const SceneGeometry& g) {
+    const Handle props = untimed(H5P_GROUP_CREATE, "create group geometry", check_);
+    const Handle group(check_(H5Gcreate2(file_.get(), "geometry", H5P_DEFAULT, props.get(), H5P_DEFAULT),
+                              "create group geometry"),
+                       H5Gclose);
+    const hsize_t B = g.bodies.size();
+    std::vector<double> mass, com, U, Lambda, vertices;
+    std::vector<std::uint64_t> vertex_offsets{0}, triangle_offsets{0};
+    std::vector<std::uint32_t> triangles;
+    for (const BodyGeometry& b : g.bodies) {
+      mass.push_back(b.mass);
+      com.insert(com.end(), {b.com.x(), b.com.y(), b.com.z()});
+      for (int r = 0; r < 3; ++r) U.insert(U.end(), {b.U(r, 0), b.U(r, 1), b.U(r, 2)});
+      Lambda.insert(Lambda.end(), {b.Lambda.x(), b.Lambda.y(), b.Lambda.z()});
+      for (const Vec3& v : b.mesh.vertices) vertices.insert(vertices.end(), {v.x(), v.y(), v.z()});
+      for (const auto& t : b.mesh.triangles) triangles.insert(triangles.end(), t.begin(), t.end());
+      vertex_offsets.push_back(vertices.size() / 3);
+      triangle_offsets.push_back(triangles.size() / 3);
+    }
+    dataset(group.get(), "mass", H5T_NATIVE_DOUBLE, {B}, mass.data());
+    dataset(group.get(), "center_of_mass", H5T_NATIVE_DOUBLE, {B, 3}, com.data());
+    dataset(group.get(), "principal_axes", H5T_NATIVE_DOUBLE, {B, 3, 3}, U.data());
+    dataset(group.get(), "principal_moments", H5T_NATIVE_DOUBLE, {B, 3}, Lambda.data());
+    dataset(group.get(), "vertex_offsets", H5T_NATIVE_UINT64, {B + 1}, vertex_offsets.data());
+    dataset(group.get(), "triangle_offsets", H5T_NATIVE_UINT64, {B + 1}, triangle_offsets.data());
+    dataset(group.get(), "vertices", H5T_NATIVE_DOUBLE, {vertices.size() / 3, 3}, vertices.data());
+    dataset(group.get(), "triangles", H5T_NATIVE_UINT32, {triangles.size() / 3, 3}, triangles.data());
+    std::vector<long long> ends;
+    std::vector<double> points;
+    for (const SpringGeometry& s : g.springs) {
+      ends.insert(ends.end(), {s.a, s.b});
+      points.insert(points.end(), {s.point_a.x(), s.point_a.y(), s.point_a.z(), s.point_b.x(), s.point_b.y(), s.point_b.z()});
+    }
+    dataset(group.get(), "springs", H5T_NATIVE_LLONG, {g.springs.size(), 2}, ends.data());
+    dataset(group.get(), "spring_points", H5T_NATIVE_DOUBLE, {g.springs.size(), 2, 3}, points.data());
+  }
+
   /// Which diagnostics exist is fixed by the model and the state at t = 0: create those datasets.
   void create_diagnostics(const DriftSample& d) {
     double values[3];
@@ -379,6 +442,8 @@ class Hdf5Writer final : public TrajectoryWriter {
   std::vector<std::optional<Series>> diagnostic_series_;  ///< one per SystemField, empty if undefined
   std::vector<double> row_;
   bool watch_events_ = false;
+  std::optional<double> wall_time_s_;
+  std::vector<std::string> warnings_;
   std::vector<std::string> event_names_;
   std::vector<long long> event_rows_;
   std::vector<double> event_times_;

@@ -81,7 +81,7 @@ void read_bodies(const TableReader& root, const std::filesystem::path& directory
     }
     scene.initial.bodies.push_back(state);
     scene.model.add_body(std::move(rigid));
-    scene.body_info.push_back({std::move(mass.source), mass.properties});
+    scene.body_info.push_back({std::move(mass.source), mass.properties, std::move(mass.display)});
   }
 }
 

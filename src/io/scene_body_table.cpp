@@ -236,7 +236,7 @@ void read_body_tables(const TableReader& root, const std::filesystem::path& dire
                                                           Vec3(x[vx], x[vy], x[vz]),
                                                           Vec3(x[wx], x[wy], x[wz]), omega_frame));
       scene.body_info.push_back(
-          {source, MassProperties{x[mass], Vec3::Zero(), Vec3(x[I1], x[I2], x[I3]).asDiagonal(), 0.0}});
+          {source, MassProperties{x[mass], Vec3::Zero(), Vec3(x[I1], x[I2], x[I3]).asDiagonal(), 0.0}, {}});
       scene.model.add_body(std::move(rigid));
       ++row;
     }

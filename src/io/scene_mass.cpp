@@ -11,6 +11,8 @@
 #include "tumble/mass/density.hpp"
 #include "tumble/mass/mesh_io.hpp"
 #include "tumble/mass/mesh_mass.hpp"
+#include "tumble/mass/mesh_decimate.hpp"
+#include "tumble/mass/tessellate.hpp"
 #include "tumble/mass/shapes.hpp"
 
 namespace tumble::scene {
@@ -221,7 +223,8 @@ DensityField density_in_part(const Material& mat, const Pose& pose) {
 /// The solid of `shape` or `mesh` in table t (its own frame), with material `mat`; `pose` places it
 /// in the body frame, where a polynomial density is written.
 MassProperties solid(const TableReader& t, const Material& mat, const Pose& pose,
-                     const std::filesystem::path& directory, std::string& source, Scene& scene) {
+                     const std::filesystem::path& directory, std::string& source, TriangleMesh& display,
+                     Scene& scene) {
   // The rule of degree d is exact for ρ of degree d − 2 (density.hpp).
   const int degree = std::max(kMinDensityDegree, mat.polynomial.degree + 2);
   const MassSpec spec = mat.kind == Material::Kind::mass      ? MassSpec::mass(mat.value)
@@ -243,6 +246,7 @@ MassProperties solid(const TableReader& t, const Material& mat, const Pose& pose
         t.fail_at("scale", "scale applies to a mesh only: remove it or give mesh = \"...\"");
       const Shape shape = read_shape(t);
       source = describe_shape(shape) + shell + ", " + mat.describe();
+      display = tessellate(shape, kDisplaySegments);
       if (is_shell) return shell_mass_properties(shape, thickness, spec);
       if (mat.kind == Material::Kind::polynomial)
         return integrate_density(shape, density_in_part(mat, pose), degree).properties;
@@ -265,6 +269,7 @@ MassProperties solid(const TableReader& t, const Material& mat, const Pose& pose
     }
     source = fmt::format("mesh {} ({} triangles{}){}, {}", file, mesh.triangles.size(),
                          scale != 1.0 ? fmt::format(", scale {:g}", scale) : "", shell, mat.describe());
+    display = decimate(mesh, kDisplayTriangles);
     if (is_shell) {
       MeshMassResult r = shell_mass_properties(mesh, thickness, spec, file);
       for (auto& w : r.warnings) scene.warnings.push_back(location(t.file(), t.where("mesh")) + ": " + w);
@@ -335,6 +340,13 @@ MassProperties explicit_inertia(const TableReader& t, const Material& mat) {
   return mp;
 }
 
+/// Appends `part`, placed in the body frame by `pose`, to `body`.
+void append_placed(TriangleMesh& body, const TriangleMesh& part, const Pose& pose) {
+  const auto base = static_cast<std::uint32_t>(body.vertices.size());
+  for (const Vec3& v : part.vertices) body.vertices.push_back(pose.R * v + pose.t);
+  for (const auto& t : part.triangles) body.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+}
+
 Pose read_pose(const TableReader& t) {
   Pose p;
   p.t = t.vec3("position", Vec3::Zero(), "m");
@@ -350,13 +362,13 @@ BodyMass read_body_mass(const TableReader& body, const std::filesystem::path& di
   if (!body.has("inertia") && body.has("center_of_mass")) {
     body.fail_at("center_of_mass", "center_of_mass goes with inertia; for shapes and meshes it is computed");
   }
-  if (body.has("inertia")) return {explicit_inertia(body, material), "given mass and inertia"};
+  if (body.has("inertia")) return {explicit_inertia(body, material), "given mass and inertia", {}};
   if (!body.has("parts")) {
     if (material.kind == Material::Kind::none) {
       body.fail_here("missing the material: give density = RHO (kg/m^3) or mass = M (kg)");
     }
     BodyMass result;
-    result.properties = solid(body, material, Pose{}, directory, result.source, scene);
+    result.properties = solid(body, material, Pose{}, directory, result.source, result.display, scene);
     return result;
   }
 
@@ -364,6 +376,7 @@ BodyMass read_body_mass(const TableReader& body, const std::filesystem::path& di
   const auto parts = body.tables("parts");
   if (parts.empty()) body.fail_at("parts", "parts is empty: give at least one [[bodies.parts]]");
   MassProperties total;
+  TriangleMesh display;       // the parts that are not holes, placed in the body frame
   std::vector<size_t> holes;  // their indices in `parts`
   for (size_t i = 0; i < parts.size(); ++i) {
     const TableReader part(*parts[i], body.context().child_numbered(" part ", i + 1), body.file(),
@@ -384,9 +397,11 @@ BodyMass read_body_mass(const TableReader& body, const std::filesystem::path& di
     }
     const Pose pose = read_pose(part);
     std::string source;
+    TriangleMesh shown;
     const MassProperties mp = part.has("inertia") ? explicit_inertia(part, m)
-                                                  : solid(part, m, pose, directory, source, scene);
+                                                  : solid(part, m, pose, directory, source, shown, scene);
     const MassProperties placed = mp.transformed(pose.R, pose.t);
+    if (!part.boolean("hole").value_or(false)) append_placed(display, shown, pose);  // holes are not drawn
     if (part.boolean("hole").value_or(false)) {
       if (!(placed.mass < total.mass)) {
         part.fail_here(
@@ -435,7 +450,8 @@ BodyMass read_body_mass(const TableReader& body, const std::filesystem::path& di
   return {total,
           fmt::format("{} parts{}, {}", parts.size(),
                       holes.empty() ? "" : fmt::format(" ({} holes)", holes.size()),
-                      material.kind == Material::Kind::none ? "materials per part" : material.describe())};
+                      material.kind == Material::Kind::none ? "materials per part" : material.describe()),
+          decimate(display, kDisplayTriangles)};
 }
 
 }  // namespace tumble::scene

@@ -36,6 +36,7 @@ using NameTable = std::unordered_map<std::string_view, NameEntry>;
 struct BodyMass {
   MassProperties properties;
   std::string source;
+  TriangleMesh display;  ///< its surface for pictures (reference frame); empty for given mass and inertia
 };
 BodyMass read_body_mass(const TableReader& body, const std::filesystem::path& directory, Scene& scene);
 

@@ -161,7 +161,7 @@ std::string read_string_attribute(hid_t file, const char* name) {
 TEST(Hdf5Trajectory, ArraysAndAttributesReadBack) {
   const Fixture f;
   test::TempDir dir("hdf5_writer");
-  TrajectoryInfo info{"[simulation]\nduration = 0.4\n# ünïcode\n", "scene.toml", "9.8.7", RunSettings{}, {}};
+  TrajectoryInfo info{"[simulation]\nduration = 0.4\n# ünïcode\n", "scene.toml", "9.8.7", RunSettings{}, {}, false, nullptr};
   info.settings.integrator = "rk4";
   auto writer = make_hdf5_writer(dir / "run.h5", f.model, info);
   for (const auto& s : f.states) writer->write(f.model, s, f.drift(s));
@@ -255,7 +255,7 @@ TEST(OutputFields, OneTableDrivesTheCsvColumnsAndTheHdf5Datasets) {
   std::reverse(names.begin(), names.end());
   const std::vector<const BodyField*> fields = body_fields(names);
   test::TempDir dir("output_fields");
-  TrajectoryInfo info{"", "scene.toml", "0", RunSettings{}, names};
+  TrajectoryInfo info{"", "scene.toml", "0", RunSettings{}, names, false, nullptr};
   auto csv = make_csv_writer(dir / "run.csv", dir / "run.diagnostics.csv", f.model, info);
   auto h5 = make_hdf5_writer(dir / "run.h5", f.model, info);
   for (const auto& s : f.states) {

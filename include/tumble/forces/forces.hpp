@@ -106,6 +106,8 @@ class Spring final : public ForceModel {
   void check(size_t n_bodies, size_t n_particles) const override;
   std::string describe() const override;
   std::optional<double> potential_energy(const SystemView& view) const override;
+  const End& a() const { return a_; }
+  const End& b() const { return b_; }
 
  private:
   std::pair<Vec3, Vec3> end_state(const End& e, const SystemView& view) const;  // position, velocity

@@ -9,6 +9,7 @@
 
 #include "tumble/error.hpp"
 #include "tumble/forces/model.hpp"
+#include "tumble/mass/triangle_mesh.hpp"
 #include "tumble/sim/drift_monitor.hpp"
 #include "tumble/sim/event_specs.hpp"
 #include "tumble/sim/simulate.hpp"
@@ -25,6 +26,10 @@ class SceneError : public Error {
 struct SceneBodyInfo {
   std::string source;              ///< where the mass came from, e.g. "mesh t_handle.stl, 2700 kg/m^3"
   MassProperties mass_properties;  ///< in the body's reference frame
+  /// The body's surface for pictures (reports), reference frame: its shape tessellated, its mesh (at most
+  /// kDisplayTriangles, decimated beyond), its parts but the holes; empty where only mass and inertia are
+  /// known (a report then draws the box of the same principal moments).
+  TriangleMesh display;
 };
 
 struct Scene {

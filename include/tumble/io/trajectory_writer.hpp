@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "tumble/forces/model.hpp"
+#include "tumble/io/geometry.hpp"
 #include "tumble/sim/drift_monitor.hpp"
 #include "tumble/sim/output_fields.hpp"
 
@@ -38,6 +39,9 @@ struct TrajectoryInfo {
   RunSettings settings;             ///< as run (after command-line overrides)
   std::vector<std::string> fields;  ///< per-body output fields (output_fields.hpp); empty: the defaults
   bool events = false;  ///< the run watches events: the writer stores every crossing given to event()
+  /// The bodies' surfaces, mass properties and the springs, stored for `tumble report` (HDF5: group
+  /// `geometry`; CSV: OUT.run.json with the run's facts); none when null.
+  std::shared_ptr<const SceneGeometry> geometry;
 };
 
 class TrajectoryWriter {
@@ -49,6 +53,9 @@ class TrajectoryWriter {
   /// when TrajectoryInfo::events: CSV in OUT.events.csv beside a regular trajectory file (t,event,body,
   /// one row per crossing in time order), HDF5 in the group `events` (datasets t, event, body).
   virtual void event(std::string_view name, size_t row, double t) = 0;
+  /// What the run found, stored with it when the writer keeps facts (geometry set): the wall-clock time
+  /// it took and its warnings (e.g. the drift monitor's). Call before commit().
+  virtual void outcome(double wall_time_s, const std::vector<std::string>& warnings) = 0;
   /// Finishes the files and moves them to their final names. `complete` is false when the run was
   /// interrupted before its end. Throws FileError if writing failed (the temporaries are removed).
   virtual void commit(bool complete) = 0;

@@ -1,0 +1,36 @@
+#pragma once
+// What a picture of a run needs besides its samples: each body's surface and mass properties, and the
+// springs. Written into the trajectory file (HDF5: the group `geometry`; CSV: OUT.run.json) so that
+// `tumble report` never reads the scene's meshes again (they may have moved or changed since).
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tumble/io/scene.hpp"
+#include "tumble/mass/triangle_mesh.hpp"
+
+namespace tumble {
+
+struct BodyGeometry {
+  TriangleMesh mesh;  ///< reference frame (m); empty: drawn as the box of the same principal moments
+  double mass = 0.0;
+  Vec3 com = Vec3::Zero();     ///< centre of mass, reference frame
+  Mat3 U = Mat3::Identity();   ///< principal axes (columns), reference frame
+  Vec3 Lambda = Vec3::Zero();  ///< principal moments, ascending
+};
+
+struct SpringGeometry {
+  long a = -1, b = -1;  ///< rows (bodies, then particles); −1: a world anchor
+  Vec3 point_a = Vec3::Zero(), point_b = Vec3::Zero();  ///< reference frame of a body, or world
+};
+
+struct SceneGeometry {
+  std::vector<BodyGeometry> bodies;  ///< one per rigid body (particles have none)
+  std::vector<SpringGeometry> springs;
+};
+
+/// The geometry of a scene as read (its display meshes and mass properties, its springs).
+SceneGeometry scene_geometry(const Scene& scene);
+
+}  // namespace tumble
