@@ -1,0 +1,195 @@
+// Reports: what `tumble run --report` records and what `tumble report` reads back from CSV and HDF5
+// files are the same report; the HTML holds the JSON the viewer decodes; long runs are thinned.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <nlohmann/json.hpp>
+
+#include "../support/run.hpp"
+#include "../support/scene_files.hpp"
+#include "tumble/io/report.hpp"
+#include "tumble/io/scene.hpp"
+#include "tumble/math/rotations.hpp"
+
+namespace tumble {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kTHandle = fs::path(TUMBLE_SOURCE_DIR) / "examples" / "t_handle.toml";
+
+/// Bytes of a {dtype, shape, base64} array of the report's JSON, decoded.
+std::vector<unsigned char> bytes(const nlohmann::json& a) {
+  static const std::string digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  const std::string s = a.at("base64").get<std::string>();
+  std::vector<unsigned char> out;
+  unsigned v = 0;
+  int bits = 0;
+  for (const char c : s) {
+    if (c == '=') break;
+    v = (v << 6) | static_cast<unsigned>(digits.find(c));
+    bits += 6;
+    if (bits >= 8) {
+      bits -= 8;
+      out.push_back(static_cast<unsigned char>((v >> bits) & 0xff));
+    }
+  }
+  return out;
+}
+
+template <class T>
+std::vector<T> decode(const nlohmann::json& a) {
+  const auto b = bytes(a);
+  std::vector<T> out(b.size() / sizeof(T));
+  std::memcpy(out.data(), b.data(), out.size() * sizeof(T));
+  return out;
+}
+
+TEST(Report, TheCsvAndHdf5FilesGiveTheReportTheRunRecorded) {
+  const test::TempDir dir("report_files");
+  const auto csv = test::run_tumble("run " + kTHandle.string() + " -o " + (dir / "t.csv").string() +
+                                    " --report " + (dir / "live.html").string() + " --quiet");
+  ASSERT_EQ(csv.status, 0) << csv.output;
+  const auto h5 = test::run_tumble("run " + kTHandle.string() + " -o " + (dir / "t.h5").string() + " --quiet");
+  ASSERT_EQ(h5.status, 0) << h5.output;
+  const Report from_csv = read_report(dir / "t.csv");
+  const Report from_h5 = read_report(dir / "t.h5");
+  for (const Report* r : {&from_csv, &from_h5}) {
+    EXPECT_EQ(r->names, std::vector<std::string>{"handle"});
+    EXPECT_EQ(r->samples_total, 2001);
+    ASSERT_EQ(r->t.size(), 2001u) << "within the size budget: nothing thinned";
+    ASSERT_EQ(r->geometry.bodies.size(), 1u);
+    EXPECT_FALSE(r->geometry.bodies[0].mesh.triangles.empty()) << "the T-handle's mesh travels with the file";
+    ASSERT_EQ(r->events.size(), 4u);
+    EXPECT_EQ(r->events[0].name, "flip");
+    EXPECT_EQ(r->integrator, "rk4");
+    EXPECT_NE(r->scene_text.find("[[events]]"), std::string::npos);
+    EXPECT_TRUE(r->wall_time_s.has_value());
+  }
+  // CSV holds 17 significant digits and HDF5 the doubles: the same numbers.
+  EXPECT_EQ(from_csv.t, from_h5.t);
+  EXPECT_EQ(from_csv.quaternion, from_h5.quaternion);
+  EXPECT_EQ(from_csv.omega_world, from_h5.omega_world);
+  EXPECT_EQ(from_csv.energy_drift, from_h5.energy_drift);
+  EXPECT_EQ(from_csv.geometry.bodies[0].mesh.vertices, from_h5.geometry.bodies[0].mesh.vertices);
+
+  // ω in principal axes, recomputed from the file as Uᵀ R_refᵀ ω, against the run's own
+  // angular_velocity_principal column: equal to rounding (a few ulp of |ω| = 20 rad/s).
+  const auto principal = test::run_tumble("run " + kTHandle.string() + " -o " + (dir / "p.csv").string() +
+                                          " --fields angular_velocity_principal --quiet");
+  ASSERT_EQ(principal.status, 0) << principal.output;
+  const std::string text = test::read_text(dir / "p.csv");
+  size_t line_start = text.find('\n') + 1;
+  for (size_t k = 0; k < from_csv.t.size(); ++k) {
+    const size_t end = text.find('\n', line_start);
+    const std::string line = text.substr(line_start, end - line_start);
+    line_start = end + 1;
+    double w[3];
+    std::sscanf(line.c_str(), "%*[^,],%*[^,],%lf,%lf,%lf", &w[0], &w[1], &w[2]);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(from_csv.omega_principal[3 * k + static_cast<size_t>(c)], w[c], 1e-13) << k;
+  }
+
+  // The live report holds what the file's report holds (the same samples, geometry, events), but for
+  // its wall time, which differs run to run.
+  Report live_like = from_csv;
+  const std::string html = report_html(live_like);
+  const std::string page = test::read_text(dir / "live.html");
+  const auto data = [](const std::string& h) {
+    const std::string open = "<script id=\"tumble-data\" type=\"application/json\">";
+    const size_t a = h.find(open) + open.size();
+    return nlohmann::json::parse(h.substr(a, h.find("</script>", a) - a));
+  };
+  nlohmann::json a = data(html), b = data(page);
+  a["meta"].erase("wall_time_s");
+  b["meta"].erase("wall_time_s");
+  // ω in principal axes is recomputed from the file (checked to 1e-13 above); its float32 may differ in
+  // the last bit from the one the run recorded.
+  a["series"].erase("omega_principal");
+  b["series"].erase("omega_principal");
+  std::vector<std::string> differ;  // paths only: the arrays are long
+  for (const auto& op : nlohmann::json::diff(a, b)) differ.push_back(op.at("path").get<std::string>());
+  EXPECT_TRUE(differ.empty()) << ::testing::PrintToString(differ);
+}
+
+TEST(Report, TheHtmlHoldsTheJsonTheViewerDecodes) {
+  const test::TempDir dir("report_html");
+  const auto run = test::run_tumble("run " + kTHandle.string() + " -o " + (dir / "t.h5").string() + " --quiet");
+  ASSERT_EQ(run.status, 0) << run.output;
+  Report r = read_report(dir / "t.h5");
+  r.scene_text += "\n# </script><!-- a scene comment that must not end the data";
+  const std::string html = report_html(r);
+  EXPECT_EQ(html.find("__TUMBLE_DATA__"), std::string::npos);
+  const std::string open = "<script id=\"tumble-data\" type=\"application/json\">";
+  const size_t a = html.find(open) + open.size();
+  const size_t end = html.find("</script>", a);
+  const std::string json_text = html.substr(a, end - a);
+  EXPECT_EQ(json_text.find('<'), std::string::npos) << "every '<' is written \\u003c";
+  const auto j = nlohmann::json::parse(json_text);
+  EXPECT_EQ(j.at("meta").at("scene_text").get<std::string>(), r.scene_text) << "the text survives the escaping";
+  EXPECT_EQ(j.at("format"), "tumble-report");
+  const size_t T = r.t.size();
+  EXPECT_EQ(j.at("meta").at("samples_shown").get<size_t>(), T);
+  EXPECT_EQ(decode<double>(j.at("t")), r.t);
+  const auto q = decode<float>(j.at("series").at("quaternion"));
+  ASSERT_EQ(q.size(), 4 * T);
+  for (size_t i = 0; i < q.size(); ++i) EXPECT_EQ(q[i], static_cast<float>(r.quaternion[i])) << i;
+  EXPECT_EQ(decode<double>(j.at("system").at("energy_drift")).size(), T);
+  const auto& body = j.at("bodies").at(0);
+  EXPECT_EQ(body.at("kind"), "body");
+  EXPECT_EQ(decode<float>(body.at("mesh").at("positions")).size(), 3 * r.geometry.bodies[0].mesh.vertices.size());
+  EXPECT_EQ(decode<std::uint32_t>(body.at("mesh").at("indices")).size(), 3 * r.geometry.bodies[0].mesh.triangles.size());
+  EXPECT_EQ(j.at("events").size(), 4u);
+}
+
+TEST(Report, LongRunsAreThinnedToTheBudgetKeepingTheEnds) {
+  const test::TempDir dir("report_thin");
+  // 10⁵ + 1 samples of one body: more than the 16 MB budget holds.
+  const auto run = test::run_tumble("run " + kTHandle.string() + " -o " + (dir / "t.h5").string() +
+                                    " --output-interval 2e-4 --timestep 2e-4 --report " + (dir / "r.html").string() +
+                                    " --quiet");
+  ASSERT_EQ(run.status, 0) << run.output;
+  const long limit = report_sample_limit(1);
+  ASSERT_LT(limit, 100001);
+  const Report r = read_report(dir / "t.h5");
+  EXPECT_EQ(r.samples_total, 100001);
+  EXPECT_LE(static_cast<long>(r.t.size()), limit);
+  EXPECT_GT(static_cast<long>(r.t.size()), limit / 2);
+  EXPECT_EQ(r.t.front(), 0.0);
+  EXPECT_EQ(r.t.back(), 20.0) << "the last sample is always shown";
+  EXPECT_LT(fs::file_size(dir / "r.html"), 20u * 1000 * 1000) << "the issue's limit";
+  const std::string page = test::read_text(dir / "r.html");
+  EXPECT_NE(page.find("\"samples_total\":100001"), std::string::npos);
+}
+
+TEST(Report, MissingPiecesAreNamed) {
+  const test::TempDir dir("report_errors");
+  auto r = test::run_tumble("run " + kTHandle.string() + " -o " + (dir / "f.h5").string() +
+                            " --fields angular_velocity --quiet");
+  ASSERT_EQ(r.status, 0) << r.output;
+  r = test::run_tumble("report " + (dir / "f.h5").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("has no dataset 'position'"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("run again without --fields"), std::string::npos) << r.output;
+
+  r = test::run_tumble("run " + kTHandle.string() + " -o " + (dir / "t.csv").string() + " --quiet");
+  ASSERT_EQ(r.status, 0) << r.output;
+  fs::remove(dir / "t.run.json");
+  r = test::run_tumble("report " + (dir / "t.csv").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("t.run.json beside it"), std::string::npos) << r.output;
+  // With the scene, the geometry comes from it.
+  r = test::run_tumble("report " + (dir / "t.csv").string() + " --scene " + kTHandle.string() + " -o " +
+                       (dir / "s.html").string());
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_TRUE(fs::exists(dir / "s.html"));
+  r = test::run_tumble("report " + (dir / "t.csv").string() + " -o " + (dir / "t.csv").string() + " --scene " +
+                       kTHandle.string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("is the trajectory itself"), std::string::npos) << r.output;
+  r = test::run_tumble("report " + (dir / "none.h5").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("is not a file"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace tumble
