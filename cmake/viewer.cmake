@@ -8,7 +8,7 @@ set(TUMBLE_REPORT_TEMPLATE_CPP ${PROJECT_BINARY_DIR}/generated/report_template.c
 if(TUMBLE_BUILD_VIEWER AND TUMBLE_NPM AND TUMBLE_NODE)
   set(viewer ${PROJECT_SOURCE_DIR}/viewer)
   set(TUMBLE_REPORT_BUNDLE ${viewer}/dist/report.html)
-  set(TUMBLE_VIEWER_FOUND ON)
+  set(TUMBLE_VIEWER_FOUND ON CACHE INTERNAL "the report viewer is built (tests/ runs its tests)")
   # npm ci when the lockfile changes (a stamp in node_modules), the bundle when a source changes.
   add_custom_command(OUTPUT ${viewer}/node_modules/.tumble-installed
                      COMMAND ${TUMBLE_NPM} ci --no-audit --no-fund --loglevel=error
@@ -29,7 +29,7 @@ if(TUMBLE_BUILD_VIEWER AND TUMBLE_NPM AND TUMBLE_NODE)
                      COMMENT "viewer: embedding report.html" VERBATIM)
   message(STATUS "tumble: report viewer built with ${TUMBLE_NPM}")
 else()
-  set(TUMBLE_VIEWER_FOUND OFF)
+  set(TUMBLE_VIEWER_FOUND OFF CACHE INTERNAL "the report viewer is built (tests/ runs its tests)")
   file(WRITE ${TUMBLE_REPORT_TEMPLATE_CPP}.in
        "// No report viewer in this build (node and npm not found, or TUMBLE_BUILD_VIEWER=OFF).\n"
        "#include <string_view>\nnamespace tumble {\nstd::string_view report_template() { return {}; }\n}\n")

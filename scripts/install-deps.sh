@@ -5,12 +5,18 @@ packages=(
   build-essential cmake ninja-build pkg-config g++ clang-14 libclang-rt-14-dev clang-format-14
   libeigen3-dev libxsimd-dev libomp-14-dev libboost-dev libfmt-dev libcli11-dev libassimp-dev libtomlplusplus-dev libhdf5-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  chromium
   python3 python3-numpy python3-h5py python3-dev python3-pybind11 python3-pytest python3-venv python3-pip python3-setuptools python3-tomli-w python3-matplotlib
 )
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
+# The report viewer (viewer/) is built with node and npm: the machine's own where present (Debian's npm
+# package conflicts with a Node installed otherwise), Debian's nodejs and npm where node is missing.
+if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
+  missing+=(nodejs npm)
+fi
 if [ ${#missing[@]} -eq 0 ]; then
   echo "install-deps: all ${#packages[@]} Debian packages present"
   exit 0
