@@ -220,7 +220,8 @@ Lap time_stages(const std::filesystem::path& scene_path, const std::filesystem::
   RunSettings settings = scene.settings;
   settings.duration = 0;  // simulate() returns after the initial sample: nothing is integrated
   validate(settings);
-  const TrajectoryInfo info{std::move(scene.text), scene_path.string(), "bench", settings, {}, false, nullptr};
+  const TrajectoryInfo info{
+      std::move(scene.text), scene_path.string(), "bench", settings, {}, false, nullptr};
   const auto writer = make_csv_writer(out, diagnostics_path(out), scene.model, info);
   DriftMonitor monitor(scene.model, scene.initial, scene.conserved, scene.drift_threshold, settings);
   simulate(scene.model, scene.initial, settings, [&](const SystemState& state) {

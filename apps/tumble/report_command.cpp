@@ -27,7 +27,8 @@ int report(const ReportOptions& o) {
   }
   if (same_file(out, o.trajectory)) {
     throw InvalidArgument(fmt::format("-o {} is the trajectory itself: give another file, e.g. -o {}",
-                                      out.string(), std::filesystem::path(o.trajectory).stem().string() + ".html"));
+                                      out.string(),
+                                      std::filesystem::path(o.trajectory).stem().string() + ".html"));
   }
   if (report_template().empty()) report_html(Report{});  // says how to get the viewer
   std::optional<Scene> scene;
@@ -35,8 +36,8 @@ int report(const ReportOptions& o) {
   Report r = read_report(o.trajectory, scene ? &*scene : nullptr);
   write_report(out, r);
   if (!o.quiet) {
-    fmt::print("report of {} ({} of {} samples shown, {} events): {}\n", o.trajectory, r.t.size(), r.samples_total,
-               r.events.size(), out.string());
+    fmt::print("report of {} ({} of {} samples shown, {} events): {}\n", o.trajectory, r.t.size(),
+               r.samples_total, r.events.size(), out.string());
   }
   return 0;
 }
@@ -50,7 +51,8 @@ Runner add_report_command(CLI::App& app) {
       "Write the interactive 3D report of a run that `tumble run` wrote: ONE self-contained HTML file (opens "
       "from disk in any browser, no network, no server) with every body drawn as its shape or mesh, its "
       "principal axes, ω and the angular momentum L, playback with a time scrubber and speeds, linked plots "
-      "of the energies, |L|, their drifts and ω in world and principal axes, the events marked, and the run's "
+      "of the energies, |L|, their drifts and ω in world and principal axes, the events marked, and the "
+      "run's "
       "facts. The geometry comes from the trajectory file (HDF5: its geometry group; CSV: OUT.run.json "
       "beside it), so moved or changed meshes do not matter. Long runs are down-sampled for display "
       "(the true sample count is shown). `tumble run --report FILE` writes the same during a run.\n\n"
@@ -59,7 +61,8 @@ Runner add_report_command(CLI::App& app) {
       "  tumble report out/t_handle.h5                 (writes out/t_handle.html)\n"
       "  tumble report out/t_handle.csv -o out/flip.html\n"
       "Open a shared link at a moment: file:///.../flip.html#t=4.6 (paused there), #t=4.6&play=1 (playing)");
-  cmd->add_option("trajectory", o->trajectory, "a trajectory file tumble run wrote (.csv or .h5)")->required();
+  cmd->add_option("trajectory", o->trajectory, "a trajectory file tumble run wrote (.csv or .h5)")
+      ->required();
   cmd->add_option("-o,--output", o->output, "the HTML file (default: the trajectory's name with .html)");
   cmd->add_option("--scene", o->scene,
                   "take the bodies' geometry and the scene text from this scene file instead of the "

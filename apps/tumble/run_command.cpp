@@ -180,7 +180,8 @@ int execute(Job& j) {
     report->duration = settings.duration;
     report->names = row_names(scene.model);
     report->geometry = *geometry;
-    recorder.emplace(*report, plan_run(settings, scene.model.bodies.size(), scene.model.particles.size(), 0).samples);
+    recorder.emplace(*report,
+                     plan_run(settings, scene.model.bodies.size(), scene.model.particles.size(), 0).samples);
   }
   // The writer keeps the scene's text (HDF5 stores it); the run needs it no more, so it is not copied.
   const TrajectoryInfo info{std::move(scene.text), j.scene_arg, TUMBLE_VERSION, settings, j.fields,
@@ -223,7 +224,8 @@ int execute(Job& j) {
   std::vector<std::pair<long, double>> crossings(scene.events.size(), {0, 0.0});  // count, first time
   hooks.on_event = [&](const EventHit& hit) {
     writer->event(hit.name, scene.events[hit.index].row, hit.state.t);
-    if (report) report->events.push_back({hit.name, hit.state.t, static_cast<long>(scene.events[hit.index].row)});
+    if (report)
+      report->events.push_back({hit.name, hit.state.t, static_cast<long>(scene.events[hit.index].row)});
     auto& [n, first] = crossings[hit.index];
     if (n++ == 0) first = hit.state.t;
   };
@@ -259,7 +261,8 @@ int execute(Job& j) {
   if (j.resumed) hooks.resume_from = &j.resumed->point;
   simulate(scene.model, scene.initial, settings, hooks);
   progress.finish();
-  const double wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  const double wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   std::vector<std::string> warnings = scene.warnings;
   if (monitor.warning()) warnings.push_back(*monitor.warning());
   writer->outcome(wall_time_s, warnings);
@@ -424,8 +427,8 @@ int run(const RunOptions& o) {
   if (!o.report.empty()) {
     for (const NamedOutput& other : outputs) {
       if (same_file(other.path, o.report)) {
-        throw InvalidArgument(fmt::format("--report {} is {}: give another file, e.g. --report {}.html", o.report,
-                                          other.label, stem));
+        throw InvalidArgument(fmt::format("--report {} is {}: give another file, e.g. --report {}.html",
+                                          o.report, other.label, stem));
       }
     }
     if (report_template().empty()) report_html(Report{});  // says how to get the viewer, before the run
@@ -520,11 +523,11 @@ int resume(const ResumeOptions& o) {
   if (!c.diagnostics.empty())
     outputs.push_back({fmt::format("the diagnostics {}", c.diagnostics), c.diagnostics, "start a new run"});
   if (!j.scene.events.empty()) {
-    outputs.push_back(
-        {fmt::format("the events file {}", events_path(c.output).string()), events_path(c.output), "start a new run"});
+    outputs.push_back({fmt::format("the events file {}", events_path(c.output).string()),
+                       events_path(c.output), "start a new run"});
   }
-  outputs.push_back(
-      {fmt::format("the run file {}", run_facts_path(c.output).string()), run_facts_path(c.output), "start a new run"});
+  outputs.push_back({fmt::format("the run file {}", run_facts_path(c.output).string()),
+                     run_facts_path(c.output), "start a new run"});
   refuse_inputs_as_outputs(outputs, j.scene);
   print_scene_warnings(j.scene);
   recover_outputs(c);  // a killed run's files, still under their temporary names

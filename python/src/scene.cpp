@@ -314,7 +314,8 @@ void bind_scene(py::module_& m) {
           "timestep", [](const Scene& s) { return s.settings.timestep; }, "s")
       .def_property_readonly("integrator", [](const Scene& s) { return s.settings.integrator; })
       .def_readonly("warnings", &Scene::warnings)
-      .def_readonly("output_fields", &Scene::output_fields, "the scene's [output] fields (empty: the defaults)")
+      .def_readonly("output_fields", &Scene::output_fields,
+                    "the scene's [output] fields (empty: the defaults)")
       .def_property_readonly(
           "events",
           [](const Scene& s) {

@@ -201,7 +201,8 @@ std::vector<const SystemField*> all_system_fields() {
 class CsvWriter final : public TrajectoryWriter {
  public:
   CsvWriter(const std::filesystem::path& trajectory, const std::filesystem::path& diagnostics,
-            const Model& model, const TrajectoryInfo& info, const std::optional<CsvContinuation>& continuation)
+            const Model& model, const TrajectoryInfo& info,
+            const std::optional<CsvContinuation>& continuation)
       : info_(info),
         names_(row_names(model)),
         fields_(body_fields(info.fields)),

@@ -280,7 +280,8 @@ class Hdf5Writer final : public TrajectoryWriter {
   void commit(bool complete) override {
     for (Series* s : all_series()) s->flush();
     if (wall_time_s_) number_attribute(file_.get(), "wall_time_s", *wall_time_s_, H5T_NATIVE_DOUBLE, check_);
-    if (!warnings_.empty()) string_attribute(file_.get(), "warnings", fmt::format("{}", fmt::join(warnings_, "\n")), check_);
+    if (!warnings_.empty())
+      string_attribute(file_.get(), "warnings", fmt::format("{}", fmt::join(warnings_, "\n")), check_);
     if (watch_events_) write_events();
     number_attribute(file_.get(), "complete", complete ? 1 : 0, H5T_NATIVE_INT, check_);
     number_attribute(file_.get(), "t_end", t_end_, H5T_NATIVE_DOUBLE, check_);
@@ -322,16 +323,18 @@ class Hdf5Writer final : public TrajectoryWriter {
   /// time order; present, perhaps empty, whenever the run watched events.
   void write_events() {
     const Handle group_props = untimed(H5P_GROUP_CREATE, "create group events", check_);
-    const Handle group(
-        check_(H5Gcreate2(file_.get(), "events", H5P_DEFAULT, group_props.get(), H5P_DEFAULT), "create group events"),
-        H5Gclose);
+    const Handle group(check_(H5Gcreate2(file_.get(), "events", H5P_DEFAULT, group_props.get(), H5P_DEFAULT),
+                              "create group events"),
+                       H5Gclose);
     const hsize_t n = event_times_.size();
     const Handle space(check_(H5Screate_simple(1, &n, nullptr), "create a dataspace"), H5Sclose);
-    auto dataset = [&](const char* name, hid_t type, const void* data, const char* unit, const char* meaning) {
+    auto dataset = [&](const char* name, hid_t type, const void* data, const char* unit,
+                       const char* meaning) {
       const std::string what = fmt::format("write events/{}", name);
       const Handle props = untimed(H5P_DATASET_CREATE, what.c_str(), check_);
       const Handle set(
-          check_(H5Dcreate2(group.get(), name, type, space.get(), H5P_DEFAULT, props.get(), H5P_DEFAULT), what.c_str()),
+          check_(H5Dcreate2(group.get(), name, type, space.get(), H5P_DEFAULT, props.get(), H5P_DEFAULT),
+                 what.c_str()),
           H5Dclose);
       if (n > 0) check_(H5Dwrite(set.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), what.c_str());
       if (unit != nullptr) string_attribute(set.get(), "unit", unit, check_);
@@ -349,10 +352,12 @@ class Hdf5Writer final : public TrajectoryWriter {
   /// A fixed-size dataset `name` in `loc` of the given shape and native type, written from `data`.
   void dataset(hid_t loc, const char* name, hid_t type, const std::vector<hsize_t>& shape, const void* data) {
     const std::string what = fmt::format("write geometry/{}", name);
-    const Handle space(check_(H5Screate_simple(static_cast<int>(shape.size()), shape.data(), nullptr), what.c_str()),
+    const Handle space(check_(H5Screate_simple(static_cast<int>(shape.size()), shape.data(), nullptr),
+                              what.c_str()),
                        H5Sclose);
     const Handle props = untimed(H5P_DATASET_CREATE, what.c_str(), check_);
-    const Handle set(check_(H5Dcreate2(loc, name, type, space.get(), H5P_DEFAULT, props.get(), H5P_DEFAULT), what.c_str()),
+    const Handle set(check_(H5Dcreate2(loc, name, type, space.get(), H5P_DEFAULT, props.get(), H5P_DEFAULT),
+                            what.c_str()),
                      H5Dclose);
     size_t n = 1;
     for (hsize_t d : shape) n *= d;
@@ -395,7 +400,8 @@ class Hdf5Writer final : public TrajectoryWriter {
     std::vector<double> points;
     for (const SpringGeometry& s : g.springs) {
       ends.insert(ends.end(), {s.a, s.b});
-      points.insert(points.end(), {s.point_a.x(), s.point_a.y(), s.point_a.z(), s.point_b.x(), s.point_b.y(), s.point_b.z()});
+      points.insert(points.end(), {s.point_a.x(), s.point_a.y(), s.point_a.z(), s.point_b.x(), s.point_b.y(),
+                                   s.point_b.z()});
     }
     dataset(group.get(), "springs", H5T_NATIVE_LLONG, {g.springs.size(), 2}, ends.data());
     dataset(group.get(), "spring_points", H5T_NATIVE_DOUBLE, {g.springs.size(), 2, 3}, points.data());

@@ -69,7 +69,8 @@ json body_mesh(const BodyGeometry& g) {
   }
   std::vector<float> positions;
   positions.reserve(mesh.vertices.size() * 3);
-  for (const Vec3& v : mesh.vertices) positions.insert(positions.end(), {float(v.x()), float(v.y()), float(v.z())});
+  for (const Vec3& v : mesh.vertices)
+    positions.insert(positions.end(), {float(v.x()), float(v.y()), float(v.z())});
   std::vector<std::uint32_t> indices;
   indices.reserve(mesh.triangles.size() * 3);
   for (const auto& t : mesh.triangles) indices.insert(indices.end(), t.begin(), t.end());
@@ -89,7 +90,8 @@ double bounding_radius(const BodyGeometry& g) {
   if (r > 0) return r;
   // No mesh: the half diagonal of its inertia box.
   const Vec3 L = g.Lambda;
-  return std::sqrt(std::max(0.0, 6.0 * (L.sum()) / std::max(g.mass, std::numeric_limits<double>::min()) / 4.0));
+  return std::sqrt(
+      std::max(0.0, 6.0 * (L.sum()) / std::max(g.mass, std::numeric_limits<double>::min()) / 4.0));
 }
 
 json vec(const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); }
@@ -111,7 +113,8 @@ json to_json(const Report& r) {
     } else {
       b["mesh"] = nullptr;
       b["com"] = vec(Vec3::Zero());
-      b["principal_axes"] = json::array({json::array({1, 0, 0}), json::array({0, 1, 0}), json::array({0, 0, 1})});
+      b["principal_axes"] =
+          json::array({json::array({1, 0, 0}), json::array({0, 1, 0}), json::array({0, 0, 1})});
       b["principal_moments"] = vec(Vec3::Zero());
       b["size"] = 0.0;
     }
@@ -194,7 +197,8 @@ void add_report_sample(Report& r, const Model& model, const SystemState& state, 
       if (f.name != name) continue;
       double v[3];
       const bool defined = f.of_sample(d, v);
-      for (int k = 0; k < f.width; ++k) out.push_back(defined ? v[k] : std::numeric_limits<double>::quiet_NaN());
+      for (int k = 0; k < f.width; ++k)
+        out.push_back(defined ? v[k] : std::numeric_limits<double>::quiet_NaN());
       return;
     }
     throw Error(fmt::format("no diagnostics field {}", name));

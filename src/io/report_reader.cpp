@@ -15,9 +15,9 @@
 #include "tumble/error.hpp"
 #include "tumble/io/geometry.hpp"
 #include "tumble/io/report.hpp"
-#include "tumble/sim/output_fields.hpp"
 #include "tumble/io/trajectory_writer.hpp"
 #include "tumble/mass/input_file.hpp"
+#include "tumble/sim/output_fields.hpp"
 
 namespace tumble {
 namespace {
@@ -27,7 +27,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 /// Everything a trajectory file holds that a report shows, before down-sampling.
 struct Samples {
   std::vector<double> t;
-  std::vector<double> position, orientation, omega_world;  // (T, N, 3 or 4)
+  std::vector<double> position, orientation, omega_world;                   // (T, N, 3 or 4)
   std::vector<double> kinetic, potential, total, energy_drift, L, L_drift;  // (T) or (T, 3); NaN if absent
 };
 
@@ -64,7 +64,8 @@ class Hdf5Reader {
     size_t n = 1;
     for (hsize_t d : dims) n *= d;
     std::vector<double> out(n);
-    if (n > 0 && H5Dread(set.id, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0) fail(name);
+    if (n > 0 && H5Dread(set.id, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
+      fail(name);
     if (shape) *shape = dims;
     return out;
   }
@@ -74,7 +75,8 @@ class Hdf5Reader {
     const Id space{H5Dget_space(set.id), H5Sclose};
     const auto n = static_cast<size_t>(H5Sget_simple_extent_npoints(space.id));
     std::vector<std::uint32_t> out(n);
-    if (n > 0 && H5Dread(set.id, H5T_NATIVE_UINT32, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0) fail(name);
+    if (n > 0 && H5Dread(set.id, H5T_NATIVE_UINT32, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
+      fail(name);
     return out;
   }
 
@@ -114,12 +116,12 @@ class Hdf5Reader {
   hid_t open(const std::string& name) const {
     const hid_t id = has(name) ? H5Dopen2(file_, name.c_str(), H5P_DEFAULT) : -1;
     if (id < 0) {
-      throw InvalidArgument(fmt::format("{} has no dataset '{}': it is not a trajectory that tumble run wrote{}",
-                                        path_, name,
-                                        name == "position" || name == "orientation" || name == "angular_velocity"
-                                            ? " with the default fields (a report needs position, orientation "
-                                              "and angular_velocity: run again without --fields, or add them)"
-                                            : ""));
+      throw InvalidArgument(
+          fmt::format("{} has no dataset '{}': it is not a trajectory that tumble run wrote{}", path_, name,
+                      name == "position" || name == "orientation" || name == "angular_velocity"
+                          ? " with the default fields (a report needs position, orientation "
+                            "and angular_velocity: run again without --fields, or add them)"
+                          : ""));
     }
     return id;
   }
@@ -174,7 +176,8 @@ Samples read_hdf5(const std::filesystem::path& path, Report& r, const Scene* sce
     std::vector<hsize_t> shape;
     std::vector<double> v = h.doubles(name, &shape);
     if (shape != std::vector<hsize_t>{T, N, width}) {
-      throw InvalidArgument(fmt::format("{}: dataset {} is not ({}, {}, {})", path.string(), name, T, N, width));
+      throw InvalidArgument(
+          fmt::format("{}: dataset {} is not ({}, {}, {})", path.string(), name, T, N, width));
     }
     return v;
   };
@@ -184,7 +187,8 @@ Samples read_hdf5(const std::filesystem::path& path, Report& r, const Scene* sce
   const auto system = [&](const char* name, size_t width) {
     const std::string key = std::string("diagnostics/") + name;
     std::vector<double> v = h.has(key) ? h.doubles(key) : std::vector<double>(T * width, kNaN);
-    if (v.size() != T * width) throw InvalidArgument(fmt::format("{}: {} has the wrong length", path.string(), key));
+    if (v.size() != T * width)
+      throw InvalidArgument(fmt::format("{}: {} has the wrong length", path.string(), key));
     return v;
   };
   s.kinetic = system("kinetic_energy", 1);
@@ -203,9 +207,10 @@ Samples read_hdf5(const std::filesystem::path& path, Report& r, const Scene* sce
   }
   if (scene) return s;
   if (!h.has("geometry")) {
-    throw InvalidArgument(fmt::format("{} has no geometry group: it was written by a tumble before reports; run "
-                                      "the scene again",
-                                      path.string()));
+    throw InvalidArgument(
+        fmt::format("{} has no geometry group: it was written by a tumble before reports; run "
+                    "the scene again",
+                    path.string()));
   }
   std::vector<hsize_t> shape;
   const auto mass = h.doubles("geometry/mass");
@@ -220,7 +225,8 @@ Samples read_hdf5(const std::filesystem::path& path, Report& r, const Scene* sce
   if (B > N || com.size() != 3 * B || U.size() != 9 * B || Lambda.size() != 3 * B || vo.size() != B + 1 ||
       to.size() != B + 1 || vo.back() * 3 != static_cast<double>(vertices.size()) ||
       to.back() * 3 != static_cast<double>(triangles.size())) {
-    throw InvalidArgument(fmt::format("{}: the geometry group's datasets do not fit together", path.string()));
+    throw InvalidArgument(
+        fmt::format("{}: the geometry group's datasets do not fit together", path.string()));
   }
   for (size_t b = 0; b < B; ++b) {
     BodyGeometry& g = r.geometry.bodies.emplace_back();
@@ -230,11 +236,14 @@ Samples read_hdf5(const std::filesystem::path& path, Report& r, const Scene* sce
       for (int j = 0; j < 3; ++j) g.U(i, j) = U[9 * b + 3 * static_cast<size_t>(i) + static_cast<size_t>(j)];
     g.Lambda = Vec3(Lambda[3 * b], Lambda[3 * b + 1], Lambda[3 * b + 2]);
     const auto v0 = static_cast<size_t>(vo[b]), v1 = static_cast<size_t>(vo[b + 1]);
-    for (size_t v = v0; v < v1; ++v) g.mesh.vertices.emplace_back(vertices[3 * v], vertices[3 * v + 1], vertices[3 * v + 2]);
+    for (size_t v = v0; v < v1; ++v)
+      g.mesh.vertices.emplace_back(vertices[3 * v], vertices[3 * v + 1], vertices[3 * v + 2]);
     for (auto f = static_cast<size_t>(to[b]); f < static_cast<size_t>(to[b + 1]); ++f) {
       const std::array<std::uint32_t, 3> tri{triangles[3 * f], triangles[3 * f + 1], triangles[3 * f + 2]};
       for (std::uint32_t k : tri) {
-        if (k >= v1 - v0) throw InvalidArgument(fmt::format("{}: geometry triangle {} names a missing vertex", path.string(), f));
+        if (k >= v1 - v0)
+          throw InvalidArgument(
+              fmt::format("{}: geometry triangle {} names a missing vertex", path.string(), f));
       }
       g.mesh.triangles.push_back(tri);
     }
@@ -279,9 +288,10 @@ struct Csv {
   size_t column(std::string_view name, const std::string& file) const {
     for (size_t i = 0; i < header.size(); ++i)
       if (header[i] == name) return i;
-    throw InvalidArgument(fmt::format("{} has no column {}: a report needs the fields position, orientation and "
-                                      "angular_velocity (the defaults): run again without --fields, or add them",
-                                      file, name));
+    throw InvalidArgument(
+        fmt::format("{} has no column {}: a report needs the fields position, orientation and "
+                    "angular_velocity (the defaults): run again without --fields, or add them",
+                    file, name));
   }
 };
 
@@ -300,9 +310,10 @@ Samples read_csv_run(const std::filesystem::path& path, Report& r, const Scene* 
   if (scene) {
     use_scene(*scene, r);
   } else if (!std::filesystem::is_regular_file(facts)) {
-    throw InvalidArgument(fmt::format("{} has no {} beside it (the run's facts and geometry, written by tumble run "
-                                      "since reports exist): run the scene again, or give the HDF5 file",
-                                      file, facts.string()));
+    throw InvalidArgument(
+        fmt::format("{} has no {} beside it (the run's facts and geometry, written by tumble run "
+                    "since reports exist): run the scene again, or give the HDF5 file",
+                    file, facts.string()));
   } else {
     try {
       io::read_run_facts(nlohmann::json::parse(read_input_file(facts, "run file")), facts.string(), r);
@@ -312,9 +323,10 @@ Samples read_csv_run(const std::filesystem::path& path, Report& r, const Scene* 
   }
   const Csv c = read_csv(path);
   if (c.header.size() < 2 || c.header[0] != "t" || c.header[1] != "body") {
-    throw InvalidArgument(fmt::format("{}:1: the header does not start with t,body: not a trajectory that tumble "
-                                      "run wrote",
-                                      file));
+    throw InvalidArgument(
+        fmt::format("{}:1: the header does not start with t,body: not a trajectory that tumble "
+                    "run wrote",
+                    file));
   }
   const size_t N = r.names.size();
   if (N == 0 || (c.lines.size() - 1) % N != 0) {
@@ -326,13 +338,13 @@ Samples read_csv_run(const std::filesystem::path& path, Report& r, const Scene* 
   for (size_t line = 1; line < c.lines.size(); ++line) {
     const auto cells = split(c.lines[line]);
     if (cells.size() != c.header.size()) {
-      throw InvalidArgument(fmt::format("{}:{}: {} columns where the header has {}", file, line + 1, cells.size(),
-                                        c.header.size()));
+      throw InvalidArgument(fmt::format("{}:{}: {} columns where the header has {}", file, line + 1,
+                                        cells.size(), c.header.size()));
     }
     const size_t row = (line - 1) % N;
     if (cells[1] != r.names[row]) {
-      throw InvalidArgument(fmt::format("{}:{}: body '{}' where '{}' was expected", file, line + 1, cells[1],
-                                        r.names[row]));
+      throw InvalidArgument(
+          fmt::format("{}:{}: body '{}' where '{}' was expected", file, line + 1, cells[1], r.names[row]));
     }
     if (row == 0) s.t.push_back(number(cells[0], file, line + 1));
     for (size_t k = 0; k < 3; ++k) s.position.push_back(number(cells[px + k], file, line + 1));
@@ -342,11 +354,13 @@ Samples read_csv_run(const std::filesystem::path& path, Report& r, const Scene* 
   const size_t T = s.t.size();
   const std::filesystem::path dpath = diagnostics_path(path);
   std::vector<double>* columns[] = {&s.kinetic, &s.potential, &s.total, &s.energy_drift, &s.L_drift};
-  const char* names[] = {"kinetic_energy", "potential_energy", "total_energy", "energy_drift", "angular_momentum_drift"};
+  const char* names[] = {"kinetic_energy", "potential_energy", "total_energy", "energy_drift",
+                         "angular_momentum_drift"};
   if (std::filesystem::is_regular_file(dpath)) {
     const Csv d = read_csv(dpath);
     if (d.lines.size() - 1 != T) {
-      throw InvalidArgument(fmt::format("{} has {} samples, the trajectory {}", dpath.string(), d.lines.size() - 1, T));
+      throw InvalidArgument(
+          fmt::format("{} has {} samples, the trajectory {}", dpath.string(), d.lines.size() - 1, T));
     }
     size_t at[5];
     for (size_t k = 0; k < 5; ++k) at[k] = d.column(names[k], dpath.string());
@@ -354,8 +368,8 @@ Samples read_csv_run(const std::filesystem::path& path, Report& r, const Scene* 
     for (size_t line = 1; line < d.lines.size(); ++line) {
       const auto cells = split(d.lines[line]);
       if (cells.size() != d.header.size()) {
-        throw InvalidArgument(fmt::format("{}:{}: {} columns where the header has {}", dpath.string(), line + 1,
-                                          cells.size(), d.header.size()));
+        throw InvalidArgument(fmt::format("{}:{}: {} columns where the header has {}", dpath.string(),
+                                          line + 1, cells.size(), d.header.size()));
       }
       for (size_t k = 0; k < 5; ++k) columns[k]->push_back(number(cells[at[k]], dpath.string(), line + 1));
       for (size_t k = 0; k < 3; ++k) s.L.push_back(number(cells[Lx + k], dpath.string(), line + 1));
@@ -369,7 +383,8 @@ Samples read_csv_run(const std::filesystem::path& path, Report& r, const Scene* 
     const Csv e = read_csv(epath);
     for (size_t line = 1; line < e.lines.size(); ++line) {
       const auto cells = split(e.lines[line]);
-      if (cells.size() != 3) throw InvalidArgument(fmt::format("{}:{}: expected t,event,body", epath.string(), line + 1));
+      if (cells.size() != 3)
+        throw InvalidArgument(fmt::format("{}:{}: expected t,event,body", epath.string(), line + 1));
       long row = -1;
       for (size_t i = 0; i < N; ++i)
         if (r.names[i] == cells[2]) row = static_cast<long>(i);

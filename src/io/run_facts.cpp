@@ -11,12 +11,14 @@ using nlohmann::json;
 
 json vec(const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); }
 
-Vec3 to_vec(const json& j) { return Vec3(j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()); }
+Vec3 to_vec(const json& j) {
+  return Vec3(j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>());
+}
 
 }  // namespace
 
-json run_facts(const TrajectoryInfo& info, const std::vector<std::string>& names, std::optional<double> wall_time_s,
-               const std::vector<std::string>& warnings) {
+json run_facts(const TrajectoryInfo& info, const std::vector<std::string>& names,
+               std::optional<double> wall_time_s, const std::vector<std::string>& warnings) {
   json bodies = json::array();
   if (info.geometry) {
     for (const BodyGeometry& g : info.geometry->bodies) {
@@ -82,7 +84,8 @@ void read_run_facts(const json& j, const std::string& file, Report& r) {
       for (size_t i = 0; i < v.size(); i += 3) g.mesh.vertices.emplace_back(v[i], v[i + 1], v[i + 2]);
       for (size_t i = 0; i < t.size(); i += 3) {
         for (size_t k = 0; k < 3; ++k) {
-          if (t[i + k] >= g.mesh.vertices.size()) throw InvalidArgument("a triangle names a vertex that is not there");
+          if (t[i + k] >= g.mesh.vertices.size())
+            throw InvalidArgument("a triangle names a vertex that is not there");
         }
         g.mesh.triangles.push_back({t[i], t[i + 1], t[i + 2]});
       }
@@ -93,9 +96,11 @@ void read_run_facts(const json& j, const std::string& file, Report& r) {
     }
     if (r.geometry.bodies.size() > r.names.size()) throw InvalidArgument("more bodies than names");
   } catch (const json::exception& e) {
-    throw InvalidArgument(fmt::format("{} is not a run file that tumble run wrote ({}); run again", file, e.what()));
+    throw InvalidArgument(
+        fmt::format("{} is not a run file that tumble run wrote ({}); run again", file, e.what()));
   } catch (const InvalidArgument& e) {
-    throw InvalidArgument(fmt::format("{} is not a run file that tumble run wrote ({}); run again", file, e.what()));
+    throw InvalidArgument(
+        fmt::format("{} is not a run file that tumble run wrote ({}); run again", file, e.what()));
   }
 }
 

@@ -90,7 +90,8 @@ Scene read_scene(const toml::table& root, std::string text, const std::filesyste
   scene.input_files.push_back(path);       // then every mesh, as it is read
   const std::string file = path.string();  // for messages; outlives every reader
   const TableReader r(root, "scene", file,
-                      {"simulation", "output", "world", "bodies", "body_tables", "particles", "forces", "events"});
+                      {"simulation", "output", "world", "bodies", "body_tables", "particles", "forces",
+                       "events"});
   read_simulation(r, scene);
   read_output(r, scene);
   NameTable names;

@@ -21,7 +21,8 @@ std::vector<std::string> all_columns() {
 }
 
 size_t watched_row(const TableReader& t, const NameTable& names, const Scene& scene) {
-  const std::string_view name = t.required_string("body", "the body or particle to watch, e.g. body = \"handle\"");
+  const std::string_view name =
+      t.required_string("body", "the body or particle to watch, e.g. body = \"handle\"");
   if (const auto found = names.find(name); found != names.end()) {
     return found->second.is_particle ? scene.model.bodies.size() + found->second.index : found->second.index;
   }
@@ -37,9 +38,10 @@ int crossing_direction(const TableReader& t) {
   if (d == "both") return 0;
   if (d == "rising") return +1;
   if (d == "falling") return -1;
-  t.fail_at("direction", fmt::format("unknown direction \"{}\"; choose \"both\" (default), \"rising\" (g goes from "
-                                     "below to above) or \"falling\"",
-                                     d));
+  t.fail_at("direction",
+            fmt::format("unknown direction \"{}\"; choose \"both\" (default), \"rising\" (g goes from "
+                        "below to above) or \"falling\"",
+                        d));
 }
 
 }  // namespace
@@ -55,24 +57,27 @@ std::vector<EventSpec> read_events(const TableReader& root, const NameTable& nam
       untitled.fail_at("name", fmt::format("event name \"{}\": use letters, digits, '_', '-' and '.'", name));
     }
     const TableReader t(*events[i], Context::named("event", name), root.file(),
-                        {"name", "body", "column", "value", "axis", "toward", "angle_deg", "direction", "stop"});
+                        {"name", "body", "column", "value", "axis", "toward", "angle_deg", "direction",
+                         "stop"});
     EventSpec e;
     e.name = std::string(name);
     e.row = watched_row(t, names, scene);
     e.direction = crossing_direction(t);
     e.stop = t.boolean("stop").value_or(false);
     if (!t.at_most_one_of({"column", "axis"})) {  // both: an error there; neither: false
-      t.fail_here("say what to watch: column = \"w2\" (a column of the output table crossing `value`) or "
-                  "axis, toward and angle_deg (the angle between a body axis and a world direction)");
+      t.fail_here(
+          "say what to watch: column = \"w2\" (a column of the output table crossing `value`) or "
+          "axis, toward and angle_deg (the angle between a body axis and a world direction)");
     }
     if (t.has("column")) {
       const std::string_view column = *t.string("column");
       const auto found = find_column(column);
       if (!found) {
         const auto s = closest(std::string(column), all_columns());
-        t.fail_at("column", fmt::format("no output column \"{}\"; {}", column,
-                                        s ? fmt::format("did you mean \"{}\"?", *s)
-                                          : fmt::format("the columns are: {}", fmt::join(all_columns(), ", "))));
+        t.fail_at("column",
+                  fmt::format("no output column \"{}\"; {}", column,
+                              s ? fmt::format("did you mean \"{}\"?", *s)
+                                : fmt::format("the columns are: {}", fmt::join(all_columns(), ", "))));
       }
       e.kind = EventSpec::Kind::column;
       e.field = found->first;
@@ -83,13 +88,17 @@ std::vector<EventSpec> read_events(const TableReader& root, const NameTable& nam
       e.kind = EventSpec::Kind::angle;
       const auto axis = t.vec3("axis", "1 (reference frame)");
       const auto toward = t.vec3("toward", "1 (world)");
-      if (!toward) t.fail_here("missing 'toward': the world direction the axis is measured from, e.g. [0, 0, 1]");
-      if (axis->norm() == 0) t.fail_at("axis", "axis is the zero vector: give a direction in the body's frame");
+      if (!toward)
+        t.fail_here("missing 'toward': the world direction the axis is measured from, e.g. [0, 0, 1]");
+      if (axis->norm() == 0)
+        t.fail_at("axis", "axis is the zero vector: give a direction in the body's frame");
       if (toward->norm() == 0) t.fail_at("toward", "toward is the zero vector: give a world direction");
       e.axis = *axis;
       e.toward = *toward;
       const double deg = t.required_number("angle_deg", "degrees", Domain::non_negative);
-      if (deg > 180) t.fail_at("angle_deg", fmt::format("angle_deg = {}: an angle between two directions is 0 to 180", deg));
+      if (deg > 180)
+        t.fail_at("angle_deg",
+                  fmt::format("angle_deg = {}: an angle between two directions is 0 to 180", deg));
       e.angle = deg * std::numbers::pi / 180;
       if (t.has("value")) t.fail_here("value goes with column; an angle event crosses angle_deg");
     }
@@ -100,7 +109,8 @@ std::vector<EventSpec> read_events(const TableReader& root, const NameTable& nam
 
 }  // namespace scene
 
-std::vector<EventSpec> parse_events(const Scene& s, const std::string& text, const std::filesystem::path& path) {
+std::vector<EventSpec> parse_events(const Scene& s, const std::string& text,
+                                    const std::filesystem::path& path) {
   const std::string file = path.string();
   const toml::table root = scene::parse_toml(text, file);
   const scene::TableReader r(root, "events", file, {"events"});

@@ -9,11 +9,11 @@
 
 #include "scene_sections.hpp"
 #include "tumble/mass/density.hpp"
+#include "tumble/mass/mesh_decimate.hpp"
 #include "tumble/mass/mesh_io.hpp"
 #include "tumble/mass/mesh_mass.hpp"
-#include "tumble/mass/mesh_decimate.hpp"
-#include "tumble/mass/tessellate.hpp"
 #include "tumble/mass/shapes.hpp"
+#include "tumble/mass/tessellate.hpp"
 
 namespace tumble::scene {
 namespace {

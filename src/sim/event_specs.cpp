@@ -20,7 +20,8 @@ Event make_event(const Model& model, const EventSpec& spec) {
   const Vec3 d = spec.toward.normalized();
   e.g = [&model, r, a = spec.axis.normalized(), d, angle = spec.angle](const SystemState& s) {
     // R_ref a = R Uᵀ a; a particle has the identity orientation, its axis stays as given.
-    const Vec3 a_w = r < model.bodies.size() ? Vec3(s.bodies[r].q * Vec3(model.bodies[r].U().transpose() * a)) : a;
+    const Vec3 a_w = r < model.bodies.size() ? Vec3(s.bodies[r].q * Vec3(model.bodies[r].U().transpose() * a))
+                                             : a;
     return std::atan2(a_w.cross(d).norm(), a_w.dot(d)) - angle;  // g = ∠(R_ref a, d) − θ
   };
   return e;

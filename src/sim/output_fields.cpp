@@ -248,7 +248,8 @@ std::vector<std::string> row_names(const Model& model) {
   return names;
 }
 
-void field_of_row(const BodyField& field, const Model& model, const SystemState& state, size_t r, double* out) {
+void field_of_row(const BodyField& field, const Model& model, const SystemState& state, size_t r,
+                  double* out) {
   const size_t n = model.bodies.size();
   if (r < n) {
     field.of_body(model.bodies[r], state.bodies[r], out);

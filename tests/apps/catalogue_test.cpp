@@ -430,35 +430,52 @@ const std::vector<Case>& catalogue() {
        1,
        "tumble: error: s.toml:5:8: particle 'p': mass is 0 kg: it must be positive"},
       {"scene: event on an unknown body",
-       {{"s.toml", "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"b\"\nshape = { type = \"sphere\", radius = 0.1 }\nmass = 1\n[[events]]\nname = \"e\"\nbody = \"c\"\ncolumn = \"w2\"\n"}},
+       {{"s.toml",
+         "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"b\"\nshape = { type = \"sphere\", radius = 0.1 "
+         "}\nmass = 1\n[[events]]\nname = \"e\"\nbody = \"c\"\ncolumn = \"w2\"\n"}},
        "{t} check s.toml",
        1,
        "tumble: error: s.toml:9:8: event 'e': no body or particle named \"c\"; did you mean \"b\"?"},
       {"scene: event on an unknown column",
-       {{"s.toml", "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"b\"\nshape = { type = \"sphere\", radius = 0.1 }\nmass = 1\n[[events]]\nname = \"e\"\nbody = \"b\"\ncolumn = \"w4\"\n"}},
+       {{"s.toml",
+         "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"b\"\nshape = { type = \"sphere\", radius = 0.1 "
+         "}\nmass = 1\n[[events]]\nname = \"e\"\nbody = \"b\"\ncolumn = \"w4\"\n"}},
        "{t} check s.toml",
        1,
        "tumble: error: s.toml:10:10: event 'e': no output column \"w4\"; did you mean \"wx\"?"},
       {"scene: event that watches nothing",
-       {{"s.toml", "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"b\"\nshape = { type = \"sphere\", radius = 0.1 }\nmass = 1\n[[events]]\nname = \"e\"\nbody = \"b\"\n"}},
+       {{"s.toml",
+         "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"b\"\nshape = { type = \"sphere\", radius = 0.1 "
+         "}\nmass = 1\n[[events]]\nname = \"e\"\nbody = \"b\"\n"}},
        "{t} check s.toml",
        1,
-       "tumble: error: s.toml:7:1: event 'e': say what to watch: column = \"w2\" (a column of the output table crossing `value`) or axis, toward and angle_deg (the angle between a body axis and a world direction)"},
+       "tumble: error: s.toml:7:1: event 'e': say what to watch: column = \"w2\" (a column of the output "
+       "table crossing `value`) or axis, toward and angle_deg (the angle between a body axis and a world "
+       "direction)"},
       {"scene: event with a column and an axis",
-       {{"s.toml", "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"b\"\nshape = { type = \"sphere\", radius = 0.1 }\nmass = 1\n[[events]]\nname = \"e\"\nbody = \"b\"\ncolumn = \"w2\"\naxis = [1, 0, 0]\n"}},
+       {{"s.toml",
+         "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"b\"\nshape = { type = \"sphere\", radius = 0.1 "
+         "}\nmass = 1\n[[events]]\nname = \"e\"\nbody = \"b\"\ncolumn = \"w2\"\naxis = [1, 0, 0]\n"}},
        "{t} check s.toml",
        1,
        "tumble: error: s.toml:11:8: event 'e': 'column' and 'axis' exclude each other: keep one"},
       {"scene: event angle beyond 180 degrees",
-       {{"s.toml", "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"b\"\nshape = { type = \"sphere\", radius = 0.1 }\nmass = 1\n[[events]]\nname = \"e\"\nbody = \"b\"\naxis = [1, 0, 0]\ntoward = [0, 0, 1]\nangle_deg = 200\n"}},
+       {{"s.toml",
+         "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"b\"\nshape = { type = \"sphere\", radius = 0.1 "
+         "}\nmass = 1\n[[events]]\nname = \"e\"\nbody = \"b\"\naxis = [1, 0, 0]\ntoward = [0, 0, "
+         "1]\nangle_deg = 200\n"}},
        "{t} check s.toml",
        1,
-       "tumble: error: s.toml:12:13: event 'e': angle_deg = 200: an angle between two directions is 0 to 180"},
+       "tumble: error: s.toml:12:13: event 'e': angle_deg = 200: an angle between two directions is 0 to "
+       "180"},
       {"scene: event with an unknown direction",
-       {{"s.toml", "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"b\"\nshape = { type = \"sphere\", radius = 0.1 }\nmass = 1\n[[events]]\nname = \"e\"\nbody = \"b\"\ncolumn = \"w2\"\ndirection = \"up\"\n"}},
+       {{"s.toml",
+         "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"b\"\nshape = { type = \"sphere\", radius = 0.1 "
+         "}\nmass = 1\n[[events]]\nname = \"e\"\nbody = \"b\"\ncolumn = \"w2\"\ndirection = \"up\"\n"}},
        "{t} check s.toml",
        1,
-       "tumble: error: s.toml:11:13: event 'e': unknown direction \"up\"; choose \"both\" (default), \"rising\" (g goes from below to above) or \"falling\""},
+       "tumble: error: s.toml:11:13: event 'e': unknown direction \"up\"; choose \"both\" (default), "
+       "\"rising\" (g goes from below to above) or \"falling\""},
       {"scene: unknown force type",
        {{"s.toml", std::string("[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = "
                                "\"box\", size = [1, 2, 3] }\ndensity = 1000\n[[forces]]\ntype = "
@@ -858,7 +875,8 @@ const std::vector<Case>& catalogue() {
        {},
        "{t} simulate x.toml",
        2,
-       "tumble: error: unknown command 'simulate': the commands are run, resume, check, inertia; see tumble "
+       "tumble: error: unknown command 'simulate': the commands are run, resume, check, inertia, report; see "
+       "tumble "
        "--help"},
       {"cli: unknown option",
        {{"s.toml", std::string("[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = "

@@ -94,7 +94,8 @@ TEST(Examples, THandleFlipsAtTheClosedFormInterval) {
 TEST(Examples, THandleEventsCatchEveryFlipAtTheClosedFormTime) {
   const Scene s = load_scene(examples() / "t_handle.toml");
   ASSERT_EQ(s.events.size(), 1u);
-  const double T = test::intermediate_axis_flip_interval(s.model.bodies[0].Lambda(), s.initial.bodies[0].omega_b());
+  const double T =
+      test::intermediate_axis_flip_interval(s.model.bodies[0].Lambda(), s.initial.bodies[0].omega_b());
   RunHooks hooks;
   hooks.events = make_events(s.model, s.events);
   std::vector<double> flips;

@@ -50,7 +50,8 @@ TEST(Report, TheCsvAndHdf5FilesGiveTheReportTheRunRecorded) {
   const auto csv = test::run_tumble("run " + kTHandle.string() + " -o " + (dir / "t.csv").string() +
                                     " --report " + (dir / "live.html").string() + " --quiet");
   ASSERT_EQ(csv.status, 0) << csv.output;
-  const auto h5 = test::run_tumble("run " + kTHandle.string() + " -o " + (dir / "t.h5").string() + " --quiet");
+  const auto h5 =
+      test::run_tumble("run " + kTHandle.string() + " -o " + (dir / "t.h5").string() + " --quiet");
   ASSERT_EQ(h5.status, 0) << h5.output;
   const Report from_csv = read_report(dir / "t.csv");
   const Report from_h5 = read_report(dir / "t.h5");
@@ -86,7 +87,8 @@ TEST(Report, TheCsvAndHdf5FilesGiveTheReportTheRunRecorded) {
     line_start = end + 1;
     double w[3];
     std::sscanf(line.c_str(), "%*[^,],%*[^,],%lf,%lf,%lf", &w[0], &w[1], &w[2]);
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(from_csv.omega_principal[3 * k + static_cast<size_t>(c)], w[c], 1e-13) << k;
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(from_csv.omega_principal[3 * k + static_cast<size_t>(c)], w[c], 1e-13) << k;
   }
 
   // The live report holds what the file's report holds (the same samples, geometry, events), but for
@@ -113,7 +115,8 @@ TEST(Report, TheCsvAndHdf5FilesGiveTheReportTheRunRecorded) {
 
 TEST(Report, TheHtmlHoldsTheJsonTheViewerDecodes) {
   const test::TempDir dir("report_html");
-  const auto run = test::run_tumble("run " + kTHandle.string() + " -o " + (dir / "t.h5").string() + " --quiet");
+  const auto run =
+      test::run_tumble("run " + kTHandle.string() + " -o " + (dir / "t.h5").string() + " --quiet");
   ASSERT_EQ(run.status, 0) << run.output;
   Report r = read_report(dir / "t.h5");
   r.scene_text += "\n# </script><!-- a scene comment that must not end the data";
@@ -125,7 +128,8 @@ TEST(Report, TheHtmlHoldsTheJsonTheViewerDecodes) {
   const std::string json_text = html.substr(a, end - a);
   EXPECT_EQ(json_text.find('<'), std::string::npos) << "every '<' is written \\u003c";
   const auto j = nlohmann::json::parse(json_text);
-  EXPECT_EQ(j.at("meta").at("scene_text").get<std::string>(), r.scene_text) << "the text survives the escaping";
+  EXPECT_EQ(j.at("meta").at("scene_text").get<std::string>(), r.scene_text)
+      << "the text survives the escaping";
   EXPECT_EQ(j.at("format"), "tumble-report");
   const size_t T = r.t.size();
   EXPECT_EQ(j.at("meta").at("samples_shown").get<size_t>(), T);
@@ -136,8 +140,10 @@ TEST(Report, TheHtmlHoldsTheJsonTheViewerDecodes) {
   EXPECT_EQ(decode<double>(j.at("system").at("energy_drift")).size(), T);
   const auto& body = j.at("bodies").at(0);
   EXPECT_EQ(body.at("kind"), "body");
-  EXPECT_EQ(decode<float>(body.at("mesh").at("positions")).size(), 3 * r.geometry.bodies[0].mesh.vertices.size());
-  EXPECT_EQ(decode<std::uint32_t>(body.at("mesh").at("indices")).size(), 3 * r.geometry.bodies[0].mesh.triangles.size());
+  EXPECT_EQ(decode<float>(body.at("mesh").at("positions")).size(),
+            3 * r.geometry.bodies[0].mesh.vertices.size());
+  EXPECT_EQ(decode<std::uint32_t>(body.at("mesh").at("indices")).size(),
+            3 * r.geometry.bodies[0].mesh.triangles.size());
   EXPECT_EQ(j.at("events").size(), 4u);
 }
 
@@ -145,8 +151,8 @@ TEST(Report, LongRunsAreThinnedToTheBudgetKeepingTheEnds) {
   const test::TempDir dir("report_thin");
   // 10⁵ + 1 samples of one body: more than the 16 MB budget holds.
   const auto run = test::run_tumble("run " + kTHandle.string() + " -o " + (dir / "t.h5").string() +
-                                    " --output-interval 2e-4 --timestep 2e-4 --report " + (dir / "r.html").string() +
-                                    " --quiet");
+                                    " --output-interval 2e-4 --timestep 2e-4 --report " +
+                                    (dir / "r.html").string() + " --quiet");
   ASSERT_EQ(run.status, 0) << run.output;
   const long limit = report_sample_limit(1);
   ASSERT_LT(limit, 100001);
@@ -182,8 +188,8 @@ TEST(Report, MissingPiecesAreNamed) {
                        (dir / "s.html").string());
   EXPECT_EQ(r.status, 0) << r.output;
   EXPECT_TRUE(fs::exists(dir / "s.html"));
-  r = test::run_tumble("report " + (dir / "t.csv").string() + " -o " + (dir / "t.csv").string() + " --scene " +
-                       kTHandle.string());
+  r = test::run_tumble("report " + (dir / "t.csv").string() + " -o " + (dir / "t.csv").string() +
+                       " --scene " + kTHandle.string());
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.output.find("is the trajectory itself"), std::string::npos) << r.output;
   r = test::run_tumble("report " + (dir / "none.h5").string());

@@ -161,7 +161,8 @@ std::string read_string_attribute(hid_t file, const char* name) {
 TEST(Hdf5Trajectory, ArraysAndAttributesReadBack) {
   const Fixture f;
   test::TempDir dir("hdf5_writer");
-  TrajectoryInfo info{"[simulation]\nduration = 0.4\n# ünïcode\n", "scene.toml", "9.8.7", RunSettings{}, {}, false, nullptr};
+  TrajectoryInfo info{
+      "[simulation]\nduration = 0.4\n# ünïcode\n", "scene.toml", "9.8.7", RunSettings{}, {}, false, nullptr};
   info.settings.integrator = "rk4";
   auto writer = make_hdf5_writer(dir / "run.h5", f.model, info);
   for (const auto& s : f.states) writer->write(f.model, s, f.drift(s));

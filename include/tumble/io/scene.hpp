@@ -65,6 +65,7 @@ Scene parse_scene(const std::string& text, const std::filesystem::path& path);
 /// Events for a scene given apart from its file: TOML text holding [[events]] tables (the keys of a
 /// scene file's, docs/scene-format.md), checked against the scene's bodies and particles. SceneError
 /// (`path`:line:column) for anything wrong.
-std::vector<EventSpec> parse_events(const Scene& scene, const std::string& text, const std::filesystem::path& path);
+std::vector<EventSpec> parse_events(const Scene& scene, const std::string& text,
+                                    const std::filesystem::path& path);
 
 }  // namespace tumble

@@ -9,10 +9,10 @@
 //    angular momentum and its drift. It may be undefined (no potential, a zero scale at t = 0).
 #include <array>
 #include <optional>
-#include <utility>
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "tumble/dynamics/particle.hpp"
@@ -58,7 +58,8 @@ std::vector<const BodyField*> body_fields(const std::vector<std::string>& names)
 /// The names of a sample's rows: each body, then each particle, in model order.
 std::vector<std::string> row_names(const Model& model);
 /// The `field.width` values of a field for row r of a sample (a body, or a particle after the bodies).
-void field_of_row(const BodyField& field, const Model& model, const SystemState& state, size_t r, double* out);
+void field_of_row(const BodyField& field, const Model& model, const SystemState& state, size_t r,
+                  double* out);
 /// The field and the component that a CSV column name stands for, e.g. "w2" → angular_velocity_principal,
 /// 1; nullopt for a name no field has.
 std::optional<std::pair<const BodyField*, int>> find_column(std::string_view column);
