@@ -262,15 +262,12 @@ class CsvWriter final : public TrajectoryWriter {
     ++samples_;
   }
 
-  void outcome(double wall_time_s, const std::vector<std::string>& warnings) override {
-    wall_time_s_ = wall_time_s;
-    warnings_ = warnings;
-  }
+  void outcome(double, const std::vector<std::string>& warnings) override { warnings_ = warnings; }
 
   void commit(bool) override {
     if (info_.geometry && trajectory_.staged().kind() == io::OutputKind::staged) {
-      facts_.emplace(run_facts_path(trajectory_.path()),
-                     io::run_facts(info_, names_, wall_time_s_, warnings_).dump(1), "run facts");
+      facts_.emplace(run_facts_path(trajectory_.path()), io::run_facts(info_, names_, warnings_).dump(1),
+                     "run facts");
     }
     // Every file is complete before any gets its final name, and they get them together.
     std::vector<io::StagedFile*> staged;
@@ -312,7 +309,6 @@ class CsvWriter final : public TrajectoryWriter {
   std::optional<CsvFile> diagnostics_;
   std::optional<CsvFile> events_;
   std::optional<CsvFile> facts_;
-  std::optional<double> wall_time_s_;
   std::vector<std::string> warnings_;
   fmt::memory_buffer buffer_;
 };

@@ -23,6 +23,7 @@
 #include <cstring>
 
 #include "hdf5_file_driver.hpp"
+#include "hdf5_util.hpp"
 #include "staged_file.hpp"
 #include "tumble/error.hpp"
 #include "tumble/integrate/integrator.hpp"
@@ -31,91 +32,13 @@
 namespace tumble {
 namespace {
 
-/// An HDF5 identifier closed by the function it was opened with.
-class Handle {
- public:
-  Handle() = default;
-  Handle(hid_t id, herr_t (*close)(hid_t)) : id_(id), close_(close) {}
-  Handle(Handle&& o) noexcept : id_(o.id_), close_(o.close_) { o.id_ = H5I_INVALID_HID; }
-  Handle& operator=(Handle&& o) noexcept {
-    reset();
-    id_ = o.id_;
-    close_ = o.close_;
-    o.id_ = H5I_INVALID_HID;
-    return *this;
-  }
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  ~Handle() { reset(); }
-  hid_t get() const { return id_; }
-  /// Closes now; false if HDF5 reported an error (e.g. flushing the file failed).
-  bool reset() {
-    bool ok = true;
-    if (id_ >= 0 && close_) ok = close_(id_) >= 0;
-    id_ = H5I_INVALID_HID;
-    return ok;
-  }
-
- private:
-  hid_t id_ = H5I_INVALID_HID;
-  herr_t (*close_)(hid_t) = nullptr;
-};
-
-/// The reason of a failed write: the file driver's, else errno's (cleared after each success, so a
-/// value left there comes from the failed call).
-std::string reason(const io::Hdf5DriverState* driver) {
-  const int error = driver != nullptr && driver->error != 0 ? driver->error : errno;
-  return error != 0 ? std::strerror(error) : "HDF5 gave no reason";
-}
-
-/// Throws FileError for a negative HDF5 result.
-struct Checker {
-  std::string path;
-  const io::Hdf5DriverState* driver = nullptr;
-  hid_t operator()(hid_t id, const char* what) const {
-    if (id < 0) {
-      throw FileError(
-          fmt::format("writing {} failed: HDF5 could not {} ({}); nothing was kept under that name", path,
-                      what, reason(driver)));
-    }
-    errno = 0;
-    return id;
-  }
-};
-
-/// Object creation properties without modification times: two runs of one scene write the same bytes.
-Handle untimed(hid_t property_class, const char* what, const Checker& check) {
-  Handle props(check(H5Pcreate(property_class), what), H5Pclose);
-  check(H5Pset_obj_track_times(props.get(), false), what);
-  return props;
-}
-
-Handle string_type() {
-  Handle t(H5Tcopy(H5T_C_S1), H5Tclose);
-  H5Tset_size(t.get(), H5T_VARIABLE);
-  H5Tset_cset(t.get(), H5T_CSET_UTF8);  // h5py reads UTF-8 variable-length strings as str
-  return t;
-}
-
-void string_attribute(hid_t loc, const char* name, const std::string& value, const Checker& check) {
-  const std::string what = fmt::format("write attribute {}", name);
-  const Handle type = string_type();
-  const Handle space(check(H5Screate(H5S_SCALAR), "create a dataspace"), H5Sclose);
-  const Handle attr(check(H5Acreate2(loc, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
-                          what.c_str()),
-                    H5Aclose);
-  const char* p = value.c_str();
-  check(H5Awrite(attr.get(), type.get(), &p), what.c_str());
-}
-
-template <class T>
-void number_attribute(hid_t loc, const char* name, T value, hid_t type, const Checker& check) {
-  const std::string what = fmt::format("write attribute {}", name);
-  const Handle space(check(H5Screate(H5S_SCALAR), "create a dataspace"), H5Sclose);
-  const Handle attr(check(H5Acreate2(loc, name, type, space.get(), H5P_DEFAULT, H5P_DEFAULT), what.c_str()),
-                    H5Aclose);
-  check(H5Awrite(attr.get(), type, &value), what.c_str());
-}
+using io::Checker;
+using io::Handle;
+using io::number_attribute;
+using io::reason;
+using io::string_attribute;
+using io::string_type;
+using io::untimed;
 
 /// A dataset of shape (n, row...) growing along n, with rows buffered and appended in blocks.
 class Series {
@@ -272,14 +195,10 @@ class Hdf5Writer final : public TrajectoryWriter {
     event_times_.push_back(t);
   }
 
-  void outcome(double wall_time_s, const std::vector<std::string>& warnings) override {
-    wall_time_s_ = wall_time_s;
-    warnings_ = warnings;
-  }
+  void outcome(double, const std::vector<std::string>& warnings) override { warnings_ = warnings; }
 
   void commit(bool complete) override {
     for (Series* s : all_series()) s->flush();
-    if (wall_time_s_) number_attribute(file_.get(), "wall_time_s", *wall_time_s_, H5T_NATIVE_DOUBLE, check_);
     if (!warnings_.empty())
       string_attribute(file_.get(), "warnings", fmt::format("{}", fmt::join(warnings_, "\n")), check_);
     if (watch_events_) write_events();
@@ -327,16 +246,10 @@ class Hdf5Writer final : public TrajectoryWriter {
                               "create group events"),
                        H5Gclose);
     const hsize_t n = event_times_.size();
-    const Handle space(check_(H5Screate_simple(1, &n, nullptr), "create a dataspace"), H5Sclose);
     auto dataset = [&](const char* name, hid_t type, const void* data, const char* unit,
                        const char* meaning) {
-      const std::string what = fmt::format("write events/{}", name);
-      const Handle props = untimed(H5P_DATASET_CREATE, what.c_str(), check_);
-      const Handle set(
-          check_(H5Dcreate2(group.get(), name, type, space.get(), H5P_DEFAULT, props.get(), H5P_DEFAULT),
-                 what.c_str()),
-          H5Dclose);
-      if (n > 0) check_(H5Dwrite(set.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), what.c_str());
+      io::fixed_dataset(group.get(), name, type, {n}, data, check_);
+      const Handle set(check_(H5Dopen2(group.get(), name, H5P_DEFAULT), "write events"), H5Dclose);
       if (unit != nullptr) string_attribute(set.get(), "unit", unit, check_);
       string_attribute(set.get(), "meaning", meaning, check_);
     };
@@ -351,17 +264,7 @@ class Hdf5Writer final : public TrajectoryWriter {
 
   /// A fixed-size dataset `name` in `loc` of the given shape and native type, written from `data`.
   void dataset(hid_t loc, const char* name, hid_t type, const std::vector<hsize_t>& shape, const void* data) {
-    const std::string what = fmt::format("write geometry/{}", name);
-    const Handle space(check_(H5Screate_simple(static_cast<int>(shape.size()), shape.data(), nullptr),
-                              what.c_str()),
-                       H5Sclose);
-    const Handle props = untimed(H5P_DATASET_CREATE, what.c_str(), check_);
-    const Handle set(check_(H5Dcreate2(loc, name, type, space.get(), H5P_DEFAULT, props.get(), H5P_DEFAULT),
-                            what.c_str()),
-                     H5Dclose);
-    size_t n = 1;
-    for (hsize_t d : shape) n *= d;
-    if (n > 0) check_(H5Dwrite(set.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), what.c_str());
+    io::fixed_dataset(loc, name, type, shape, data, check_);
   }
 
   /// The group `geometry`, for `tumble report`: per body (B of them) mass (B), center_of_mass (B, 3),
@@ -448,7 +351,6 @@ class Hdf5Writer final : public TrajectoryWriter {
   std::vector<std::optional<Series>> diagnostic_series_;  ///< one per SystemField, empty if undefined
   std::vector<double> row_;
   bool watch_events_ = false;
-  std::optional<double> wall_time_s_;
   std::vector<std::string> warnings_;
   std::vector<std::string> event_names_;
   std::vector<long long> event_rows_;

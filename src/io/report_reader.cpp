@@ -156,7 +156,6 @@ Samples read_hdf5(const std::filesystem::path& path, Report& r, const Scene* sce
   r.formulation = h.string_attribute("formulation").value_or("");
   r.timestep = h.number_attribute("timestep").value_or(kNaN);
   r.duration = h.number_attribute("duration").value_or(kNaN);
-  r.wall_time_s = h.number_attribute("wall_time_s");
   if (const auto w = h.string_attribute("warnings")) {
     std::istringstream lines(*w);
     for (std::string line; std::getline(lines, line);) r.warnings.push_back(line);

@@ -18,7 +18,7 @@ Vec3 to_vec(const json& j) {
 }  // namespace
 
 json run_facts(const TrajectoryInfo& info, const std::vector<std::string>& names,
-               std::optional<double> wall_time_s, const std::vector<std::string>& warnings) {
+               const std::vector<std::string>& warnings) {
   json bodies = json::array();
   if (info.geometry) {
     for (const BodyGeometry& g : info.geometry->bodies) {
@@ -51,7 +51,6 @@ json run_facts(const TrajectoryInfo& info, const std::vector<std::string>& names
           {"timestep", info.settings.timestep},
           {"duration", info.settings.duration},
           {"output_interval", info.settings.output_interval},
-          {"wall_time_s", wall_time_s ? json(*wall_time_s) : json(nullptr)},
           {"warnings", warnings},
           {"names", names},
           {"bodies", bodies},
@@ -68,7 +67,6 @@ void read_run_facts(const json& j, const std::string& file, Report& r) {
     r.formulation = j.at("formulation").get<std::string>();
     r.timestep = j.at("timestep").get<double>();
     r.duration = j.at("duration").get<double>();
-    if (!j.at("wall_time_s").is_null()) r.wall_time_s = j.at("wall_time_s").get<double>();
     r.warnings = j.at("warnings").get<std::vector<std::string>>();
     r.names = j.at("names").get<std::vector<std::string>>();
     r.geometry = {};

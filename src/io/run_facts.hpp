@@ -1,7 +1,8 @@
 #pragma once
 // OUT.run.json beside a CSV trajectory: the facts an HDF5 file keeps as attributes and in its geometry
-// group (scene text, settings, version, wall time, warnings, each body's surface and mass properties,
-// the springs), so that `tumble report OUT.csv` needs nothing else. Private to tumble_io.
+// group (scene text, settings, version, warnings, each body's surface and mass properties, the
+// springs), so that `tumble report OUT.csv` needs nothing else. No wall time: two runs of a scene write
+// the same bytes (only `tumble run --report` shows it). Private to tumble_io.
 #include <nlohmann/json.hpp>
 
 #include "tumble/io/report.hpp"
@@ -10,7 +11,7 @@
 namespace tumble::io {
 
 nlohmann::json run_facts(const TrajectoryInfo& info, const std::vector<std::string>& names,
-                         std::optional<double> wall_time_s, const std::vector<std::string>& warnings);
+                         const std::vector<std::string>& warnings);
 
 /// Fills the facts, names and geometry of `report` from a run.json; InvalidArgument naming `file` and
 /// what is missing or malformed.

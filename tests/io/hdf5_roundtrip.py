@@ -32,7 +32,7 @@ def run(*args):
 run("run", scene, "-o", work / "box.h5", "--quiet")
 run("run", scene, "-o", work / "box.csv", "--quiet")
 version = run("--version").split()[-1]
-assert sorted(p.name for p in work.iterdir()) == ["box.csv", "box.diagnostics.csv", "box.h5"], list(work.iterdir())
+assert sorted(p.name for p in work.iterdir()) == ["box.csv", "box.diagnostics.csv", "box.h5", "box.run.json"], list(work.iterdir())
 
 with h5py.File(work / "box.h5", "r") as f:
     assert f.attrs["scene"] == scene.read_text(), "the scene text is stored verbatim"

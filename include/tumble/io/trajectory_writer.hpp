@@ -53,8 +53,9 @@ class TrajectoryWriter {
   /// when TrajectoryInfo::events: CSV in OUT.events.csv beside a regular trajectory file (t,event,body,
   /// one row per crossing in time order), HDF5 in the group `events` (datasets t, event, body).
   virtual void event(std::string_view name, size_t row, double t) = 0;
-  /// What the run found, stored with it when the writer keeps facts (geometry set): the wall-clock time
-  /// it took and its warnings (e.g. the drift monitor's). Call before commit().
+  /// What the run found, stored with it when the writer keeps facts (geometry set): its warnings (e.g.
+  /// the drift monitor's). The wall-clock time is not stored (outputs are byte-identical run to run).
+  /// Call before commit().
   virtual void outcome(double wall_time_s, const std::vector<std::string>& warnings) = 0;
   /// Finishes the files and moves them to their final names. `complete` is false when the run was
   /// interrupted before its end. Throws FileError if writing failed (the temporaries are removed).

@@ -1,0 +1,108 @@
+#pragma once
+// Ensembles: one scene run many times with uncertain values (docs/ensembles.md). A scene's [ensemble]
+// table says how many runs, a base seed, and a distribution for any numeric value of the scene by its
+// path ("bodies.handle.angular_velocity[1]"); [ensemble.outputs] what each run reports. Run i is the
+// scene with the values drawn for i, read by the scene reader itself (every check and message is the
+// file's), simulated on its own, and summarised into one row of a table.
+//
+// The draws of run i depend only on (seed, i, the variation's index): Philox4x64 (Random123, a
+// counter-based generator: Salmon et al., SC'11) keyed by the seed and counting (i, variation, draw),
+// so a table never depends on the order the runs are done in, on threads or on MPI ranks, and run i
+// can be redone alone (a resumed study, the trajectory of a chosen run).
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tumble/io/scene.hpp"
+
+namespace tumble {
+
+/// One uncertain value of a scene and how it is drawn.
+struct Variation {
+  enum class Kind { uniform, normal, lognormal, truncated_normal, rotation, direction, list, grid };
+  std::string path;  ///< e.g. "bodies.handle.angular_velocity[1]", "bodies.handle.orientation"
+  Kind kind = Kind::uniform;
+  double low = 0, high = 1;        ///< uniform; truncated_normal's bounds
+  double mean = 0, std = 1;        ///< normal, truncated_normal
+  double mu = 0, sigma = 1;        ///< lognormal: exp(N(mu, sigma²))
+  double magnitude = 1;            ///< direction: the length of the vector drawn
+  std::vector<double> values;      ///< list (run i takes values[i mod n]), grid (a full-factorial axis)
+  int width = 1;                   ///< values per draw: 1; 3 for direction, 4 for rotation (w, x, y, z)
+  std::vector<std::string> names;  ///< column names of the drawn values (path, or path[k])
+};
+
+/// What each run reports.
+struct EnsembleOutputs {
+  std::vector<std::string> final_fields;  ///< output fields of every body at the final time
+  std::vector<std::string> extrema;       ///< columns (e.g. "w2", "com_z"): min and max over the samples
+  bool events = true;                     ///< per [[events]] event: count, first time, mean interval
+  bool drift = true;                      ///< largest |relative drift| of energy and angular momentum
+  long every = 0;                         ///< full trajectories of runs 0, every, 2·every, … (0: none)
+  long worst = 0;                         ///< and of the `worst` runs with the largest `worst_by`
+  std::string worst_by;                   ///< a column of the table
+};
+
+/// One run's row: its index, the drawn values, the outputs (NaN where undefined, e.g. no crossing).
+struct EnsembleRow {
+  long run = 0;
+  std::vector<double> values;
+};
+
+class EnsembleStudy {
+ public:
+  /// Reads a scene file with an [ensemble] table. SceneError (file:line:column) for anything wrong.
+  static EnsembleStudy load(const std::filesystem::path& scene);
+  /// The same from text; `path` names it and anchors mesh paths.
+  static EnsembleStudy parse(const std::string& text, const std::filesystem::path& path);
+  EnsembleStudy(EnsembleStudy&&) noexcept;
+  EnsembleStudy& operator=(EnsembleStudy&&) noexcept;
+  ~EnsembleStudy();
+
+  long runs() const;
+  std::uint64_t seed() const;
+  const std::vector<Variation>& variations() const;
+  const EnsembleOutputs& outputs() const;
+  /// The scene without variations (the file as written), for summaries and run plans.
+  const Scene& base() const;
+  /// A fingerprint of everything a row depends on (the scene text and the tumble version): a resumed
+  /// study refuses rows computed for another.
+  std::uint64_t fingerprint() const;
+
+  /// The table's columns: "run", the drawn values, then the outputs.
+  const std::vector<std::string>& columns() const;
+  /// The drawn values of run i (one per column after "run", up to the outputs).
+  std::vector<double> draws(long i) const;
+  /// The scene of run i: the file with run i's values, read by the scene reader. SceneError names the
+  /// run and the values when they make the scene invalid (e.g. a negative mass).
+  Scene scene_of_run(long i) const;
+  /// Runs run i: its row. `trajectory`, if given, receives every sample (for the chosen runs' files).
+  EnsembleRow run(long i, const std::function<void(const Scene&, const SystemState&)>& trajectory = {}) const;
+
+ private:
+  struct Impl;
+  explicit EnsembleStudy(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Summary statistics of one column over the runs where it is defined.
+struct ColumnSummary {
+  std::string column;
+  long count = 0;  ///< runs with a finite value
+  double mean = 0, std = 0, min = 0, max = 0;
+  double q05 = 0, q25 = 0, q50 = 0, q75 = 0, q95 = 0;  ///< quantiles (linear interpolation, type 7)
+  std::vector<long> histogram;                        ///< 20 equal bins from min to max
+};
+std::vector<ColumnSummary> summarize(const std::vector<std::string>& columns, const std::vector<EnsembleRow>& rows);
+
+/// Runs `runs` (indices) of the study on `threads` threads (0: one per core); each finished row goes to
+/// `done` (called under a lock, in any order); `stop()` is asked between runs (Ctrl-C). Returns the rows
+/// in the order of `runs`, those not run (stopped) left out.
+std::vector<EnsembleRow> run_ensemble(const EnsembleStudy& study, const std::vector<long>& runs, int threads,
+                                      const std::function<void(const EnsembleRow&)>& done,
+                                      const std::function<bool()>& stop = {});
+
+}  // namespace tumble
