@@ -16,6 +16,8 @@ Runner add_run_command(CLI::App& app);
 Runner add_resume_command(CLI::App& app);
 /// `tumble report`: the interactive 3D report of a trajectory file (report_command.cpp).
 Runner add_report_command(CLI::App& app);
+/// `tumble ensemble`: a Monte Carlo study on every core and across MPI ranks (ensemble_command.cpp).
+Runner add_ensemble_command(CLI::App& app);
 /// `tumble check`: validate a scene file and summarise it (check_command.cpp).
 Runner add_check_command(CLI::App& app);
 

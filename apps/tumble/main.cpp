@@ -70,6 +70,7 @@ int main(int argc, char** argv) {
   const tumble::cli::Runner check = tumble::cli::add_check_command(app);
   const tumble::cli::Runner inertia = tumble::cli::add_inertia_command(app);
   const tumble::cli::Runner report = tumble::cli::add_report_command(app);
+  const tumble::cli::Runner ensemble = tumble::cli::add_ensemble_command(app);
 
   try {
     app.parse(argc, argv);
@@ -83,6 +84,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("check")) return finish_stdout(check());
     if (app.got_subcommand("inertia")) return finish_stdout(inertia());
     if (app.got_subcommand("report")) return finish_stdout(report());
+    if (app.got_subcommand("ensemble")) return finish_stdout(ensemble());
   } catch (const tumble::Error& e) {
     say(std::string("tumble: error: ") + e.what());
     return 1;

@@ -23,12 +23,13 @@ constexpr double kRedrawSeconds = 0.1;
 
 }  // namespace
 
-Progress::Progress(ProgressMode mode, double t_begin, double t_end)
+Progress::Progress(ProgressMode mode, double t_begin, double t_end, const char* unit)
     : mode_(mode),
       terminal_(::isatty(::fileno(stderr)) != 0),
       t_begin_(t_begin),
       t_end_(t_end),
       last_t_(t_begin),
+      unit_(unit),
       start_(std::chrono::steady_clock::now()),
       last_draw_(start_) {}
 
@@ -60,9 +61,11 @@ void Progress::draw(double t) {
   // pipe the updates are separate lines instead.
   const char* begin = terminal_ ? "\r\x1b[K" : "";
   const char* end = terminal_ ? "" : "\n";
-  std::fputs(fmt::format("{}[{}{}] {:3.0f}%  t = {:.4g} / {:.4g} s  elapsed {}{}{}", begin,
-                         std::string(filled, '#'), std::string(width - filled, '.'), 100 * fraction, t,
-                         t_end_, duration_text(elapsed), remaining, end)
+  const std::string where = unit_ != nullptr ? fmt::format("{:.0f} / {:.0f} {}", t, t_end_, unit_)
+                                             : fmt::format("t = {:.4g} / {:.4g} s", t, t_end_);
+  std::fputs(fmt::format("{}[{}{}] {:3.0f}%  {}  elapsed {}{}{}", begin, std::string(filled, '#'),
+                         std::string(width - filled, '.'), 100 * fraction, where, duration_text(elapsed),
+                         remaining, end)
                  .c_str(),
              stderr);
   std::fflush(stderr);

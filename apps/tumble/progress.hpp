@@ -13,7 +13,8 @@ enum class ProgressMode {
 
 class Progress {
  public:
-  Progress(ProgressMode mode, double t_begin, double t_end);
+  /// Counts simulated time from t_begin to t_end, or, with `unit` (e.g. "runs"), items of that unit.
+  Progress(ProgressMode mode, double t_begin, double t_end, const char* unit = nullptr);
   /// The run has reached simulated time t. Redraws at most ten times a second.
   void update(double t);
   /// Prints a line on stderr without leaving a broken bar behind (the bar is redrawn on the next update).
@@ -28,6 +29,7 @@ class Progress {
   bool terminal_;
   double t_begin_, t_end_;
   double last_t_;
+  const char* unit_ = nullptr;
   std::chrono::steady_clock::time_point start_, last_draw_;
   bool shown_ = false;
 };

@@ -106,11 +106,12 @@ void number_attribute(hid_t loc, const char* name, T value, hid_t type, const Ch
 inline void fixed_dataset(hid_t loc, const std::string& name, hid_t type, const std::vector<hsize_t>& shape,
                           const void* data, const Checker& check) {
   const std::string what = fmt::format("write {}", name);
-  const Handle space(check(H5Screate_simple(static_cast<int>(shape.size()), shape.data(), nullptr), what.c_str()),
-                     H5Sclose);
+  const Handle space(
+      check(H5Screate_simple(static_cast<int>(shape.size()), shape.data(), nullptr), what.c_str()), H5Sclose);
   const Handle props = untimed(H5P_DATASET_CREATE, what.c_str(), check);
   const Handle set(
-      check(H5Dcreate2(loc, name.c_str(), type, space.get(), H5P_DEFAULT, props.get(), H5P_DEFAULT), what.c_str()),
+      check(H5Dcreate2(loc, name.c_str(), type, space.get(), H5P_DEFAULT, props.get(), H5P_DEFAULT),
+            what.c_str()),
       H5Dclose);
   size_t n = 1;
   for (hsize_t d : shape) n *= d;

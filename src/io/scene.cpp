@@ -91,7 +91,7 @@ Scene read_scene(const toml::table& root, std::string text, const std::filesyste
   const std::string file = path.string();  // for messages; outlives every reader
   const TableReader r(root, "scene", file,
                       {"simulation", "output", "world", "bodies", "body_tables", "particles", "forces",
-                       "events"});
+                       "events", "ensemble"});
   read_simulation(r, scene);
   read_output(r, scene);
   NameTable names;

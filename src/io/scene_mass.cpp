@@ -7,6 +7,7 @@
 #include <cmath>
 #include <string_view>
 
+#include "mesh_cache.hpp"
 #include "scene_sections.hpp"
 #include "tumble/mass/density.hpp"
 #include "tumble/mass/mesh_decimate.hpp"
@@ -258,7 +259,7 @@ MassProperties solid(const TableReader& t, const Material& mat, const Pose& pose
     scene.input_files.push_back(path);
     TriangleMesh mesh;
     try {
-      LoadedMesh loaded = load_mesh(path, MeshLoadOptions{.scale = scale});
+      LoadedMesh loaded = load_mesh_cached(path, MeshLoadOptions{.scale = scale});
       for (auto& w : loaded.warnings)
         scene.warnings.push_back(location(t.file(), t.where("mesh")) + ": " + w);
       mesh = std::move(loaded.mesh);

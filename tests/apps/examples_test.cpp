@@ -42,8 +42,8 @@ TEST(Examples, EveryExampleRunsAndConservesWhatItShould) {
       if (e.path().extension() == ".toml") files.push_back(e.path());
     }
   }
-  EXPECT_EQ(files.size(), 11u) << "the issue's eight examples (the formulations counting three) and "
-                                  "debris_field";
+  EXPECT_EQ(files.size(), 12u) << "the issue's eight examples (the formulations counting three), "
+                                  "debris_field and t_handle_ensemble (its base scene)";
   for (const auto& f : files) {
     SCOPED_TRACE(f.string());
     const ExampleRun r = run(f);

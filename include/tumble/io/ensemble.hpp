@@ -9,7 +9,9 @@
 // counter-based generator: Salmon et al., SC'11) keyed by the seed and counting (i, variation, draw),
 // so a table never depends on the order the runs are done in, on threads or on MPI ranks, and run i
 // can be redone alone (a resumed study, the trajectory of a chosen run).
+#include <chrono>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -94,9 +96,10 @@ struct ColumnSummary {
   long count = 0;  ///< runs with a finite value
   double mean = 0, std = 0, min = 0, max = 0;
   double q05 = 0, q25 = 0, q50 = 0, q75 = 0, q95 = 0;  ///< quantiles (linear interpolation, type 7)
-  std::vector<long> histogram;                        ///< 20 equal bins from min to max
+  std::vector<long> histogram;                         ///< 20 equal bins from min to max
 };
-std::vector<ColumnSummary> summarize(const std::vector<std::string>& columns, const std::vector<EnsembleRow>& rows);
+std::vector<ColumnSummary> summarize(const std::vector<std::string>& columns,
+                                     const std::vector<EnsembleRow>& rows);
 
 /// Runs `runs` (indices) of the study on `threads` threads (0: one per core); each finished row goes to
 /// `done` (called under a lock, in any order); `stop()` is asked between runs (Ctrl-C). Returns the rows
@@ -104,5 +107,40 @@ std::vector<ColumnSummary> summarize(const std::vector<std::string>& columns, co
 std::vector<EnsembleRow> run_ensemble(const EnsembleStudy& study, const std::vector<long>& runs, int threads,
                                       const std::function<void(const EnsembleRow&)>& done,
                                       const std::function<bool()>& stop = {});
+
+}  // namespace tumble
+
+namespace tumble {
+
+/// Writes an ensemble's table (a row per run, in run order) and its summary, safely (temporaries renamed
+/// into place together): CSV `path` (the columns; %.17g; an undefined value empty) with
+/// PATH.summary.csv (column,count,mean,std,min,q05,q25,q50,q75,q95,max,histogram), or HDF5 (`hdf5`):
+/// group `runs` with a dataset (R) per column, group `summary` with one dataset per statistic, and the
+/// attributes scene (text), scene_file, seed, runs, tumble_version.
+void write_ensemble_table(const std::filesystem::path& path, bool hdf5, const EnsembleStudy& study,
+                          const std::vector<EnsembleRow>& rows, const std::string& tumble_version);
+
+/// Rows of an interrupted study, kept as they are computed (PATH.partial-RANK, binary: a header with
+/// the study's fingerprint and the row width, then (run, values) records), so that a rerun skips them.
+class PartialRows {
+ public:
+  /// Opens PATH.partial-RANK for appending (a new file if none or a foreign one).
+  PartialRows(const std::filesystem::path& path, int rank, const EnsembleStudy& study);
+  ~PartialRows();
+  PartialRows(const PartialRows&) = delete;
+  PartialRows& operator=(const PartialRows&) = delete;
+  void add(const EnsembleRow& row);  ///< flushed to the file every half second, and by flush()
+  void flush();
+  /// Every row that any rank's partial file beside PATH holds for this study (torn records ignored).
+  static std::vector<EnsembleRow> read_all(const std::filesystem::path& path, const EnsembleStudy& study);
+  /// Removes every PATH.partial-* (the study is complete).
+  static void remove_all(const std::filesystem::path& path);
+
+ private:
+  std::FILE* file_ = nullptr;
+  std::filesystem::path name_;
+  size_t width_ = 0;
+  std::chrono::steady_clock::time_point last_flush_;
+};
 
 }  // namespace tumble

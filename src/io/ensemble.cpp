@@ -1,0 +1,335 @@
+// EnsembleStudy: run i of a study is the scene file with run i's draws, read by the scene reader and
+// simulated alone; its row holds the draws and the outputs [ensemble.outputs] asks for.
+#include "tumble/io/ensemble.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <mutex>
+#include <thread>
+
+#include "ensemble_impl.hpp"
+#include "tumble/sim/drift_monitor.hpp"
+#include "tumble/sim/event_specs.hpp"
+#include "tumble/sim/output_fields.hpp"
+
+namespace tumble {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+struct EnsembleStudy::Impl {
+  std::string text;
+  std::filesystem::path path;
+  toml::table root;
+  ensemble::Study study;
+  Scene base;
+  std::vector<std::string> columns;
+  size_t draw_columns = 0;
+  std::vector<std::string> rows;  // the base scene's bodies and particles
+};
+
+namespace {
+
+/// Sets the number (or the numbers of the array) at `path` in a scene's TOML.
+void set_values(toml::table& root, const std::string& path, const std::vector<double>& values) {
+  std::string error;
+  toml::node* node = ensemble::resolve(root, path, error);
+  if (node == nullptr) throw InvalidArgument(error);  // checked when the study was read
+  if (values.size() > 1) {
+    toml::array& a = *node->as_array();
+    for (size_t k = 0; k < values.size(); ++k) a.replace(a.cbegin() + static_cast<std::ptrdiff_t>(k), values[k]);
+    return;
+  }
+  if (auto* f = node->as_floating_point()) {
+    f->get() = values[0];
+    return;
+  }
+  // An integer in the file: replaced by a float through its parent (a node cannot change its type).
+  if (path.back() == ']') {
+    const size_t open = path.rfind('[');
+    toml::array& a = *ensemble::resolve(root, path.substr(0, open), error)->as_array();
+    const auto k = static_cast<std::ptrdiff_t>(std::stoul(path.substr(open + 1)));
+    a.replace(a.cbegin() + k, values[0]);
+    return;
+  }
+  const size_t dot = path.rfind('.');
+  toml::table& parent =
+      dot == std::string::npos ? root : *ensemble::resolve(root, path.substr(0, dot), error)->as_table();
+  parent.insert_or_assign(dot == std::string::npos ? path : path.substr(dot + 1), values[0]);
+}
+
+std::uint64_t fnv1a(std::string_view text) {
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  for (const char c : text) h = (h ^ static_cast<unsigned char>(c)) * 0x100000001b3ull;
+  return h;
+}
+
+/// The output columns of a study whose base scene is `s` (after "run" and the draws).
+std::vector<std::string> output_columns(const EnsembleOutputs& o, const Scene& s, const std::vector<std::string>& rows) {
+  std::vector<std::string> c;
+  if (o.events) {
+    for (const EventSpec& e : s.events) {
+      for (const char* what : {"count", "first_t", "mean_interval"}) c.push_back(fmt::format("{}.{}", e.name, what));
+    }
+  }
+  for (const std::string& row : rows) {
+    for (const std::string& column : o.extrema) {
+      c.push_back(fmt::format("{}.{}_min", row, column));
+      c.push_back(fmt::format("{}.{}_max", row, column));
+    }
+  }
+  const std::vector<const BodyField*> finals =
+      o.final_fields.empty() ? std::vector<const BodyField*>{} : body_fields(o.final_fields);
+  for (const std::string& row : rows) {
+    for (const BodyField* f : finals) {
+      for (int k = 0; k < f->width; ++k) c.push_back(fmt::format("{}.{}_final", row, f->columns[static_cast<size_t>(k)]));
+    }
+  }
+  if (o.drift) {
+    c.emplace_back("energy_drift_max");
+    c.emplace_back("angular_momentum_drift_max");
+  }
+  return c;
+}
+
+}  // namespace
+
+EnsembleStudy::EnsembleStudy(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+EnsembleStudy::EnsembleStudy(EnsembleStudy&&) noexcept = default;
+EnsembleStudy& EnsembleStudy::operator=(EnsembleStudy&&) noexcept = default;
+EnsembleStudy::~EnsembleStudy() = default;
+
+EnsembleStudy EnsembleStudy::parse(const std::string& text, const std::filesystem::path& path) {
+  auto impl = std::make_unique<Impl>();
+  impl->text = text;
+  impl->path = path;
+  impl->root = scene::parse_toml(text, path.string());
+  impl->study = ensemble::read_study(impl->root, path.string());
+  impl->base = scene::read_scene(impl->root, text, path);
+  impl->rows = row_names(impl->base.model);
+  impl->columns = {"run"};
+  for (const Variation& v : impl->study.variations) {
+    impl->columns.insert(impl->columns.end(), v.names.begin(), v.names.end());
+  }
+  impl->draw_columns = impl->columns.size() - 1;
+  const auto outputs = output_columns(impl->study.outputs, impl->base, impl->rows);
+  impl->columns.insert(impl->columns.end(), outputs.begin(), outputs.end());
+  const EnsembleOutputs& o = impl->study.outputs;
+  if (o.worst > 0 && std::find(impl->columns.begin(), impl->columns.end(), o.worst_by) == impl->columns.end()) {
+    throw SceneError(fmt::format("{}: [ensemble.outputs] trajectories: by = \"{}\" is not a column of the table; "
+                                 "the columns are: {}",
+                                 path.string(), o.worst_by, fmt::join(impl->columns, ", ")));
+  }
+  return EnsembleStudy(std::move(impl));
+}
+
+EnsembleStudy EnsembleStudy::load(const std::filesystem::path& scene) {
+  return parse(scene::read_file(scene), scene);
+}
+
+long EnsembleStudy::runs() const { return impl_->study.runs; }
+std::uint64_t EnsembleStudy::seed() const { return impl_->study.seed; }
+const std::vector<Variation>& EnsembleStudy::variations() const { return impl_->study.variations; }
+const EnsembleOutputs& EnsembleStudy::outputs() const { return impl_->study.outputs; }
+const Scene& EnsembleStudy::base() const { return impl_->base; }
+std::uint64_t EnsembleStudy::fingerprint() const { return fnv1a(impl_->text); }
+const std::vector<std::string>& EnsembleStudy::columns() const { return impl_->columns; }
+
+std::vector<double> EnsembleStudy::draws(long i) const {
+  std::vector<double> out;
+  for (size_t v = 0; v < impl_->study.variations.size(); ++v) {
+    const std::vector<double> d = ensemble::draw(impl_->study, v, i);
+    out.insert(out.end(), d.begin(), d.end());
+  }
+  return out;
+}
+
+Scene EnsembleStudy::scene_of_run(long i) const {
+  toml::table root = impl_->root;
+  const std::vector<double> values = draws(i);
+  size_t at = 0;
+  std::vector<std::string> said;
+  for (const Variation& v : impl_->study.variations) {
+    const std::vector<double> x(values.begin() + static_cast<std::ptrdiff_t>(at),
+                                values.begin() + static_cast<std::ptrdiff_t>(at) + v.width);
+    at += static_cast<size_t>(v.width);
+    set_values(root, v.path, x);
+    said.push_back(fmt::format("{} = {}", v.path, x.size() == 1 ? fmt::format("{:.17g}", x[0]) : fmt::format("[{:.17g}]", fmt::join(x, ", "))));
+  }
+  try {
+    return scene::read_scene(root, impl_->text, impl_->path);
+  } catch (const SceneError& e) {
+    throw SceneError(fmt::format("run {} ({}): {}", i, fmt::join(said, ", "), e.what()));
+  }
+}
+
+EnsembleRow EnsembleStudy::run(long i, const std::function<void(const Scene&, const SystemState&)>& trajectory) const {
+  const Scene s = scene_of_run(i);
+  RunSettings settings = s.settings;
+  settings.threads = 1;  // the runs are spread over the threads, not the bodies of one run
+  const EnsembleOutputs& o = impl_->study.outputs;
+  const size_t R = impl_->rows.size();
+
+  // Extrema per (row, column), event tallies, drift maxima, the last state.
+  std::vector<std::pair<const BodyField*, int>> extrema;
+  for (const std::string& c : o.extrema) extrema.push_back(*find_column(c));
+  std::vector<double> lo(R * extrema.size(), kNaN), hi(R * extrema.size(), kNaN);
+  struct Tally {
+    long count = 0;
+    double first = kNaN, last = kNaN;
+  };
+  std::vector<Tally> tallies(s.events.size());
+  double energy_drift = kNaN, momentum_drift = kNaN;
+  SystemState last;
+  DriftMonitor monitor(s.model, s.initial, s.conserved, 0.0, settings);
+  RunHooks hooks;
+  hooks.events = make_events(s.model, s.events);
+  hooks.on_event = [&](const EventHit& hit) {
+    Tally& t = tallies[hit.index];
+    if (t.count++ == 0) t.first = hit.state.t;
+    t.last = hit.state.t;
+  };
+  const auto larger = [](double current, double x) { return std::isnan(current) || x > current ? x : current; };
+  hooks.on_sample = [&](const SystemState& state) {
+    const DriftSample d = monitor.observe(state);
+    if (d.energy_drift) energy_drift = larger(energy_drift, std::abs(*d.energy_drift));
+    if (d.angular_momentum_drift) momentum_drift = larger(momentum_drift, std::abs(*d.angular_momentum_drift));
+    double x[4];
+    for (size_t r = 0; r < R; ++r) {
+      for (size_t k = 0; k < extrema.size(); ++k) {
+        field_of_row(*extrema[k].first, s.model, state, r, x);
+        const double v = x[extrema[k].second];
+        double& l = lo[r * extrema.size() + k];
+        double& h = hi[r * extrema.size() + k];
+        l = std::isnan(l) || v < l ? v : l;
+        h = larger(h, v);
+      }
+    }
+    if (trajectory) trajectory(s, state);
+    last = state;
+    return true;
+  };
+  simulate(s.model, s.initial, settings, hooks);
+
+  EnsembleRow row;
+  row.run = i;
+  row.values = draws(i);
+  if (o.events) {
+    for (const Tally& t : tallies) {
+      row.values.push_back(static_cast<double>(t.count));
+      row.values.push_back(t.first);
+      row.values.push_back(t.count > 1 ? (t.last - t.first) / static_cast<double>(t.count - 1) : kNaN);
+    }
+  }
+  for (size_t r = 0; r < R; ++r) {
+    for (size_t k = 0; k < extrema.size(); ++k) {
+      row.values.push_back(lo[r * extrema.size() + k]);
+      row.values.push_back(hi[r * extrema.size() + k]);
+    }
+  }
+  const std::vector<const BodyField*> finals =
+      o.final_fields.empty() ? std::vector<const BodyField*>{} : body_fields(o.final_fields);  // none asked: none
+  for (size_t r = 0; r < R; ++r) {
+    for (const BodyField* f : finals) {
+      double x[4];
+      field_of_row(*f, s.model, last, r, x);
+      row.values.insert(row.values.end(), x, x + f->width);
+    }
+  }
+  if (o.drift) {
+    row.values.push_back(energy_drift);
+    row.values.push_back(momentum_drift);
+  }
+  return row;
+}
+
+std::vector<ColumnSummary> summarize(const std::vector<std::string>& columns, const std::vector<EnsembleRow>& rows) {
+  std::vector<ColumnSummary> out;
+  for (size_t c = 1; c < columns.size(); ++c) {
+    ColumnSummary s;
+    s.column = columns[c];
+    std::vector<double> x;
+    for (const EnsembleRow& r : rows) {
+      if (std::isfinite(r.values[c - 1])) x.push_back(r.values[c - 1]);
+    }
+    s.count = static_cast<long>(x.size());
+    s.histogram.assign(20, 0);
+    if (x.empty()) {
+      s.mean = s.std = s.min = s.max = s.q05 = s.q25 = s.q50 = s.q75 = s.q95 = kNaN;
+      out.push_back(std::move(s));
+      continue;
+    }
+    // Mean and standard deviation in two passes (the second on the deviations: no cancellation).
+    double sum = 0;
+    for (double v : x) sum += v;
+    s.mean = sum / static_cast<double>(x.size());
+    double squares = 0;
+    for (double v : x) squares += (v - s.mean) * (v - s.mean);
+    s.std = x.size() > 1 ? std::sqrt(squares / static_cast<double>(x.size() - 1)) : 0.0;
+    std::sort(x.begin(), x.end());
+    s.min = x.front();
+    s.max = x.back();
+    const auto quantile = [&x](double p) {  // linear between order statistics (R's type 7)
+      const double h = (static_cast<double>(x.size()) - 1) * p;
+      const auto k = static_cast<size_t>(std::floor(h));
+      return k + 1 < x.size() ? x[k] + (h - static_cast<double>(k)) * (x[k + 1] - x[k]) : x[k];
+    };
+    s.q05 = quantile(0.05);
+    s.q25 = quantile(0.25);
+    s.q50 = quantile(0.5);
+    s.q75 = quantile(0.75);
+    s.q95 = quantile(0.95);
+    const double width = (s.max - s.min) / 20;
+    for (double v : x) {
+      const auto bin = width > 0 ? std::min<long>(19, static_cast<long>((v - s.min) / width)) : 0;
+      ++s.histogram[static_cast<size_t>(bin)];
+    }
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+std::vector<EnsembleRow> run_ensemble(const EnsembleStudy& study, const std::vector<long>& runs, int threads,
+                                      const std::function<void(const EnsembleRow&)>& done,
+                                      const std::function<bool()>& stop) {
+  std::vector<std::optional<EnsembleRow>> rows(runs.size());
+  std::atomic<size_t> next{0};
+  std::atomic<bool> halt{false};
+  std::mutex lock;
+  std::exception_ptr failure;
+  const auto work = [&] {
+    for (;;) {
+      const size_t k = next.fetch_add(1);
+      if (k >= runs.size() || halt.load()) return;
+      try {
+        EnsembleRow row = study.run(runs[k]);
+        const std::lock_guard<std::mutex> guard(lock);
+        if (done) done(row);
+        rows[k] = std::move(row);
+        if (stop && stop()) halt = true;
+      } catch (...) {
+        const std::lock_guard<std::mutex> guard(lock);
+        if (!failure) failure = std::current_exception();
+        halt = true;
+        return;
+      }
+    }
+  };
+  const unsigned n = threads > 0 ? static_cast<unsigned>(threads) : std::max(1u, std::thread::hardware_concurrency());
+  {
+    std::vector<std::jthread> pool;
+    for (unsigned t = 1; t < std::min<size_t>(n, runs.size()); ++t) pool.emplace_back(work);
+    work();
+  }
+  if (failure) std::rethrow_exception(failure);
+  std::vector<EnsembleRow> out;
+  for (auto& r : rows) {
+    if (r) out.push_back(std::move(*r));
+  }
+  return out;
+}
+
+}  // namespace tumble

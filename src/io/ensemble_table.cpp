@@ -1,0 +1,222 @@
+// An ensemble's results on disk: the table and its summary (CSV or HDF5), and the partial rows that let
+// an interrupted study resume without recomputing what it finished.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+
+#include "hdf5_util.hpp"
+#include "staged_file.hpp"
+#include "tumble/error.hpp"
+#include "tumble/io/ensemble.hpp"
+
+namespace tumble {
+namespace {
+
+std::string number(double x) { return std::isfinite(x) ? fmt::format("{:.17g}", x) : std::string(); }
+
+void write_text(io::StagedFile& file, const std::string& text, const std::filesystem::path& path) {
+  std::ofstream out(file.temporary(), std::ios::binary);
+  out.write(text.data(), static_cast<std::streamsize>(text.size()));
+  out.close();
+  if (!out) {
+    file.abandon();
+    throw FileError(fmt::format("writing {} failed: {}; nothing was kept under that name", path.string(),
+                                std::strerror(errno)));
+  }
+}
+
+void write_csv(const std::filesystem::path& path, const EnsembleStudy& study, const std::vector<EnsembleRow>& rows,
+               const std::vector<ColumnSummary>& summary) {
+  std::string table = fmt::format("{}\n", fmt::join(study.columns(), ","));
+  for (const EnsembleRow& r : rows) {
+    table += std::to_string(r.run);
+    for (double v : r.values) {
+      table += ',';
+      table += number(v);
+    }
+    table += '\n';
+  }
+  std::string stats = "column,count,mean,std,min,q05,q25,q50,q75,q95,max,histogram\n";
+  for (const ColumnSummary& s : summary) {
+    stats += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", s.column, s.count, number(s.mean), number(s.std),
+                         number(s.min), number(s.q05), number(s.q25), number(s.q50), number(s.q75), number(s.q95),
+                         number(s.max), fmt::join(s.histogram, " "));
+  }
+  std::filesystem::path summary_path = path;
+  summary_path.replace_extension(".summary.csv");
+  io::StagedFile a(path), b(summary_path);
+  write_text(a, table, path);
+  write_text(b, stats, summary_path);
+  io::commit_together(a, b);
+}
+
+void write_hdf5(const std::filesystem::path& path, const EnsembleStudy& study, const std::vector<EnsembleRow>& rows,
+                const std::vector<ColumnSummary>& summary, const std::string& version) {
+  io::StagedFile staged(path, /*direct_allowed=*/false);
+  io::Hdf5DriverState driver;
+  const io::Checker check{path.string(), &driver};
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  {
+    const io::Handle access(check(io::hdf5_recording_fapl(&driver), "set up its file driver"), H5Pclose);
+    const io::Handle file(
+        check(H5Fcreate(staged.temporary().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get()), "create the file"),
+        H5Fclose);
+    const hid_t root = file.get();
+    io::string_attribute(root, "scene", study.base().text, check);
+    io::string_attribute(root, "scene_file", study.base().path.string(), check);
+    io::string_attribute(root, "tumble_version", version, check);
+    io::number_attribute(root, "seed", static_cast<double>(study.seed()), H5T_NATIVE_DOUBLE, check);
+    io::number_attribute(root, "runs", static_cast<double>(study.runs()), H5T_NATIVE_DOUBLE, check);
+    const auto group = [&](const char* name) {
+      const io::Handle props = io::untimed(H5P_GROUP_CREATE, "create a group", check);
+      return io::Handle(check(H5Gcreate2(root, name, H5P_DEFAULT, props.get(), H5P_DEFAULT), "create a group"),
+                        H5Gclose);
+    };
+    const hsize_t R = rows.size();
+    {
+      const io::Handle runs = group("runs");
+      std::vector<double> column(R);
+      for (size_t c = 0; c < study.columns().size(); ++c) {
+        for (size_t r = 0; r < R; ++r) column[r] = c == 0 ? static_cast<double>(rows[r].run) : rows[r].values[c - 1];
+        io::fixed_dataset(runs.get(), study.columns()[c], H5T_NATIVE_DOUBLE, {R}, column.data(), check);
+      }
+    }
+    {
+      const io::Handle stats = group("summary");
+      std::vector<std::string> names;
+      std::vector<double> count, mean, sd, lo, q05, q25, q50, q75, q95, hi;
+      std::vector<long long> histogram;
+      for (const ColumnSummary& s : summary) {
+        names.push_back(s.column);
+        count.push_back(static_cast<double>(s.count));
+        mean.push_back(s.mean);
+        sd.push_back(s.std);
+        lo.push_back(s.min);
+        q05.push_back(s.q05);
+        q25.push_back(s.q25);
+        q50.push_back(s.q50);
+        q75.push_back(s.q75);
+        q95.push_back(s.q95);
+        hi.push_back(s.max);
+        histogram.insert(histogram.end(), s.histogram.begin(), s.histogram.end());
+      }
+      const hsize_t C = summary.size();
+      io::string_dataset(stats.get(), "column", names, check);
+      const std::pair<const char*, std::vector<double>*> series[] = {
+          {"count", &count}, {"mean", &mean}, {"std", &sd},   {"min", &lo},   {"q05", &q05},
+          {"q25", &q25},     {"q50", &q50},   {"q75", &q75}, {"q95", &q95}, {"max", &hi}};
+      for (const auto& [name, v] : series) io::fixed_dataset(stats.get(), name, H5T_NATIVE_DOUBLE, {C}, v->data(), check);
+      io::fixed_dataset(stats.get(), "histogram", H5T_NATIVE_LLONG, {C, 20}, histogram.data(), check);
+    }
+    check(H5Fflush(root, H5F_SCOPE_LOCAL), "write the file");
+    driver.closing = true;
+  }
+  if (driver.error != 0) {
+    staged.abandon();
+    throw FileError(fmt::format("writing {} failed: {}; nothing was kept under that name", path.string(),
+                                std::strerror(driver.error)));
+  }
+  staged.commit();
+}
+
+constexpr char kMagic[8] = {'T', 'M', 'B', 'L', 'P', 'A', 'R', 'T'};
+
+std::filesystem::path partial_name(const std::filesystem::path& path, int rank) {
+  std::filesystem::path p = path;
+  p += fmt::format(".partial-{}", rank);
+  return p;
+}
+
+}  // namespace
+
+void write_ensemble_table(const std::filesystem::path& path, bool hdf5, const EnsembleStudy& study,
+                          const std::vector<EnsembleRow>& rows, const std::string& tumble_version) {
+  const std::vector<ColumnSummary> summary = summarize(study.columns(), rows);
+  if (hdf5) {
+    write_hdf5(path, study, rows, summary, tumble_version);
+  } else {
+    write_csv(path, study, rows, summary);
+  }
+}
+
+PartialRows::PartialRows(const std::filesystem::path& path, int rank, const EnsembleStudy& study)
+    : name_(partial_name(path, rank)), width_(study.columns().size() - 1), last_flush_(std::chrono::steady_clock::now()) {
+  const std::uint64_t head[2] = {study.fingerprint(), width_};
+  // Keep a file of this study (its rows are read by read_all), replace anything else.
+  bool ours = false;
+  if (std::FILE* in = std::fopen(name_.c_str(), "rb")) {
+    char magic[8];
+    std::uint64_t h[2];
+    ours = std::fread(magic, 1, 8, in) == 8 && std::memcmp(magic, kMagic, 8) == 0 && std::fread(h, 8, 2, in) == 2 &&
+           h[0] == head[0] && h[1] == head[1];
+    std::fclose(in);
+  }
+  file_ = std::fopen(name_.c_str(), ours ? "ab" : "wb");
+  if (file_ == nullptr) throw FileError(fmt::format("cannot write {}: {}", name_.string(), std::strerror(errno)));
+  if (!ours && (std::fwrite(kMagic, 1, 8, file_) != 8 || std::fwrite(head, 8, 2, file_) != 2)) {
+    throw FileError(fmt::format("writing {} failed: {}", name_.string(), std::strerror(errno)));
+  }
+}
+
+PartialRows::~PartialRows() {
+  if (file_ != nullptr) std::fclose(file_);
+}
+
+void PartialRows::add(const EnsembleRow& row) {
+  const auto run = static_cast<std::int64_t>(row.run);
+  if (std::fwrite(&run, 8, 1, file_) != 1 || std::fwrite(row.values.data(), 8, width_, file_) != width_) {
+    throw FileError(fmt::format("writing {} failed: {}", name_.string(), std::strerror(errno)));
+  }
+  if (std::chrono::steady_clock::now() - last_flush_ > std::chrono::milliseconds(500)) flush();
+}
+
+void PartialRows::flush() {
+  std::fflush(file_);
+  last_flush_ = std::chrono::steady_clock::now();
+}
+
+std::vector<EnsembleRow> PartialRows::read_all(const std::filesystem::path& path, const EnsembleStudy& study) {
+  std::vector<EnsembleRow> rows;
+  const std::filesystem::path dir = path.parent_path().empty() ? "." : path.parent_path();
+  const std::string prefix = path.filename().string() + ".partial-";
+  std::error_code ec;
+  const size_t width = study.columns().size() - 1;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+    if (entry.path().filename().string().rfind(prefix, 0) != 0) continue;
+    std::ifstream in(entry.path(), std::ios::binary);
+    char magic[8];
+    std::uint64_t head[2];
+    if (!in.read(magic, 8) || std::memcmp(magic, kMagic, 8) != 0 || !in.read(reinterpret_cast<char*>(head), 16) ||
+        head[0] != study.fingerprint() || head[1] != width) {
+      continue;  // another study's, or torn: its runs are computed again
+    }
+    for (;;) {
+      std::int64_t run = 0;
+      EnsembleRow row;
+      row.values.resize(width);
+      if (!in.read(reinterpret_cast<char*>(&run), 8) ||
+          !in.read(reinterpret_cast<char*>(row.values.data()), static_cast<std::streamsize>(8 * width))) {
+        break;
+      }
+      if (run < 0 || run >= study.runs()) break;
+      row.run = run;
+      rows.push_back(std::move(row));
+    }
+  }
+  return rows;
+}
+
+void PartialRows::remove_all(const std::filesystem::path& path) {
+  const std::filesystem::path dir = path.parent_path().empty() ? "." : path.parent_path();
+  const std::string prefix = path.filename().string() + ".partial-";
+  std::error_code ec;
+  std::vector<std::filesystem::path> doomed;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+    if (entry.path().filename().string().rfind(prefix, 0) == 0) doomed.push_back(entry.path());
+  }
+  for (const auto& p : doomed) std::filesystem::remove(p, ec);
+}
+
+}  // namespace tumble
