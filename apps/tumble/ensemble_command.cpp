@@ -53,7 +53,8 @@ std::vector<long> traced_runs(const EnsembleStudy& study, const std::vector<Ense
     std::sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) {
       return a.first != b.first ? a.first > b.first : a.second < b.second;
     });
-    for (size_t j = 0; j < ranked.size() && j < static_cast<size_t>(o.worst); ++j) chosen.insert(ranked[j].second);
+    for (size_t j = 0; j < ranked.size() && j < static_cast<size_t>(o.worst); ++j)
+      chosen.insert(ranked[j].second);
   }
   return {chosen.begin(), chosen.end()};
 }
@@ -67,7 +68,12 @@ std::filesystem::path write_trajectory(const EnsembleStudy& study, long i, const
   std::optional<DriftMonitor> monitor;
   study.run(i, [&](const Scene& s, const SystemState& state) {
     if (!writer) {
-      TrajectoryInfo info{s.text, s.path.string(), TUMBLE_VERSION, s.settings, s.output_fields, false,
+      TrajectoryInfo info{s.text,
+                          s.path.string(),
+                          TUMBLE_VERSION,
+                          s.settings,
+                          s.output_fields,
+                          false,
                           std::make_shared<const SceneGeometry>(scene_geometry(s))};
       writer = hdf5 ? make_hdf5_writer(file, s.model, info)
                     : make_csv_writer(file, diagnostics_path(file), s.model, info);
@@ -84,10 +90,12 @@ int ensemble(const EnsembleOptions& o, const Ranks& ranks) {
   const EnsembleStudy study = EnsembleStudy::load(o.scene);
   const bool hdf5 = o.format.empty() ? is_hdf5_name(o.output) : o.format == "hdf5";
   std::filesystem::path out = o.output;
-  if (out.empty()) out = std::filesystem::path(o.scene).stem().string() + (hdf5 ? "_ensemble.h5" : "_ensemble.csv");
+  if (out.empty())
+    out = std::filesystem::path(o.scene).stem().string() + (hdf5 ? "_ensemble.h5" : "_ensemble.csv");
   for (const auto& input : study.base().input_files) {
     if (same_file(out, input)) {
-      throw InvalidArgument(fmt::format("-o {} is the scene's input {}: give another file", out.string(), input.string()));
+      throw InvalidArgument(
+          fmt::format("-o {} is the scene's input {}: give another file", out.string(), input.string()));
     }
   }
   const bool root = ranks.rank == 0;
@@ -109,7 +117,8 @@ int ensemble(const EnsembleOptions& o, const Ranks& ranks) {
   }
   // A row computed twice (two partial files) is the same row: keep one.
   std::sort(mine.begin(), mine.end(), [](const auto& a, const auto& b) { return a.run < b.run; });
-  mine.erase(std::unique(mine.begin(), mine.end(), [](const auto& a, const auto& b) { return a.run == b.run; }),
+  mine.erase(std::unique(mine.begin(), mine.end(),
+                         [](const auto& a, const auto& b) { return a.run == b.run; }),
              mine.end());
   if (root && !o.quiet) {
     const auto already = std::count(finished.begin(), finished.end(), true);
@@ -121,7 +130,9 @@ int ensemble(const EnsembleOptions& o, const Ranks& ranks) {
   }
 
   PartialRows partial(out, ranks.rank, study);
-  Progress progress(o.quiet || !root ? ProgressMode::never : o.progress ? ProgressMode::always : ProgressMode::automatic,
+  Progress progress(o.quiet || !root ? ProgressMode::never
+                    : o.progress     ? ProgressMode::always
+                                     : ProgressMode::automatic,
                     0.0, static_cast<double>(todo.size()), "runs");
   const InterruptGuard interrupt;
   long count = 0;
@@ -143,10 +154,11 @@ int ensemble(const EnsembleOptions& o, const Ranks& ranks) {
   progress.finish();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   if (interrupt.requested()) {
-    fmt::print(stderr,
-               "tumble: interrupted after {} of {} runs; they are kept in {}.partial-*: run the same command again "
-               "to finish the study\n",
-               computed.size() + mine.size(), study.runs(), out.string());
+    fmt::print(
+        stderr,
+        "tumble: interrupted after {} of {} runs; they are kept in {}.partial-*: run the same command again "
+        "to finish the study\n",
+        computed.size() + mine.size(), study.runs(), out.string());
     return 128 + interrupt.signal();
   }
   mine.insert(mine.end(), std::make_move_iterator(computed.begin()), std::make_move_iterator(computed.end()));
@@ -174,8 +186,10 @@ int ensemble(const EnsembleOptions& o, const Ranks& ranks) {
       for (size_t c = first_output; c < stats.size(); ++c) {
         const ColumnSummary& s = stats[c];
         if (s.count == 0) continue;
-        fmt::print(human, "  {:<28} mean {:<12.6g} std {:<10.3g} q05 {:<12.6g} q50 {:<12.6g} q95 {:<12.6g} ({} runs)\n",
-                   s.column, s.mean, s.std, s.q05, s.q50, s.q95, s.count);
+        fmt::print(
+            human,
+            "  {:<28} mean {:<12.6g} std {:<10.3g} q05 {:<12.6g} q50 {:<12.6g} q95 {:<12.6g} ({} runs)\n",
+            s.column, s.mean, s.std, s.q05, s.q50, s.q95, s.count);
       }
     }
   }
@@ -209,7 +223,8 @@ Runner add_ensemble_command(CLI::App& app) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--fresh", o->fresh, "start again, ignoring the rows an interrupted run of this study kept");
   auto* quiet = cmd->add_flag("--quiet,-q", o->quiet, "no progress bar and no summary; errors only");
-  cmd->add_flag("--progress", o->progress, "show the progress bar even when stderr is not a terminal")->excludes(quiet);
+  cmd->add_flag("--progress", o->progress, "show the progress bar even when stderr is not a terminal")
+      ->excludes(quiet);
   return [o] {
     const Ranks ranks = start_ranks();
     int status = 0;

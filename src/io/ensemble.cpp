@@ -40,7 +40,8 @@ void set_values(toml::table& root, const std::string& path, const std::vector<do
   if (node == nullptr) throw InvalidArgument(error);  // checked when the study was read
   if (values.size() > 1) {
     toml::array& a = *node->as_array();
-    for (size_t k = 0; k < values.size(); ++k) a.replace(a.cbegin() + static_cast<std::ptrdiff_t>(k), values[k]);
+    for (size_t k = 0; k < values.size(); ++k)
+      a.replace(a.cbegin() + static_cast<std::ptrdiff_t>(k), values[k]);
     return;
   }
   if (auto* f = node->as_floating_point()) {
@@ -68,11 +69,13 @@ std::uint64_t fnv1a(std::string_view text) {
 }
 
 /// The output columns of a study whose base scene is `s` (after "run" and the draws).
-std::vector<std::string> output_columns(const EnsembleOutputs& o, const Scene& s, const std::vector<std::string>& rows) {
+std::vector<std::string> output_columns(const EnsembleOutputs& o, const Scene& s,
+                                        const std::vector<std::string>& rows) {
   std::vector<std::string> c;
   if (o.events) {
     for (const EventSpec& e : s.events) {
-      for (const char* what : {"count", "first_t", "mean_interval"}) c.push_back(fmt::format("{}.{}", e.name, what));
+      for (const char* what : {"count", "first_t", "mean_interval"})
+        c.push_back(fmt::format("{}.{}", e.name, what));
     }
   }
   for (const std::string& row : rows) {
@@ -81,11 +84,12 @@ std::vector<std::string> output_columns(const EnsembleOutputs& o, const Scene& s
       c.push_back(fmt::format("{}.{}_max", row, column));
     }
   }
-  const std::vector<const BodyField*> finals =
-      o.final_fields.empty() ? std::vector<const BodyField*>{} : body_fields(o.final_fields);
+  const std::vector<const BodyField*> finals = o.final_fields.empty() ? std::vector<const BodyField*>{}
+                                                                      : body_fields(o.final_fields);
   for (const std::string& row : rows) {
     for (const BodyField* f : finals) {
-      for (int k = 0; k < f->width; ++k) c.push_back(fmt::format("{}.{}_final", row, f->columns[static_cast<size_t>(k)]));
+      for (int k = 0; k < f->width; ++k)
+        c.push_back(fmt::format("{}.{}_final", row, f->columns[static_cast<size_t>(k)]));
     }
   }
   if (o.drift) {
@@ -118,10 +122,12 @@ EnsembleStudy EnsembleStudy::parse(const std::string& text, const std::filesyste
   const auto outputs = output_columns(impl->study.outputs, impl->base, impl->rows);
   impl->columns.insert(impl->columns.end(), outputs.begin(), outputs.end());
   const EnsembleOutputs& o = impl->study.outputs;
-  if (o.worst > 0 && std::find(impl->columns.begin(), impl->columns.end(), o.worst_by) == impl->columns.end()) {
-    throw SceneError(fmt::format("{}: [ensemble.outputs] trajectories: by = \"{}\" is not a column of the table; "
-                                 "the columns are: {}",
-                                 path.string(), o.worst_by, fmt::join(impl->columns, ", ")));
+  if (o.worst > 0 &&
+      std::find(impl->columns.begin(), impl->columns.end(), o.worst_by) == impl->columns.end()) {
+    throw SceneError(
+        fmt::format("{}: [ensemble.outputs] trajectories: by = \"{}\" is not a column of the table; "
+                    "the columns are: {}",
+                    path.string(), o.worst_by, fmt::join(impl->columns, ", ")));
   }
   return EnsembleStudy(std::move(impl));
 }
@@ -157,7 +163,9 @@ Scene EnsembleStudy::scene_of_run(long i) const {
                                 values.begin() + static_cast<std::ptrdiff_t>(at) + v.width);
     at += static_cast<size_t>(v.width);
     set_values(root, v.path, x);
-    said.push_back(fmt::format("{} = {}", v.path, x.size() == 1 ? fmt::format("{:.17g}", x[0]) : fmt::format("[{:.17g}]", fmt::join(x, ", "))));
+    said.push_back(fmt::format("{} = {}", v.path,
+                               x.size() == 1 ? fmt::format("{:.17g}", x[0])
+                                             : fmt::format("[{:.17g}]", fmt::join(x, ", "))));
   }
   try {
     return scene::read_scene(root, impl_->text, impl_->path);
@@ -166,7 +174,8 @@ Scene EnsembleStudy::scene_of_run(long i) const {
   }
 }
 
-EnsembleRow EnsembleStudy::run(long i, const std::function<void(const Scene&, const SystemState&)>& trajectory) const {
+EnsembleRow EnsembleStudy::run(
+    long i, const std::function<void(const Scene&, const SystemState&)>& trajectory) const {
   const Scene s = scene_of_run(i);
   RunSettings settings = s.settings;
   settings.threads = 1;  // the runs are spread over the threads, not the bodies of one run
@@ -192,11 +201,14 @@ EnsembleRow EnsembleStudy::run(long i, const std::function<void(const Scene&, co
     if (t.count++ == 0) t.first = hit.state.t;
     t.last = hit.state.t;
   };
-  const auto larger = [](double current, double x) { return std::isnan(current) || x > current ? x : current; };
+  const auto larger = [](double current, double x) {
+    return std::isnan(current) || x > current ? x : current;
+  };
   hooks.on_sample = [&](const SystemState& state) {
     const DriftSample d = monitor.observe(state);
     if (d.energy_drift) energy_drift = larger(energy_drift, std::abs(*d.energy_drift));
-    if (d.angular_momentum_drift) momentum_drift = larger(momentum_drift, std::abs(*d.angular_momentum_drift));
+    if (d.angular_momentum_drift)
+      momentum_drift = larger(momentum_drift, std::abs(*d.angular_momentum_drift));
     double x[4];
     for (size_t r = 0; r < R; ++r) {
       for (size_t k = 0; k < extrema.size(); ++k) {
@@ -230,8 +242,9 @@ EnsembleRow EnsembleStudy::run(long i, const std::function<void(const Scene&, co
       row.values.push_back(hi[r * extrema.size() + k]);
     }
   }
-  const std::vector<const BodyField*> finals =
-      o.final_fields.empty() ? std::vector<const BodyField*>{} : body_fields(o.final_fields);  // none asked: none
+  const std::vector<const BodyField*> finals = o.final_fields.empty()
+                                                   ? std::vector<const BodyField*>{}
+                                                   : body_fields(o.final_fields);  // none asked: none
   for (size_t r = 0; r < R; ++r) {
     for (const BodyField* f : finals) {
       double x[4];
@@ -246,7 +259,8 @@ EnsembleRow EnsembleStudy::run(long i, const std::function<void(const Scene&, co
   return row;
 }
 
-std::vector<ColumnSummary> summarize(const std::vector<std::string>& columns, const std::vector<EnsembleRow>& rows) {
+std::vector<ColumnSummary> summarize(const std::vector<std::string>& columns,
+                                     const std::vector<EnsembleRow>& rows) {
   std::vector<ColumnSummary> out;
   for (size_t c = 1; c < columns.size(); ++c) {
     ColumnSummary s;
@@ -318,7 +332,8 @@ std::vector<EnsembleRow> run_ensemble(const EnsembleStudy& study, const std::vec
       }
     }
   };
-  const unsigned n = threads > 0 ? static_cast<unsigned>(threads) : std::max(1u, std::thread::hardware_concurrency());
+  const unsigned n = threads > 0 ? static_cast<unsigned>(threads)
+                                 : std::max(1u, std::thread::hardware_concurrency());
   {
     std::vector<std::jthread> pool;
     for (unsigned t = 1; t < std::min<size_t>(n, runs.size()); ++t) pool.emplace_back(work);

@@ -70,7 +70,8 @@ std::vector<double> draw(const Study& study, size_t v, long i) {
       // Mixed radix over the grid variations in file order, the first fastest; runs beyond the grid repeat it.
       long place = i % study.grid_points;
       for (size_t g = 0; g < v; ++g) {
-        if (study.variations[g].kind == K::grid) place /= static_cast<long>(study.variations[g].values.size());
+        if (study.variations[g].kind == K::grid)
+          place /= static_cast<long>(study.variations[g].values.size());
       }
       return {x.values[static_cast<size_t>(place) % x.values.size()]};
     }

@@ -13,8 +13,8 @@
 namespace tumble::ensemble {
 namespace {
 
-constexpr std::string_view kKinds[] = {"uniform",   "normal",    "lognormal", "truncated_normal",
-                                       "rotation",  "direction", "list",      "grid"};
+constexpr std::string_view kKinds[] = {"uniform",  "normal",    "lognormal", "truncated_normal",
+                                       "rotation", "direction", "list",      "grid"};
 
 /// The arrays of tables whose elements a path may name by their `name`.
 bool named_array(std::string_view key) {
@@ -39,9 +39,10 @@ toml::node* resolve(toml::table& root, const std::string& path, std::string& err
     const std::string key(rest.substr(0, end));
     node = table->get(key);
     if (node == nullptr) {
-      error = fmt::format("{}{} is not in the scene: write it in the file (with its default value if need be) so "
-                          "that the ensemble can vary it",
-                          walked.empty() ? std::string() : fmt::format("{}.", walked), key);
+      error = fmt::format(
+          "{}{} is not in the scene: write it in the file (with its default value if need be) so "
+          "that the ensemble can vary it",
+          walked.empty() ? std::string() : fmt::format("{}.", walked), key);
       return nullptr;
     }
     walked = walked.empty() ? key : fmt::format("{}.{}", walked, key);
@@ -55,14 +56,16 @@ toml::node* resolve(toml::table& root, const std::string& path, std::string& err
         const auto name = item.as_table()->get_as<std::string>("name");
         if (!name) continue;
         const std::string& n = name->get();
-        if (rest.substr(0, n.size()) == n && (rest.size() == n.size() || rest[n.size()] == '.' ||
-                                              rest[n.size()] == '[') && n.size() > length) {
+        if (rest.substr(0, n.size()) == n &&
+            (rest.size() == n.size() || rest[n.size()] == '.' || rest[n.size()] == '[') &&
+            n.size() > length) {
           found = &item;
           length = n.size();
         }
       }
       if (found == nullptr) {
-        error = fmt::format("no element of {} is named \"{}\"", walked, rest.substr(0, rest.find_first_of(".[")));
+        error =
+            fmt::format("no element of {} is named \"{}\"", walked, rest.substr(0, rest.find_first_of(".[")));
         return nullptr;
       }
       walked = fmt::format("{}.{}", walked, rest.substr(0, length));
@@ -72,15 +75,18 @@ toml::node* resolve(toml::table& root, const std::string& path, std::string& err
     while (!rest.empty() && rest.front() == '[') {
       const size_t close = rest.find(']');
       size_t index = 0;
-      const auto [p, ec] = std::from_chars(rest.data() + 1, rest.data() + (close == std::string_view::npos ? 1 : close), index);
+      const auto [p, ec] = std::from_chars(
+          rest.data() + 1, rest.data() + (close == std::string_view::npos ? 1 : close), index);
       if (close == std::string_view::npos || ec != std::errc() || p != rest.data() + close) {
-        error = fmt::format("'{}' is not an index [k] in {}", rest.substr(0, close == std::string_view::npos ? rest.size() : close + 1), path);
+        error = fmt::format("'{}' is not an index [k] in {}",
+                            rest.substr(0, close == std::string_view::npos ? rest.size() : close + 1), path);
         return nullptr;
       }
       toml::array* array = node->as_array();
       if (array == nullptr || index >= array->size()) {
         error = fmt::format("{}[{}] is not in the scene ({} {})", walked, index, walked,
-                            array ? fmt::format("has {} elements", array->size()) : std::string("is not an array"));
+                            array ? fmt::format("has {} elements", array->size())
+                                  : std::string("is not an array"));
         return nullptr;
       }
       node = array->get(index);
@@ -102,9 +108,11 @@ Study read_study(const toml::table& root, const std::string& file) {
   Study s;
   const scene::TableReader top = scene::TableReader::any_keys(root, "scene", file);
   const auto e = top.table("ensemble", "[ensemble]", {"runs", "seed", "vary", "outputs"});
-  if (!e) top.fail_here("no [ensemble] table: add one with runs = N and [[ensemble.vary]] (docs/ensembles.md)");
+  if (!e)
+    top.fail_here("no [ensemble] table: add one with runs = N and [[ensemble.vary]] (docs/ensembles.md)");
   const double seed = e->number("seed", 0.0, "", scene::Domain::non_negative);
-  if (seed != std::floor(seed) || seed >= 0x1p53) e->fail_at("seed", "seed must be a whole number below 2^53");
+  if (seed != std::floor(seed) || seed >= 0x1p53)
+    e->fail_at("seed", "seed must be a whole number below 2^53");
   s.seed = static_cast<std::uint64_t>(seed);
 
   toml::table mutable_root = root;  // paths are checked against a copy
@@ -113,11 +121,13 @@ Study read_study(const toml::table& root, const std::string& file) {
   bool any_grid = false;
   for (size_t i = 0; i < vary.size(); ++i) {
     const scene::TableReader v(*vary[i], e->context().child_numbered(" vary #", i + 1), file,
-                               {"path", "distribution", "low", "high", "mean", "std", "mu", "sigma", "magnitude",
-                                "values"});
+                               {"path", "distribution", "low", "high", "mean", "std", "mu", "sigma",
+                                "magnitude", "values"});
     Variation x;
-    x.path = std::string(v.required_string("path", "the value to vary, e.g. path = \"bodies.handle.angular_velocity[1]\""));
-    const std::string_view kind = v.required_string("distribution", "its distribution, e.g. distribution = \"normal\"");
+    x.path = std::string(
+        v.required_string("path", "the value to vary, e.g. path = \"bodies.handle.angular_velocity[1]\""));
+    const std::string_view kind =
+        v.required_string("distribution", "its distribution, e.g. distribution = \"normal\"");
     const auto k = std::find(std::begin(kKinds), std::end(kKinds), kind);
     if (k == std::end(kKinds)) {
       v.fail_at("distribution", fmt::format("unknown distribution \"{}\"; choose \"{}\"", kind,
@@ -134,7 +144,8 @@ Study read_study(const toml::table& root, const std::string& file) {
         need("high");
         x.low = *v.number("low", "");
         x.high = *v.number("high", "");
-        if (!(x.low < x.high)) v.fail_at("high", fmt::format("high ({}) must be above low ({})", x.high, x.low));
+        if (!(x.low < x.high))
+          v.fail_at("high", fmt::format("high ({}) must be above low ({})", x.high, x.low));
         break;
       case K::normal:
         need("mean");
@@ -157,7 +168,8 @@ Study read_study(const toml::table& root, const std::string& file) {
         x.std = *v.number("std", "", scene::Domain::positive);
         x.low = *v.number("low", "");
         x.high = *v.number("high", "");
-        if (!(x.low < x.high)) v.fail_at("high", fmt::format("high ({}) must be above low ({})", x.high, x.low));
+        if (!(x.low < x.high))
+          v.fail_at("high", fmt::format("high ({}) must be above low ({})", x.high, x.low));
         break;
       case K::rotation:
         x.width = 4;
@@ -193,11 +205,11 @@ Study read_study(const toml::table& root, const std::string& file) {
       x.names = {x.path};
     } else {
       const toml::array* a = target->as_array();
-      const bool numbers =
-          a != nullptr && std::all_of(a->begin(), a->end(), [](const toml::node& n) { return n.is_number(); });
+      const bool numbers = a != nullptr && std::all_of(a->begin(), a->end(),
+                                                       [](const toml::node& n) { return n.is_number(); });
       if (!numbers || a->size() != static_cast<size_t>(x.width)) {
-        v.fail_at("path", fmt::format("a {} distribution sets {} numbers: {} must be an array of {} ({})", kind,
-                                      x.width, x.path, x.width,
+        v.fail_at("path", fmt::format("a {} distribution sets {} numbers: {} must be an array of {} ({})",
+                                      kind, x.width, x.path, x.width,
                                       x.width == 4 ? "a quaternion [w, x, y, z]" : "a vector [x, y, z]"));
       }
       for (int c = 0; c < x.width; ++c) x.names.push_back(fmt::format("{}[{}]", x.path, c));
@@ -209,7 +221,8 @@ Study read_study(const toml::table& root, const std::string& file) {
   }
   if (e->has("runs")) {
     const double runs = e->required_number("runs", "", scene::Domain::positive);
-    if (runs != std::floor(runs) || runs > 0x1p40) e->fail_at("runs", "runs must be a whole number from 1 to 2^40");
+    if (runs != std::floor(runs) || runs > 0x1p40)
+      e->fail_at("runs", "runs must be a whole number from 1 to 2^40");
     s.runs = static_cast<long>(runs);
   } else if (any_grid) {
     s.runs = grid_points;  // the full factorial, once
@@ -222,7 +235,8 @@ Study read_study(const toml::table& root, const std::string& file) {
                               {"final", "extrema", "events", "drift", "trajectories"})) {
     if (const auto* a = o->node("final") ? o->node("final")->as_array() : nullptr) {
       for (const toml::node& n : *a) s.outputs.final_fields.push_back(n.value<std::string>().value_or(""));
-      if (s.outputs.final_fields.empty()) o->fail_at("final", "final is empty: name output fields, e.g. [\"position\"]");
+      if (s.outputs.final_fields.empty())
+        o->fail_at("final", "final is empty: name output fields, e.g. [\"position\"]");
       try {
         body_fields(s.outputs.final_fields);
       } catch (const InvalidArgument& error) {
@@ -232,17 +246,22 @@ Study read_study(const toml::table& root, const std::string& file) {
     if (const auto* a = o->node("extrema") ? o->node("extrema")->as_array() : nullptr) {
       for (const toml::node& n : *a) {
         const std::string c = n.value<std::string>().value_or("");
-        if (!find_column(c)) o->fail_at("extrema", fmt::format("no output column \"{}\" (e.g. \"w2\", \"com_z\"; docs/scene-format.md)", c));
+        if (!find_column(c))
+          o->fail_at("extrema",
+                     fmt::format("no output column \"{}\" (e.g. \"w2\", \"com_z\"; docs/scene-format.md)",
+                                 c));
         s.outputs.extrema.push_back(c);
       }
     }
     s.outputs.events = o->boolean("events").value_or(true);
     s.outputs.drift = o->boolean("drift").value_or(true);
-    if (const auto t = o->table("trajectories", o->context().child(" trajectories"), {"every", "worst", "by"})) {
+    if (const auto t =
+            o->table("trajectories", o->context().child(" trajectories"), {"every", "worst", "by"})) {
       s.outputs.every = static_cast<long>(t->number("every", 0.0, "", scene::Domain::non_negative));
       s.outputs.worst = static_cast<long>(t->number("worst", 0.0, "", scene::Domain::non_negative));
       if (s.outputs.worst > 0) {
-        s.outputs.worst_by = std::string(t->required_string("by", "the column that ranks the runs, e.g. by = \"energy_drift_max\""));
+        s.outputs.worst_by = std::string(
+            t->required_string("by", "the column that ranks the runs, e.g. by = \"energy_drift_max\""));
       }
     }
   }

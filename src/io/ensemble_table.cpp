@@ -27,8 +27,8 @@ void write_text(io::StagedFile& file, const std::string& text, const std::filesy
   }
 }
 
-void write_csv(const std::filesystem::path& path, const EnsembleStudy& study, const std::vector<EnsembleRow>& rows,
-               const std::vector<ColumnSummary>& summary) {
+void write_csv(const std::filesystem::path& path, const EnsembleStudy& study,
+               const std::vector<EnsembleRow>& rows, const std::vector<ColumnSummary>& summary) {
   std::string table = fmt::format("{}\n", fmt::join(study.columns(), ","));
   for (const EnsembleRow& r : rows) {
     table += std::to_string(r.run);
@@ -40,9 +40,9 @@ void write_csv(const std::filesystem::path& path, const EnsembleStudy& study, co
   }
   std::string stats = "column,count,mean,std,min,q05,q25,q50,q75,q95,max,histogram\n";
   for (const ColumnSummary& s : summary) {
-    stats += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", s.column, s.count, number(s.mean), number(s.std),
-                         number(s.min), number(s.q05), number(s.q25), number(s.q50), number(s.q75), number(s.q95),
-                         number(s.max), fmt::join(s.histogram, " "));
+    stats += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", s.column, s.count, number(s.mean),
+                         number(s.std), number(s.min), number(s.q05), number(s.q25), number(s.q50),
+                         number(s.q75), number(s.q95), number(s.max), fmt::join(s.histogram, " "));
   }
   std::filesystem::path summary_path = path;
   summary_path.replace_extension(".summary.csv");
@@ -52,8 +52,9 @@ void write_csv(const std::filesystem::path& path, const EnsembleStudy& study, co
   io::commit_together(a, b);
 }
 
-void write_hdf5(const std::filesystem::path& path, const EnsembleStudy& study, const std::vector<EnsembleRow>& rows,
-                const std::vector<ColumnSummary>& summary, const std::string& version) {
+void write_hdf5(const std::filesystem::path& path, const EnsembleStudy& study,
+                const std::vector<EnsembleRow>& rows, const std::vector<ColumnSummary>& summary,
+                const std::string& version) {
   io::StagedFile staged(path, /*direct_allowed=*/false);
   io::Hdf5DriverState driver;
   const io::Checker check{path.string(), &driver};
@@ -61,7 +62,8 @@ void write_hdf5(const std::filesystem::path& path, const EnsembleStudy& study, c
   {
     const io::Handle access(check(io::hdf5_recording_fapl(&driver), "set up its file driver"), H5Pclose);
     const io::Handle file(
-        check(H5Fcreate(staged.temporary().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get()), "create the file"),
+        check(H5Fcreate(staged.temporary().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get()),
+              "create the file"),
         H5Fclose);
     const hid_t root = file.get();
     io::string_attribute(root, "scene", study.base().text, check);
@@ -71,15 +73,16 @@ void write_hdf5(const std::filesystem::path& path, const EnsembleStudy& study, c
     io::number_attribute(root, "runs", static_cast<double>(study.runs()), H5T_NATIVE_DOUBLE, check);
     const auto group = [&](const char* name) {
       const io::Handle props = io::untimed(H5P_GROUP_CREATE, "create a group", check);
-      return io::Handle(check(H5Gcreate2(root, name, H5P_DEFAULT, props.get(), H5P_DEFAULT), "create a group"),
-                        H5Gclose);
+      return io::Handle(
+          check(H5Gcreate2(root, name, H5P_DEFAULT, props.get(), H5P_DEFAULT), "create a group"), H5Gclose);
     };
     const hsize_t R = rows.size();
     {
       const io::Handle runs = group("runs");
       std::vector<double> column(R);
       for (size_t c = 0; c < study.columns().size(); ++c) {
-        for (size_t r = 0; r < R; ++r) column[r] = c == 0 ? static_cast<double>(rows[r].run) : rows[r].values[c - 1];
+        for (size_t r = 0; r < R; ++r)
+          column[r] = c == 0 ? static_cast<double>(rows[r].run) : rows[r].values[c - 1];
         io::fixed_dataset(runs.get(), study.columns()[c], H5T_NATIVE_DOUBLE, {R}, column.data(), check);
       }
     }
@@ -105,9 +108,10 @@ void write_hdf5(const std::filesystem::path& path, const EnsembleStudy& study, c
       const hsize_t C = summary.size();
       io::string_dataset(stats.get(), "column", names, check);
       const std::pair<const char*, std::vector<double>*> series[] = {
-          {"count", &count}, {"mean", &mean}, {"std", &sd},   {"min", &lo},   {"q05", &q05},
+          {"count", &count}, {"mean", &mean}, {"std", &sd},  {"min", &lo},  {"q05", &q05},
           {"q25", &q25},     {"q50", &q50},   {"q75", &q75}, {"q95", &q95}, {"max", &hi}};
-      for (const auto& [name, v] : series) io::fixed_dataset(stats.get(), name, H5T_NATIVE_DOUBLE, {C}, v->data(), check);
+      for (const auto& [name, v] : series)
+        io::fixed_dataset(stats.get(), name, H5T_NATIVE_DOUBLE, {C}, v->data(), check);
       io::fixed_dataset(stats.get(), "histogram", H5T_NATIVE_LLONG, {C, 20}, histogram.data(), check);
     }
     check(H5Fflush(root, H5F_SCOPE_LOCAL), "write the file");
@@ -142,19 +146,22 @@ void write_ensemble_table(const std::filesystem::path& path, bool hdf5, const En
 }
 
 PartialRows::PartialRows(const std::filesystem::path& path, int rank, const EnsembleStudy& study)
-    : name_(partial_name(path, rank)), width_(study.columns().size() - 1), last_flush_(std::chrono::steady_clock::now()) {
+    : name_(partial_name(path, rank)),
+      width_(study.columns().size() - 1),
+      last_flush_(std::chrono::steady_clock::now()) {
   const std::uint64_t head[2] = {study.fingerprint(), width_};
   // Keep a file of this study (its rows are read by read_all), replace anything else.
   bool ours = false;
   if (std::FILE* in = std::fopen(name_.c_str(), "rb")) {
     char magic[8];
     std::uint64_t h[2];
-    ours = std::fread(magic, 1, 8, in) == 8 && std::memcmp(magic, kMagic, 8) == 0 && std::fread(h, 8, 2, in) == 2 &&
-           h[0] == head[0] && h[1] == head[1];
+    ours = std::fread(magic, 1, 8, in) == 8 && std::memcmp(magic, kMagic, 8) == 0 &&
+           std::fread(h, 8, 2, in) == 2 && h[0] == head[0] && h[1] == head[1];
     std::fclose(in);
   }
   file_ = std::fopen(name_.c_str(), ours ? "ab" : "wb");
-  if (file_ == nullptr) throw FileError(fmt::format("cannot write {}: {}", name_.string(), std::strerror(errno)));
+  if (file_ == nullptr)
+    throw FileError(fmt::format("cannot write {}: {}", name_.string(), std::strerror(errno)));
   if (!ours && (std::fwrite(kMagic, 1, 8, file_) != 8 || std::fwrite(head, 8, 2, file_) != 2)) {
     throw FileError(fmt::format("writing {} failed: {}", name_.string(), std::strerror(errno)));
   }
@@ -177,7 +184,8 @@ void PartialRows::flush() {
   last_flush_ = std::chrono::steady_clock::now();
 }
 
-std::vector<EnsembleRow> PartialRows::read_all(const std::filesystem::path& path, const EnsembleStudy& study) {
+std::vector<EnsembleRow> PartialRows::read_all(const std::filesystem::path& path,
+                                               const EnsembleStudy& study) {
   std::vector<EnsembleRow> rows;
   const std::filesystem::path dir = path.parent_path().empty() ? "." : path.parent_path();
   const std::string prefix = path.filename().string() + ".partial-";
@@ -188,8 +196,8 @@ std::vector<EnsembleRow> PartialRows::read_all(const std::filesystem::path& path
     std::ifstream in(entry.path(), std::ios::binary);
     char magic[8];
     std::uint64_t head[2];
-    if (!in.read(magic, 8) || std::memcmp(magic, kMagic, 8) != 0 || !in.read(reinterpret_cast<char*>(head), 16) ||
-        head[0] != study.fingerprint() || head[1] != width) {
+    if (!in.read(magic, 8) || std::memcmp(magic, kMagic, 8) != 0 ||
+        !in.read(reinterpret_cast<char*>(head), 16) || head[0] != study.fingerprint() || head[1] != width) {
       continue;  // another study's, or torn: its runs are computed again
     }
     for (;;) {

@@ -26,7 +26,8 @@ LoadedMesh load_mesh_cached(const std::filesystem::path& path, const MeshLoadOpt
   const auto size = std::filesystem::file_size(path, ec);
   const auto mtime = std::filesystem::last_write_time(path, ec);
   if (ec) return load_mesh(path, options);  // load_mesh says what is wrong with the file
-  const Key key{std::filesystem::absolute(path).lexically_normal().string(), size, mtime, options.scale, options.part};
+  const Key key{std::filesystem::absolute(path).lexically_normal().string(), size, mtime, options.scale,
+                options.part};
   {
     const std::lock_guard<std::mutex> guard(lock);
     for (const auto& [k, mesh] : cache) {

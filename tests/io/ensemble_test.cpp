@@ -32,7 +32,9 @@ body = "racket"
 column = "w2"
 )";
 
-EnsembleStudy study(const std::string& ensemble) { return EnsembleStudy::parse(kRacket + ensemble, "study.toml"); }
+EnsembleStudy study(const std::string& ensemble) {
+  return EnsembleStudy::parse(kRacket + ensemble, "study.toml");
+}
 
 /// The draws of every run, column k.
 std::vector<double> column(const EnsembleStudy& s, size_t k) {
@@ -245,7 +247,8 @@ std = 0.3
     const double T = test::intermediate_axis_flip_interval(Lambda, w);
     if (r.values[at("flip.count")] < 2) continue;
     EXPECT_NEAR(r.values[at("flip.mean_interval")], T, 1e-7) << "run " << r.run;
-    EXPECT_NEAR(r.values[at("flip.first_t")], T / 2, 1e-7) << "ω₂ starts at its extreme: the first flip at T/2";
+    EXPECT_NEAR(r.values[at("flip.first_t")], T / 2, 1e-7)
+        << "ω₂ starts at its extreme: the first flip at T/2";
     ++checked;
   }
   EXPECT_GT(checked, 30) << "most runs flip twice in 8 s";
@@ -279,14 +282,16 @@ TEST(Ensemble, MistakesAreNamed) {
                   "\"uniform\"\nlow = 1\nhigh = 2\n")
                 .find("no element of bodies is named \"rocket\""),
             std::string::npos);
-  EXPECT_NE(error("[ensemble]\nruns = 3\n[[ensemble.vary]]\npath = \"bodies.racket.velocity[0]\"\ndistribution "
-                  "= \"uniform\"\nlow = 1\nhigh = 2\n")
+  EXPECT_NE(error(
+                "[ensemble]\nruns = 3\n[[ensemble.vary]]\npath = \"bodies.racket.velocity[0]\"\ndistribution "
+                "= \"uniform\"\nlow = 1\nhigh = 2\n")
                 .find("bodies.racket.velocity is not in the scene: write it in the file"),
             std::string::npos);
-  EXPECT_NE(error("[ensemble]\nruns = 3\n[[ensemble.vary]]\npath = \"bodies.racket.angular_velocity[3]\"\n"
-                  "distribution = \"uniform\"\nlow = 1\nhigh = 2\n")
-                .find("angular_velocity[3] is not in the scene (bodies.racket.angular_velocity has 3 elements)"),
-            std::string::npos);
+  EXPECT_NE(
+      error("[ensemble]\nruns = 3\n[[ensemble.vary]]\npath = \"bodies.racket.angular_velocity[3]\"\n"
+            "distribution = \"uniform\"\nlow = 1\nhigh = 2\n")
+          .find("angular_velocity[3] is not in the scene (bodies.racket.angular_velocity has 3 elements)"),
+      std::string::npos);
   EXPECT_NE(error("[ensemble]\nruns = 3\n[[ensemble.vary]]\npath = \"bodies.racket.mass\"\ndistribution = "
                   "\"gaussian\"\n")
                 .find("unknown distribution \"gaussian\""),
@@ -314,7 +319,8 @@ std = 1.0
     (void)s.scene_of_run(negative);
     FAIL() << "a negative mass was accepted";
   } catch (const SceneError& e) {
-    EXPECT_NE(std::string(e.what()).find(fmt::format("run {} (bodies.racket.mass = -", negative)), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find(fmt::format("run {} (bodies.racket.mass = -", negative)),
+              std::string::npos)
         << e.what();
     EXPECT_NE(std::string(e.what()).find("it must be positive"), std::string::npos) << e.what();
   }
