@@ -8,5 +8,6 @@ void bind_mass(pybind11::module_& m);           // mass.cpp: MassProperties, sha
 void bind_scene(pybind11::module_& m);          // scene.cpp: Scene, load_scene, simulate
 void bind_euler_poinsot(pybind11::module_& m);  // euler_poinsot.cpp: the analytic free motion
 void bind_arrays(pybind11::module_& m);         // arrays.cpp: N bodies from NumPy arrays
+void bind_ensemble(pybind11::module_& m);       // ensemble.cpp: Monte Carlo studies
 
 }  // namespace tumble::python

@@ -41,12 +41,13 @@ from .model import (  # noqa: F401
     Body, Damping, Drag, Event, Gravity, GravityGradient, Part, Particle, PointForce, Shape, Spring, Torque,
     make_scene, scene_dict, spring_end,
 )
+from .ensemble import EnsembleResult, ensemble, read_ensemble  # noqa: F401
 from .trajectory import (  # noqa: F401
     EventCrossing, Interrupted, Trajectory, field_table, from_xyzw, read_trajectory, to_xyzw,
 )
 
 __all__ = [
-    "Body", "Damping", "Drag", "Event", "EventCrossing", "Gravity", "GravityGradient", "Interrupted",
+    "Body", "Damping", "Drag", "EnsembleResult", "Event", "EventCrossing", "ensemble", "read_ensemble", "Gravity", "GravityGradient", "Interrupted",
     "MassProperties", "MeshMassProperties", "Part", "Particle", "PointForce", "Scene", "Shape", "Spring",
     "Torque", "Trajectory", "bodies", "box", "capsule", "cone", "cylinder", "ellipsoid", "euler_poinsot",
     "field_table", "from_xyzw", "inertia", "load_scene", "make_scene", "mesh_mass_properties",

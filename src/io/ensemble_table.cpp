@@ -77,6 +77,7 @@ void write_hdf5(const std::filesystem::path& path, const EnsembleStudy& study,
           check(H5Gcreate2(root, name, H5P_DEFAULT, props.get(), H5P_DEFAULT), "create a group"), H5Gclose);
     };
     const hsize_t R = rows.size();
+    io::string_dataset(root, "columns", study.columns(), check);  // their order (a group's is alphabetical)
     {
       const io::Handle runs = group("runs");
       std::vector<double> column(R);

@@ -68,10 +68,11 @@ TEST(EnsembleCli, OneThreadTwoThreadsAndTwoMpiRanksWriteTheSameTable) {
   EXPECT_FALSE(fs::exists(dir / "t1.csv.partial-0")) << "a finished study keeps no partial rows";
   if (test::run_shell_command("command -v mpirun").status != 0) GTEST_SKIP() << "no mpirun (openmpi-bin)";
   // OpenMPI refuses to run as root unless told; --oversubscribe: more ranks than cores is fine here.
-  const auto mpi = test::run_shell_command(fmt::format(
-      "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl=self,vader OMPI_MCA_btl_vader_single_copy_mechanism=none "
-      "mpirun -np 2 --oversubscribe {} ensemble {} -o {} --threads 1 --quiet 2>&1",
-      TUMBLE_CLI, scene.string(), (dir / "mpi.csv").string()));
+  const auto mpi = test::run_shell_command(
+      fmt::format("OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl=self,vader "
+                  "OMPI_MCA_btl_vader_single_copy_mechanism=none "
+                  "mpirun -np 2 --oversubscribe {} ensemble {} -o {} --threads 1 --quiet 2>&1",
+                  TUMBLE_CLI, scene.string(), (dir / "mpi.csv").string()));
   ASSERT_EQ(mpi.status, 0) << mpi.output;
   EXPECT_TRUE(one == test::read_text(dir / "mpi.csv")) << "2 MPI ranks";
   EXPECT_TRUE(test::read_text(dir / "t1.summary.csv") == test::read_text(dir / "mpi.summary.csv"));
@@ -80,12 +81,13 @@ TEST(EnsembleCli, OneThreadTwoThreadsAndTwoMpiRanksWriteTheSameTable) {
 TEST(EnsembleCli, AKilledStudyResumesToTheSameTable) {
   const test::TempDir dir("ensemble_resume");
   const fs::path scene = dir.write("s.toml", study(2000, 4.0));  // a few seconds: time to kill it
-  const auto whole = test::run_tumble(fmt::format("ensemble {} -o {} --quiet", scene.string(), (dir / "whole.csv").string()));
+  const auto whole = test::run_tumble(
+      fmt::format("ensemble {} -o {} --quiet", scene.string(), (dir / "whole.csv").string()));
   ASSERT_EQ(whole.status, 0) << whole.output;
 
   // The same study, killed (SIGKILL: no chance to tidy up) once some rows are kept.
-  std::vector<std::string> args = {TUMBLE_CLI, "ensemble", scene.string(), "-o", (dir / "part.csv").string(),
-                                   "--threads", "1", "--quiet"};
+  std::vector<std::string> args = {TUMBLE_CLI,  "ensemble", scene.string(), "-o", (dir / "part.csv").string(),
+                                   "--threads", "1",        "--quiet"};
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -94,7 +96,8 @@ TEST(EnsembleCli, AKilledStudyResumesToTheSameTable) {
   const fs::path partial = dir / "part.csv.partial-0";
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
   // Rows are flushed every half second: wait for some (a header of 24 bytes, then rows).
-  while (std::chrono::steady_clock::now() < deadline && (!fs::exists(partial) || fs::file_size(partial) < 2000)) {
+  while (std::chrono::steady_clock::now() < deadline &&
+         (!fs::exists(partial) || fs::file_size(partial) < 2000)) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   kill(pid, SIGKILL);
@@ -103,14 +106,16 @@ TEST(EnsembleCli, AKilledStudyResumesToTheSameTable) {
   ASSERT_TRUE(fs::exists(partial));
   ASSERT_FALSE(fs::exists(dir / "part.csv")) << "killed before it finished";
 
-  const auto resumed = test::run_tumble(fmt::format("ensemble {} -o {}", scene.string(), (dir / "part.csv").string()));
+  const auto resumed =
+      test::run_tumble(fmt::format("ensemble {} -o {}", scene.string(), (dir / "part.csv").string()));
   ASSERT_EQ(resumed.status, 0) << resumed.output;
   EXPECT_NE(resumed.output.find("resuming:"), std::string::npos) << resumed.output;
   EXPECT_TRUE(test::read_text(dir / "part.csv") == test::read_text(dir / "whole.csv"));
   EXPECT_FALSE(fs::exists(partial));
 
   // HDF5: one dataset per column, the same numbers.
-  const auto h5 = test::run_tumble(fmt::format("ensemble {} -o {} --quiet", scene.string(), (dir / "t.h5").string()));
+  const auto h5 =
+      test::run_tumble(fmt::format("ensemble {} -o {} --quiet", scene.string(), (dir / "t.h5").string()));
   ASSERT_EQ(h5.status, 0) << h5.output;
   EXPECT_TRUE(fs::exists(dir / "t.h5"));
 }
@@ -126,8 +131,9 @@ TEST(EnsembleCli, ChosenRunsGetTheirTrajectoriesAndBadStudiesOneLine) {
   EXPECT_TRUE(fs::exists(dir / "t.run-5.csv"));
   EXPECT_NE(r.output.find("flip.count"), std::string::npos) << "the summary on the terminal: " << r.output;
 
-  const fs::path bad = dir.write("bad.toml", study(10, 1.0) + "[[ensemble.vary]]\npath = \"bodies.racket.mass\"\n"
-                                                              "distribution = \"uniform\"\nlow = 2\nhigh = 1\n");
+  const fs::path bad = dir.write("bad.toml", study(10, 1.0) +
+                                                 "[[ensemble.vary]]\npath = \"bodies.racket.mass\"\n"
+                                                 "distribution = \"uniform\"\nlow = 2\nhigh = 1\n");
   const auto e = test::run_tumble(fmt::format("ensemble {} -o {}", bad.string(), (dir / "b.csv").string()));
   EXPECT_EQ(e.status, 1);
   EXPECT_NE(e.output.find("high (1) must be above low (2)"), std::string::npos) << e.output;

@@ -115,7 +115,8 @@ namespace tumble {
 /// Writes an ensemble's table (a row per run, in run order) and its summary, safely (temporaries renamed
 /// into place together): CSV `path` (the columns; %.17g; an undefined value empty) with
 /// PATH.summary.csv (column,count,mean,std,min,q05,q25,q50,q75,q95,max,histogram), or HDF5 (`hdf5`):
-/// group `runs` with a dataset (R) per column, group `summary` with one dataset per statistic, and the
+/// group `runs` with a dataset (R) per column, `columns` (their order), group `summary` with one dataset
+/// per statistic, and the
 /// attributes scene (text), scene_file, seed, runs, tumble_version.
 void write_ensemble_table(const std::filesystem::path& path, bool hdf5, const EnsembleStudy& study,
                           const std::vector<EnsembleRow>& rows, const std::string& tumble_version);

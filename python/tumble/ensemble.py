@@ -1,0 +1,93 @@
+"""Monte Carlo studies from Python: the [ensemble] of a scene (docs/ensembles.md) run on every core, its
+table as NumPy columns; and the reader of the tables `tumble ensemble` writes (CSV or HDF5)."""
+
+from __future__ import annotations
+
+import csv
+import os
+
+import numpy as np
+
+from . import _tumble
+
+
+class EnsembleResult:
+    """A study's table: ``columns`` maps each column ("run", the drawn values by their paths, then the
+    outputs such as "flip.first_t", "handle.w2_max", "energy_drift_max") to an array (R,), one value
+    per run in run order, NaN where undefined; ``summary`` is a list of dicts (column, count, mean,
+    std, min, q05, q25, q50, q75, q95, max, histogram of 20 bins). ``result["flip.first_t"]`` is a
+    column."""
+
+    def __init__(self, columns, summary):
+        self.columns = dict(columns)
+        self.summary = list(summary)
+
+    def __getitem__(self, column):
+        try:
+            return self.columns[column]
+        except KeyError:
+            raise KeyError(f"no column '{column}'; the columns are: {', '.join(self.columns)}") from None
+
+    def __len__(self):
+        return len(self.columns.get("run", ()))
+
+    def __repr__(self):
+        return f"EnsembleResult({len(self)} runs, columns {list(self.columns)})"
+
+
+def ensemble(scene, ensemble=None, threads=0):
+    """Run a study: `scene` is a scene file (path) or a scene dict (as scene_from_dict takes); `ensemble`
+    (a dict with the keys of [ensemble]: runs, seed, vary (a list of dicts: path, distribution and its
+    parameters), outputs) adds or replaces the file's [ensemble] table. Runs on `threads` threads (0: one
+    per core); run i's draws depend only on (seed, i), so the table does not depend on them. Ctrl-C
+    stops it with KeyboardInterrupt. Returns an EnsembleResult."""
+    import tomli_w
+    path = "scene.toml"
+    if isinstance(scene, dict):
+        table = dict(scene)
+    else:
+        import tomllib
+        path = os.fspath(scene)
+        with open(path, "rb") as f:
+            table = tomllib.load(f)
+    if ensemble is not None:
+        table["ensemble"] = ensemble
+    if "ensemble" not in table:
+        raise ValueError("the scene has no [ensemble] table: give ensemble={'runs': N, 'vary': [...]}")
+    raw = _tumble._ensemble(tomli_w.dumps(table), path, int(threads))
+    return EnsembleResult(raw["columns"], raw["summary"])
+
+
+def read_ensemble(path):
+    """Read a table that `tumble ensemble` wrote: CSV (with PATH.summary.csv beside it when present) or
+    HDF5 (needs h5py). Returns an EnsembleResult."""
+    path = os.fspath(path)
+    with open(path, "rb") as f:
+        hdf5 = f.read(8) == b"\x89HDF\r\n\x1a\n"
+    if hdf5:
+        import h5py
+        with h5py.File(path, "r") as f:
+            runs = f["runs"]
+            order = [c.decode() if isinstance(c, bytes) else c for c in f["columns"][:]]
+            columns = {c: runs[c][:] for c in order}
+            s = f["summary"]
+            names = [n.decode() if isinstance(n, bytes) else n for n in s["column"][:]]
+            summary = [{"column": n, **{k: float(s[k][i]) for k in ("count", "mean", "std", "min", "q05", "q25", "q50",
+                                                                      "q75", "q95", "max")},
+                        "histogram": s["histogram"][i].tolist()} for i, n in enumerate(names)]
+        return EnsembleResult(columns, summary)
+    with open(path, newline="") as f:
+        rows = list(csv.reader(f))
+    header = rows[0]
+    data = np.array([[float(x) if x != "" else np.nan for x in r] for r in rows[1:]]).reshape(-1, len(header))
+    columns = {name: data[:, k].copy() for k, name in enumerate(header)}
+    summary = []
+    stem, _ = os.path.splitext(path)
+    if os.path.isfile(stem + ".summary.csv"):
+        with open(stem + ".summary.csv", newline="") as f:
+            for r in csv.DictReader(f):
+                d = {k: (float(v) if v != "" else np.nan) for k, v in r.items() if k not in ("column", "histogram")}
+                d["column"] = r["column"]
+                d["histogram"] = [int(x) for x in r["histogram"].split()]
+                summary.append(d)
+    return EnsembleResult(columns, summary)
