@@ -192,6 +192,10 @@ TEST(Report, MissingPiecesAreNamed) {
                        " --scene " + kTHandle.string());
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.output.find("is the trajectory itself"), std::string::npos) << r.output;
+  r = test::run_tumble("report " + (dir / "t.csv").string() + " -o " + (dir / "t.diagnostics.csv").string() +
+                       " --scene " + kTHandle.string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("is the trajectory's diagnostics"), std::string::npos) << r.output;
   r = test::run_tumble("report " + (dir / "none.h5").string());
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.output.find("is not a file"), std::string::npos) << r.output;
