@@ -25,10 +25,19 @@ int report(const ReportOptions& o) {
     out = o.trajectory;
     out.replace_extension(".html");
   }
-  if (same_file(out, o.trajectory)) {
-    throw InvalidArgument(fmt::format("-o {} is the trajectory itself: give another file, e.g. -o {}",
-                                      out.string(),
-                                      std::filesystem::path(o.trajectory).stem().string() + ".html"));
+  // Never write over what the report is read from: the trajectory, its companions, the scene.
+  const std::filesystem::path t = o.trajectory;
+  const std::pair<std::filesystem::path, const char*> inputs[] = {{t, "the trajectory itself"},
+                                                                  {diagnostics_path(t),
+                                                                   "the trajectory's diagnostics"},
+                                                                  {events_path(t), "its events file"},
+                                                                  {run_facts_path(t), "its run file"},
+                                                                  {o.scene, "the scene given with --scene"}};
+  for (const auto& [input, what] : inputs) {
+    if (!input.empty() && same_file(out, input)) {
+      throw InvalidArgument(fmt::format("-o {} is {}: give another file, e.g. -o {}", out.string(), what,
+                                        t.stem().string() + ".html"));
+    }
   }
   if (report_template().empty()) report_html(Report{});  // says how to get the viewer
   std::optional<Scene> scene;
