@@ -5,6 +5,7 @@
 #include "run_plan_report.hpp"
 #include "scene_summary.hpp"
 #include "tumble/integrate/integrator.hpp"
+#include "tumble/io/ensemble.hpp"
 #include "tumble/io/scene.hpp"
 
 namespace tumble::cli {
@@ -17,7 +18,8 @@ Runner add_check_command(CLI::App& app) {
       "print a summary (each body's mass, centre of mass, principal moments and axes and initial "
       "centre-of-mass velocity; the forces; the "
       "initial energy and momenta; which of them the forces conserve; the run's steps, samples, output size "
-      "and an estimate of its time, from timing its first few steps).\n\nExample:\n"
+      "and an estimate of its time, from timing its first few steps; an [ensemble] table's runs, varied "
+      "values and output columns).\n\nExample:\n"
       "  tumble check examples/t_handle.toml");
   cmd->add_option("scene", *file, "scene file (TOML; see docs/scene-format.md)")->required();
   return [file] {
@@ -30,6 +32,14 @@ Runner add_check_command(CLI::App& app) {
     const RunPlan plan = plan_of(scene, scene.settings, {});
     fmt::print("  plan         {}\n", describe(plan, estimate_seconds(scene, scene.settings, plan),
                                                scene.model.bodies.size() + scene.model.particles.size()));
+    // An [ensemble] table is checked as `tumble ensemble` reads it, with its first run's scene.
+    if (scene.text.find("[ensemble") != std::string::npos) {
+      const EnsembleStudy study = EnsembleStudy::load(*file);
+      (void)study.scene_of_run(0);
+      fmt::print("ensemble: {} runs, seed {}\n", study.runs(), study.seed());
+      for (const Variation& v : study.variations()) fmt::print("  varies       {}\n", v.path);
+      fmt::print("  columns      {}\n", fmt::join(study.columns(), ", "));
+    }
     return 0;
   };
 }

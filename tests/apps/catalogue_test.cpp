@@ -476,6 +476,17 @@ const std::vector<Case>& catalogue() {
        1,
        "tumble: error: s.toml:11:13: event 'e': unknown direction \"up\"; choose \"both\" (default), "
        "\"rising\" (g goes from below to above) or \"falling\""},
+      {"scene: ensemble varies a body that is not there",
+       {{"s.toml",
+         "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"b\"\nshape = { type = \"sphere\", radius = 0.1 "
+         "}\nmass = "
+         "1\n[ensemble]\nruns = 3\n[[ensemble.vary]]\npath = \"bodies.c.mass\"\ndistribution = "
+         "\"uniform\"\nlow = "
+         "1\nhigh = 2\n"}},
+       "{t} check s.toml",
+       1,
+       "tumble: error: s.toml:10:8: [ensemble] vary #1: path bodies.c.mass: no element of bodies is named "
+       "\"c\""},
       {"scene: unknown force type",
        {{"s.toml", std::string("[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = "
                                "\"box\", size = [1, 2, 3] }\ndensity = 1000\n[[forces]]\ntype = "
