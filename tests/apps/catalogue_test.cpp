@@ -886,7 +886,8 @@ const std::vector<Case>& catalogue() {
        {},
        "{t} simulate x.toml",
        2,
-       "tumble: error: unknown command 'simulate': the commands are run, resume, check, inertia, report; see "
+       "tumble: error: unknown command 'simulate': the commands are run, resume, check, inertia, report, "
+       "ensemble; see "
        "tumble "
        "--help"},
       {"cli: unknown option",
