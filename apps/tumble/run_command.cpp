@@ -370,6 +370,12 @@ int run(const RunOptions& o) {
                     threshold));
   }
   print_scene_warnings(scene);
+  if (!o.quiet && scene.text.find("[ensemble") != std::string::npos) {
+    fmt::print(stderr,
+               "tumble: note: {} describes an ensemble; tumble run runs its base scene once (the "
+               "study: tumble ensemble {})\n",
+               o.scene, o.scene);
+  }
 
   const bool hdf5 = o.format.empty() ? is_hdf5_name(o.output) : o.format == "hdf5";
   // Runs of a day or 100 GB are refused before anything is written; timing a few steps costs little
