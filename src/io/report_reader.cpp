@@ -227,6 +227,18 @@ Samples read_hdf5(const std::filesystem::path& path, Report& r, const Scene* sce
     throw InvalidArgument(
         fmt::format("{}: the geometry group's datasets do not fit together", path.string()));
   }
+  // Offsets from a file are trusted only once they run from 0 upwards, in whole numbers, to the end.
+  const auto ascending = [](const std::vector<double>& offsets) {
+    if (offsets.front() != 0.0) return false;
+    for (size_t k = 1; k < offsets.size(); ++k) {
+      if (!(offsets[k] >= offsets[k - 1]) || offsets[k] != std::floor(offsets[k])) return false;
+    }
+    return true;
+  };
+  if (!ascending(vo) || !ascending(to)) {
+    throw InvalidArgument(fmt::format(
+        "{}: the geometry group's offsets are not ascending whole numbers from 0", path.string()));
+  }
   for (size_t b = 0; b < B; ++b) {
     BodyGeometry& g = r.geometry.bodies.emplace_back();
     g.mass = mass[b];

@@ -306,3 +306,32 @@ def test_an_ensemble_from_python_is_the_command_lines_table(tmp_path, suffix):
         if one["flip.count"][k] >= 2:
             assert one["flip.mean_interval"][k] == pytest.approx(T, abs=1e-6)
     assert {s["column"] for s in read.summary} >= {"flip.first_t", "energy_drift_max"}
+
+
+def test_a_report_of_a_tampered_file_is_an_error_not_a_crash(tmp_path):
+    # Geometry offsets that would make `tumble report` read past its arrays are refused by name.
+    cli = os.environ.get("TUMBLE_CLI")
+    if not cli:
+        pytest.skip("TUMBLE_CLI (the program) not given")
+    import h5py
+    scene = tmp_path / "two.toml"
+    scene.write_text(textwrap.dedent("""\
+        [simulation]
+        duration = 0.1
+        [[bodies]]
+        name = "a"
+        shape = { type = "box", size = [0.1, 0.2, 0.3] }
+        mass = 1.0
+        [[bodies]]
+        name = "b"
+        shape = { type = "sphere", radius = 0.1 }
+        mass = 1.0
+        """))
+    out = tmp_path / "two.h5"
+    subprocess.run([cli, "run", str(scene), "-o", str(out), "--quiet"], check=True)
+    with h5py.File(out, "r+") as f:
+        offsets = f["geometry/vertex_offsets"]
+        offsets[1] = 10 ** 9  # beyond every vertex, while the last offset still counts them all
+    done = subprocess.run([cli, "report", str(out)], capture_output=True, text=True)
+    assert done.returncode == 1, done.stdout + done.stderr
+    assert "offsets are not ascending whole numbers from 0" in done.stderr
