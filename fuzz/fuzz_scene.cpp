@@ -1,4 +1,5 @@
-// libFuzzer target: TOML text -> validated scene (tumble::parse_scene). A tumble::Error (SceneError,
+// libFuzzer target: TOML text -> validated scene (tumble::parse_scene), and the study of an [ensemble]
+// table (tumble::EnsembleStudy::parse, its first runs' scenes). A tumble::Error (SceneError,
 // FileError, InvalidArgument, ...) is the expected way to refuse a scene; anything else is a finding.
 // The scene is named fuzz.toml in a temporary directory (not the working directory, so that relative
 // paths on the command line keep working) that holds small meshes (cube.obj, cube.off,
@@ -6,6 +7,7 @@
 // that scenes naming them go through mesh loading and body tables too.
 #include <stdlib.h>  // mkdtemp
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -16,6 +18,7 @@
 #include <system_error>
 
 #include "fuzz_support.hpp"
+#include "tumble/io/ensemble.hpp"
 #include "tumble/io/scene.hpp"
 
 namespace fs = std::filesystem;
@@ -93,5 +96,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     FUZZ_CHECK(std::isfinite(scene.initial.t));
     FUZZ_CHECK(std::isfinite(scene.settings.duration) && std::isfinite(scene.settings.timestep));
   });
+  // An [ensemble] table: the study is read as `tumble ensemble` reads it, and its first runs' scenes
+  // are built from their draws (not simulated); each is a valid scene or a tumble::Error.
+  if (text.find("ensemble") != std::string::npos) {
+    tumble::fuzz::refused_or_ok([&] {
+      const tumble::EnsembleStudy study = tumble::EnsembleStudy::parse(text, work_dir / "fuzz.toml");
+      FUZZ_CHECK(study.runs() >= 1);
+      for (long i = 0; i < std::min(study.runs(), 3L); ++i) {
+        FUZZ_CHECK(study.draws(i).size() + 1 <= study.columns().size());
+        (void)study.scene_of_run(i);
+      }
+    });
+  }
   return 0;
 }
