@@ -14,8 +14,7 @@ namespace {
 
 py::dict run_study(const std::string& text, const std::filesystem::path& path, int threads) {
   const EnsembleStudy study = EnsembleStudy::parse(text, path);
-  std::vector<long> runs(static_cast<size_t>(study.runs()));
-  for (long i = 0; i < study.runs(); ++i) runs[static_cast<size_t>(i)] = i;
+  const std::vector<long> runs = every_run(study);
   std::vector<EnsembleRow> rows;
   bool interrupted = false;
   {
@@ -50,15 +49,7 @@ py::dict run_study(const std::string& text, const std::filesystem::path& path, i
     py::dict d;
     d["column"] = s.column;
     d["count"] = s.count;
-    d["mean"] = s.mean;
-    d["std"] = s.std;
-    d["min"] = s.min;
-    d["q05"] = s.q05;
-    d["q25"] = s.q25;
-    d["q50"] = s.q50;
-    d["q75"] = s.q75;
-    d["q95"] = s.q95;
-    d["max"] = s.max;
+    for (const SummaryStatistic& x : kSummaryStatistics) d[x.name] = s.*x.value;
     d["histogram"] = s.histogram;
     summary.append(d);
   }

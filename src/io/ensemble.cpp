@@ -306,6 +306,12 @@ std::vector<ColumnSummary> summarize(const std::vector<std::string>& columns,
   return out;
 }
 
+std::vector<long> every_run(const EnsembleStudy& study) {
+  std::vector<long> runs(static_cast<size_t>(study.runs()));
+  for (size_t i = 0; i < runs.size(); ++i) runs[i] = static_cast<long>(i);
+  return runs;
+}
+
 std::vector<EnsembleRow> run_ensemble(const EnsembleStudy& study, const std::vector<long>& runs, int threads,
                                       const std::function<void(const EnsembleRow&)>& done,
                                       const std::function<bool()>& stop) {

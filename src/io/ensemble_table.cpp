@@ -38,11 +38,13 @@ void write_csv(const std::filesystem::path& path, const EnsembleStudy& study,
     }
     table += '\n';
   }
-  std::string stats = "column,count,mean,std,min,q05,q25,q50,q75,q95,max,histogram\n";
+  std::string stats = "column,count";
+  for (const SummaryStatistic& x : kSummaryStatistics) stats += fmt::format(",{}", x.name);
+  stats += ",histogram\n";
   for (const ColumnSummary& s : summary) {
-    stats += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", s.column, s.count, number(s.mean),
-                         number(s.std), number(s.min), number(s.q05), number(s.q25), number(s.q50),
-                         number(s.q75), number(s.q95), number(s.max), fmt::join(s.histogram, " "));
+    stats += fmt::format("{},{}", s.column, s.count);
+    for (const SummaryStatistic& x : kSummaryStatistics) stats += fmt::format(",{}", number(s.*x.value));
+    stats += fmt::format(",{}\n", fmt::join(s.histogram, " "));
   }
   std::filesystem::path summary_path = path;
   summary_path.replace_extension(".summary.csv");
@@ -90,29 +92,21 @@ void write_hdf5(const std::filesystem::path& path, const EnsembleStudy& study,
     {
       const io::Handle stats = group("summary");
       std::vector<std::string> names;
-      std::vector<double> count, mean, sd, lo, q05, q25, q50, q75, q95, hi;
+      std::vector<double> count;
       std::vector<long long> histogram;
       for (const ColumnSummary& s : summary) {
         names.push_back(s.column);
         count.push_back(static_cast<double>(s.count));
-        mean.push_back(s.mean);
-        sd.push_back(s.std);
-        lo.push_back(s.min);
-        q05.push_back(s.q05);
-        q25.push_back(s.q25);
-        q50.push_back(s.q50);
-        q75.push_back(s.q75);
-        q95.push_back(s.q95);
-        hi.push_back(s.max);
         histogram.insert(histogram.end(), s.histogram.begin(), s.histogram.end());
       }
       const hsize_t C = summary.size();
       io::string_dataset(stats.get(), "column", names, check);
-      const std::pair<const char*, std::vector<double>*> series[] = {
-          {"count", &count}, {"mean", &mean}, {"std", &sd},  {"min", &lo},  {"q05", &q05},
-          {"q25", &q25},     {"q50", &q50},   {"q75", &q75}, {"q95", &q95}, {"max", &hi}};
-      for (const auto& [name, v] : series)
-        io::fixed_dataset(stats.get(), name, H5T_NATIVE_DOUBLE, {C}, v->data(), check);
+      io::fixed_dataset(stats.get(), "count", H5T_NATIVE_DOUBLE, {C}, count.data(), check);
+      std::vector<double> values(C);
+      for (const SummaryStatistic& x : kSummaryStatistics) {
+        for (size_t c = 0; c < C; ++c) values[c] = summary[c].*x.value;
+        io::fixed_dataset(stats.get(), x.name, H5T_NATIVE_DOUBLE, {C}, values.data(), check);
+      }
       io::fixed_dataset(stats.get(), "histogram", H5T_NATIVE_LLONG, {C, 20}, histogram.data(), check);
     }
     check(H5Fflush(root, H5F_SCOPE_LOCAL), "write the file");
@@ -159,6 +153,12 @@ PartialRows::PartialRows(const std::filesystem::path& path, int rank, const Ense
     ours = std::fread(magic, 1, 8, in) == 8 && std::memcmp(magic, kMagic, 8) == 0 &&
            std::fread(h, 8, 2, in) == 2 && h[0] == head[0] && h[1] == head[1];
     std::fclose(in);
+  }
+  if (const auto dir = name_.parent_path(); !dir.empty()) {  // -o out/study.csv: out/ may not exist yet
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec)
+      throw FileError(fmt::format("cannot create the output directory {}: {}", dir.string(), ec.message()));
   }
   file_ = std::fopen(name_.c_str(), ours ? "ab" : "wb");
   if (file_ == nullptr)

@@ -9,31 +9,15 @@
 #include <set>
 
 #include "../support/closed_forms.hpp"
+#include "../support/scene_files.hpp"
 #include "tumble/io/ensemble.hpp"
 
 namespace tumble {
 namespace {
 
 // A box spun near its intermediate axis (no mesh: fast), with a flip event.
-const std::string kRacket = R"([simulation]
-duration = 8.0
-timestep = 1e-3
-output_interval = 0.05
-[[bodies]]
-name = "racket"
-shape = { type = "box", size = [0.1, 0.2, 0.3] }
-mass = 1.0
-orientation = [1.0, 0.0, 0.0, 0.0]
-angular_velocity = [0.05, 10.0, 0.0]
-angular_velocity_frame = "principal"
-[[events]]
-name = "flip"
-body = "racket"
-column = "w2"
-)";
-
 EnsembleStudy study(const std::string& ensemble) {
-  return EnsembleStudy::parse(kRacket + ensemble, "study.toml");
+  return EnsembleStudy::parse(test::racket_scene(8.0) + ensemble, "study.toml");
 }
 
 /// The draws of every run, column k.
@@ -199,8 +183,7 @@ high = 0.2
 extrema = ["w2", "w1"]
 final = ["orientation"]
 )");
-  std::vector<long> runs;
-  for (long i = 0; i < s.runs(); ++i) runs.push_back(i);
+  const std::vector<long> runs = every_run(s);
   const auto one = run_ensemble(s, runs, 1, {});
   const auto two = run_ensemble(s, runs, 2, {});
   ASSERT_EQ(one.size(), runs.size());
@@ -233,9 +216,7 @@ distribution = "normal"
 mean = 10.0
 std = 0.3
 )");
-  std::vector<long> runs;
-  for (long i = 0; i < s.runs(); ++i) runs.push_back(i);
-  const auto rows = run_ensemble(s, runs, 2, {});
+  const auto rows = run_ensemble(s, every_run(s), 2, {});
   const auto& c = s.columns();
   const auto at = [&](const std::string& name) {
     return static_cast<size_t>(std::find(c.begin(), c.end(), name) - c.begin()) - 1;

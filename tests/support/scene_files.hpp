@@ -49,4 +49,15 @@ inline std::string read_text(const std::filesystem::path& p) {
   return text;
 }
 
+/// A free box spun near its intermediate axis, ω₂ at its extreme (ω₃ = 0), with an event at every flip
+/// (ω₂ changing sign): the scene the ensemble tests vary.
+inline std::string racket_scene(double duration) {
+  return "[simulation]\nduration = " + std::to_string(duration) +
+         "\ntimestep = 1e-3\noutput_interval = 0.05\n"
+         "[[bodies]]\nname = \"racket\"\nshape = { type = \"box\", size = [0.1, 0.2, 0.3] }\nmass = 1.0\n"
+         "orientation = [1.0, 0.0, 0.0, 0.0]\nangular_velocity = [0.05, 10.0, 0.0]\n"
+         "angular_velocity_frame = \"principal\"\n"
+         "[[events]]\nname = \"flip\"\nbody = \"racket\"\ncolumn = \"w2\"\n";
+}
+
 }  // namespace tumble::test

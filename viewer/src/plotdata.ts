@@ -101,24 +101,20 @@ export function plotDefs(r: Report, body: number): PlotDef[] {
   }
 
   const name = r.bodies[body]?.name ?? '';
-  if (r.series.omega_world) {
-    const w = r.series.omega_world;
+  // ω of the chosen body, in world axes and in its principal axes: one plot each, from one description.
+  const omegas = [
+    { id: 'omega_world', axes: 'world axes', labels: ['x', 'y', 'z'], data: r.series.omega_world },
+    { id: 'omega_principal', axes: 'principal axes', labels: ['1', '2', '3'], data: r.series.omega_principal },
+  ] as const;
+  for (const o of omegas) {
+    const w = o.data;
+    if (!w) continue;
     defs.push({
-      id: 'omega_world',
-      title: `ω in world axes — ${name}`,
+      id: o.id,
+      title: `ω in ${o.axes} — ${name}`,
       yLabel: 'rad/s',
       perBody: true,
-      series: ['x', 'y', 'z'].map((a, k) => ({ label: `ω${a}`, color: COLORS.axes[k], scale: 'y' as const, values: component(w, T, N, body, k) })),
-    });
-  }
-  if (r.series.omega_principal) {
-    const w = r.series.omega_principal;
-    defs.push({
-      id: 'omega_principal',
-      title: `ω in principal axes — ${name}`,
-      yLabel: 'rad/s',
-      perBody: true,
-      series: ['1', '2', '3'].map((a, k) => ({ label: `ω${a}`, color: COLORS.axes[k], scale: 'y' as const, values: component(w, T, N, body, k) })),
+      series: o.labels.map((a, k) => ({ label: `ω${a}`, color: COLORS.axes[k], scale: 'y' as const, values: component(w, T, N, body, k) })),
     });
   }
   return defs;

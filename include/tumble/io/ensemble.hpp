@@ -98,8 +98,22 @@ struct ColumnSummary {
   double q05 = 0, q25 = 0, q50 = 0, q75 = 0, q95 = 0;  ///< quantiles (linear interpolation, type 7)
   std::vector<long> histogram;                         ///< 20 equal bins from min to max
 };
+/// The statistics of a ColumnSummary after its count, by name, in the order the tables write them: one
+/// list for the CSV and HDF5 writers and the Python binding.
+struct SummaryStatistic {
+  const char* name;
+  double ColumnSummary::*value;
+};
+inline constexpr SummaryStatistic kSummaryStatistics[] = {
+    {"mean", &ColumnSummary::mean}, {"std", &ColumnSummary::std}, {"min", &ColumnSummary::min},
+    {"q05", &ColumnSummary::q05},   {"q25", &ColumnSummary::q25}, {"q50", &ColumnSummary::q50},
+    {"q75", &ColumnSummary::q75},   {"q95", &ColumnSummary::q95}, {"max", &ColumnSummary::max}};
+
 std::vector<ColumnSummary> summarize(const std::vector<std::string>& columns,
                                      const std::vector<EnsembleRow>& rows);
+
+/// 0, 1, …, runs − 1: every run of the study.
+std::vector<long> every_run(const EnsembleStudy& study);
 
 /// Runs `runs` (indices) of the study on `threads` threads (0: one per core); each finished row goes to
 /// `done` (called under a lock, in any order); `stop()` is asked between runs (Ctrl-C). Returns the rows
