@@ -1,10 +1,14 @@
 // Cost of one evaluation of the exact torque-free motion (EulerPoinsot) for a generic triaxial body:
 // ω_b(t) (one sn/cn/dn), q(t) (sn/cn/dn + Carlson R_F, R_J + a few trigonometric functions) and both
 // together (state(t), one sn/cn/dn), at moderate and large t (the argument is reduced modulo the
-// period: the cost must not grow with t), and the set-up.
+// period: the cost must not grow with t), and the set-up. The *Pack benchmarks evaluate the same
+// templates on a SIMD pack (one body per lane, as splitting's batched drift does); their time is per
+// pack, and the counter "per_lane" divides it by the pack width.
 #include <benchmark/benchmark.h>
 
+#include "integrate/euler_poinsot_flows.hpp"
 #include "tumble/integrate/euler_poinsot.hpp"
+#include "tumble/math/simd.hpp"
 
 namespace {
 
@@ -54,6 +58,78 @@ void BM_Construct(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_Construct);
+
+using Pack = xsimd::batch<double>;
+
+const tumble::detail::TriaxialConstants<Pack>& generic_pack() {
+  static const tumble::detail::TriaxialConstants<Pack> k = [] {
+    tumble::detail::TriaxialConstants<Pack> p;
+    const tumble::detail::TriaxialRotation* flow = generic_body().free_rotation().triaxial();
+    if (!flow) return p;  // the generic body is triaxial: 1.5 < 2.5 < 4
+    const auto& d = flow->constants();
+    p.jacobi.K = d.jacobi.K, p.jacobi.a_N = d.jacobi.a_N, p.jacobi.m1 = d.jacobi.m1,
+    p.jacobi.k1 = d.jacobi.k1;
+    p.jacobi.steps = d.jacobi.steps;
+    for (int n = 0; n < d.jacobi.steps; ++n) p.jacobi.ratio[n] = d.jacobi.ratio[n];
+    p.pi.n = d.pi.n, p.pi.n_reflected = d.pi.n_reflected, p.pi.c_linear = d.pi.c_linear,
+    p.pi.c_Pi = d.pi.c_Pi;
+    p.pi.complete = d.pi.complete;
+    p.pi.rj_steps = d.pi.rj_steps, p.pi.rj_max_steps = d.pi.rj_max_steps;
+    p.lambda = d.lambda, p.u0 = d.u0, p.pole = d.pole, p.h1 = d.h1, p.h2 = d.h2, p.rho = d.rho, p.c = d.c;
+    p.kappa = d.kappa, p.rate = d.rate, p.Pi0 = d.Pi0;
+    p.A = d.A.cast<Pack>(), p.P = d.P.cast<Pack>();
+    p.G = d.G.cast<Pack>(), p.CP = d.CP.cast<Pack>();
+    return p;
+  }();
+  return k;
+}
+
+void per_lane(benchmark::State& state) {
+  state.counters["per_lane"] = benchmark::Counter(static_cast<double>(state.iterations()) * Pack::size,
+                                                  benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+void BM_StatePack(benchmark::State& state) {
+  const auto& k = generic_pack();
+  Pack t(1.0);
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(tumble::detail::triaxial_state<Pack>(k, t));
+    t += Pack(1e-3);
+  }
+  per_lane(state);
+}
+BENCHMARK(BM_StatePack);
+
+void BM_LandenPack(benchmark::State& state) {
+  const auto& k = generic_pack();
+  Pack u(1.0);
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(tumble::landen_point<Pack>(k.jacobi, u));
+    u += Pack(1e-3);
+  }
+  per_lane(state);
+}
+BENCHMARK(BM_LandenPack);
+
+void BM_CarlsonRfPack(benchmark::State& state) {
+  Pack x(0.3);
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(tumble::carlson_rf<Pack>(x, Pack(0.7), Pack(1.0)));
+    x += Pack(1e-9);
+  }
+  per_lane(state);
+}
+BENCHMARK(BM_CarlsonRfPack);
+
+void BM_CarlsonRjPack(benchmark::State& state) {
+  Pack x(0.3);
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(tumble::carlson_rj<Pack>(x, Pack(0.7), Pack(1.0), Pack(3.0), Pack(10.0), 10));
+    x += Pack(1e-9);
+  }
+  per_lane(state);
+}
+BENCHMARK(BM_CarlsonRjPack);
 
 }  // namespace
 

@@ -32,6 +32,10 @@ struct Row {
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc > 1 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h")) {
+    std::printf("usage: work_precision [out.csv] [repetitions]   (defaults: work_precision.csv 3)\n");
+    return 0;
+  }
   const std::string csv_path = argc > 1 ? argv[1] : "work_precision.csv";
   const int repetitions = argc > 2 ? std::max(1, std::atoi(argv[2])) : 3;
   const Vec3 Lambda(1.2e-5, 3.1e-5, 4.0e-5);  // T-handle, kg·m²

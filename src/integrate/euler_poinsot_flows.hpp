@@ -5,7 +5,6 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
-#include <optional>
 #include <type_traits>
 #include <utility>
 #include <variant>
@@ -17,18 +16,6 @@
 namespace tumble::detail {
 
 inline constexpr double kInf = std::numeric_limits<double>::infinity();
-
-/// Rz(φ) Rx(θ) Rz(ψ) as a unit quaternion (z-x-z Euler angles), with θ and ψ given by the cosines and
-/// sines of their halves. The three factors are multiplied rather than combined into angles (φ ± ψ)/2:
-/// φ grows with t, and rounding φ + ψ would perturb the body part Rx(θ)Rz(ψ) (and so L_w) by ε|φ| —
-/// 1e-9 rad at t = 1e6 s. Kept apart, the rounding of φ only rotates about the fixed L_w.
-inline Quat quat_zxz(double phi, double cos_half_theta, double sin_half_theta, double cos_half_psi,
-                     double sin_half_psi) {
-  const Quat qz_phi(std::cos(0.5 * phi), 0.0, 0.0, std::sin(0.5 * phi));
-  const Quat qx_theta(cos_half_theta, sin_half_theta, 0.0, 0.0);
-  const Quat qz_psi(cos_half_psi, 0.0, 0.0, sin_half_psi);
-  return qz_phi * (qx_theta * qz_psi);
-}
 
 // ---- Equal moments (euler_poinsot_symmetric.cpp; shared/research/numerics.md §2) ----
 
@@ -82,81 +69,153 @@ struct SortedBody {
   double omega_scale = 1.0;
 };
 
+/// The constants of a triaxial flow off the separatrix: everything its evaluation at a time t needs.
+/// One lane per body for a pack (the batched splitting drift keeps them as columns).
+template <class T>
+struct TriaxialConstants {
+  JacobiConstants<T> jacobi;                // sn, cn, dn of parameter m
+  PiConstants<T> pi;                        // Π(−N; am u | m)
+  T lambda = T(0), u0 = T(0);               // u = λt + u₀ (λ in rad/s)
+  T pole = T(3);                            // the axis the polhode circles: 3 or 1
+  Vec3T<T> A;                               // signed amplitudes σ·A (rad/s)
+  T h1 = T(0), h2 = T(0);                   // shape of the transverse momentum
+  T rho = T(0), c = T(0);                   // |μ_transverse| = ρ |T|, μ₃ = c dn
+  T kappa = T(0), rate = T(0), Pi0 = T(0);  // φ(t) = rate·t + κ (Π(u) − Π₀)
+  Mat3T<T> P;                               // ω_s = P ω_b
+  QuatT<T> G, CP;                           // R = G · Rz(φ) Rx(θ) Rz(ψ) · C P
+};
+
+/// Calls f(value) on every constant of k in one fixed order, with the first `ratios` Landen ratios last
+/// (those beyond a flow's own AGM steps must be zero): how columns of flows are written and loaded.
+template <class T, class F>
+void visit_constants(TriaxialConstants<T>& k, int ratios, F&& f) {
+  JacobiConstants<T>& J = k.jacobi;
+  PiConstants<T>& P = k.pi;
+  for (T* x : {&J.K,     &J.a_N,      &J.m1,       &J.k1,     &P.n,      &P.n_reflected, &P.c_linear,
+               &P.c_Pi,  &P.complete, &P.rj_steps, &k.lambda, &k.u0,     &k.pole,        &k.h1,
+               &k.h2,    &k.rho,      &k.c,        &k.kappa,  &k.rate,   &k.Pi0,         &k.G.w(),
+               &k.G.x(), &k.G.y(),    &k.G.z(),    &k.CP.w(), &k.CP.x(), &k.CP.y(),      &k.CP.z()}) {
+    f(*x);
+  }
+  for (int r = 0; r < 3; ++r) f(k.A(r));
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) f(k.P(r, c));
+  }
+  for (int r = 0; r < ratios; ++r) f(J.ratio[r]);
+}
+
+/// q(t) and ω_b(t) of a flow of one body (double) or of one body per lane (packs).
+template <class T>
+struct FlowState {
+  QuatT<T> q;
+  Vec3T<T> omega_b;
+};
+
+/// ω_b = Pᵀ ω_s from sn, cn, dn (pole 3: ω₁ ∝ cn, ω₃ ∝ dn; pole 1: ω₁ ∝ dn, ω₃ ∝ cn). P is a signed
+/// permutation: each component is one product, exact.
+template <class T>
+TUMBLE_INLINE Vec3T<T> triaxial_omega_b(const TriaxialConstants<T>& k, const SnCnDn<T>& f) {
+  const auto pole3 = k.pole == T(3);
+  const T w1 = k.A(0) * select(pole3, f.cn, f.dn), w2 = k.A(1) * f.sn,
+          w3 = k.A(2) * select(pole3, f.dn, f.cn);
+  return {k.P(0, 0) * w1 + k.P(1, 0) * w2 + k.P(2, 0) * w3, k.P(0, 1) * w1 + k.P(1, 1) * w2 + k.P(2, 1) * w3,
+          k.P(0, 2) * w1 + k.P(1, 2) * w2 + k.P(2, 2) * w3};
+}
+
+/// Rz(φ) Rx(θ) Rz(ψ) as a unit quaternion (z-x-z Euler angles), with θ and ψ given by the cosines and
+/// sines of their halves. The three factors are multiplied rather than combined into angles (φ ± ψ)/2:
+/// φ grows with t, and rounding φ + ψ would perturb the body part Rx(θ)Rz(ψ) (and so L_w) by ε|φ| —
+/// 1e-9 rad at t = 1e6 s. Kept apart, the rounding of φ only rotates about the fixed L_w.
+template <class T>
+TUMBLE_INLINE QuatT<T> quat_zxz(T phi, T cos_half_theta, T sin_half_theta, T cos_half_psi, T sin_half_psi) {
+  using std::cos, std::sin;
+  const T half_phi = T(0.5) * phi;
+  const QuatT<T> qz_phi(cos(half_phi), T(0), T(0), sin(half_phi));
+  const QuatT<T> qx_theta(cos_half_theta, sin_half_theta, T(0), T(0));
+  const QuatT<T> qz_psi(cos_half_psi, T(0), T(0), sin_half_psi);
+  return quat_mul<T>(qz_phi, quat_mul<T>(qx_theta, qz_psi));
+}
+
+/// The unit quaternion of Rz(φ) Rx(θ) Rz(ψ) for given φ: θ and ψ are the z-x-z angles of the unit body
+/// momentum μ = (T₁, T₂, c dn) (in the frame C P), from sn, cn, dn.
+template <class T>
+TUMBLE_INLINE QuatT<T> triaxial_body_part(const TriaxialConstants<T>& k, T phi, const SnCnDn<T>& f) {
+  using std::abs, std::copysign, std::hypot, std::sqrt;
+  // Transverse part of μ up to the factor ρ (it is ρ·(h₁ cn, h₂ sn) for pole 3, ρ·(h₁ sn, h₂ cn) for
+  // pole 1), so ψ stays defined when ρ = 0 (spin exactly about the pole).
+  const auto pole3 = k.pole == T(3);
+  const T T1 = k.h1 * select(pole3, f.cn, f.sn), T2 = k.h2 * select(pole3, f.sn, f.cn);
+  const T Tn = hypot(T1, T2);  // > 0: sn² + cn² = 1
+  // ψ = atan2(T₁, T₂) ∈ [−π, π] and θ = atan2(ρ|T|, c dn) ∈ [0, π/2) (c dn > 0), taken by their half
+  // angles without evaluating them: for an angle α with (sin α, cos α) = (y, x)/r,
+  //   cos(α/2) = √((r + x)/(2r)),  sin(α/2) = y/√(2r(r + x))                  (x ≥ 0),
+  //   sin(α/2) = ±√((r − x)/(2r)), cos(α/2) = |y|/√(2r(r − x)), ± the sign of y  (x < 0),
+  // each a sum of non-negative terms (no cancellation); cos(α/2) ≥ 0 and the sign of sin(α/2) is
+  // that of y, as with the angle from atan2 (its branch cut included). Both forms are computed and one
+  // is kept per lane (the other may divide by zero, and is discarded).
+  const auto upper = T2 >= T(0);
+  const T w_upper = sqrt(T(2) * Tn * (Tn + T2)), w_lower = sqrt(T(2) * Tn * (Tn - T2));
+  const T c_psi = select(upper, (Tn + T2) / w_upper, abs(T1) / w_lower);
+  const T s_psi = select(upper, T1 / w_upper, copysign((Tn - T2) / w_lower, T1));
+  const T y = k.rho * Tn, x = k.c * f.dn, r = hypot(y, x);
+  const T w = sqrt(T(2) * r * (r + x));
+  return quat_zxz<T>(phi, (r + x) / w, y / w, c_psi, s_psi);
+}
+
+/// q(t) from sn, cn, dn and Π(−N; am u | m) at u = λt + u₀:
+///   φ(t) = |L|t/I_p + κ [Π(−N; am u | m) − Π(−N; am u₀ | m)],  R = G · Rz(φ) Rx(θ) Rz(ψ) · C P.
+template <class T>
+TUMBLE_INLINE QuatT<T> triaxial_q(const TriaxialConstants<T>& k, T t, const SnCnDn<T>& f, T Pi_u) {
+  const T phi = k.rate * t + k.kappa * (Pi_u - k.Pi0);
+  return normalized<T>(quat_mul<T>(quat_mul<T>(k.G, triaxial_body_part<T>(k, phi, f)), k.CP));
+}
+
+/// The flow at t off the separatrix: one Landen point serves sn, cn, dn and Π.
+template <class T>
+TUMBLE_INLINE FlowState<T> triaxial_state(const TriaxialConstants<T>& k, T t) {
+  const LandenPoint<T> p = landen_point<T>(k.jacobi, k.lambda * t + k.u0);
+  const SnCnDn<T> f = jacobi_sn_cn_dn<T>(k.jacobi, p);
+  return {triaxial_q<T>(k, t, f, elliptic_pi<T>(k.pi, p)), triaxial_omega_b<T>(k, f)};
+}
+
 /// Three distinct moments: the elliptic-function solution (both regimes and the separatrix).
 /// Everything is written in the sorted frame {s} (ω_s = P ω_b); the derivation is at the top of
-/// euler_poinsot_triaxial.cpp.
+/// euler_poinsot_triaxial.cpp. Off the separatrix it evaluates the templates above on double.
 class TriaxialRotation {
  public:
   using Regime = EulerPoinsot::Regime;
 
   /// Requires w not along the intermediate axis (w₁ or w₃ non-zero). Sets `regime`.
   TriaxialRotation(const SortedBody& b, const Quat& q0, Regime& regime);
-  Vec3 omega_b(double t) const { return P_.transpose() * omega_s(jacobi_(lambda_ * t + u0_)); }
-  Quat q(double t) const { return q(t, jacobi_(lambda_ * t + u0_)); }
-  /// Both from one evaluation of sn, cn, dn (the same u = λt + u₀ as each alone: the same bits).
-  EulerPoinsot::State state(double t) const {
-    const JacobiValues v = jacobi_(lambda_ * t + u0_);
-    return {q(t, v), P_.transpose() * omega_s(v)};
+  Vec3 omega_b(double t) const {
+    if (separatrix_) return state(t).omega_b;
+    const LandenPoint<double> p = landen_point<double>(k_.jacobi, k_.lambda * t + k_.u0);
+    return triaxial_omega_b<double>(k_, jacobi_sn_cn_dn<double>(k_.jacobi, p));  // no Π: cheaper than q(t)
   }
-  double period_omega() const { return 4.0 * jacobi_.K() / lambda_; }
-  double flip_interval() const { return 2.0 * jacobi_.K() / lambda_; }
+  Quat q(double t) const { return state(t).q; }
+  EulerPoinsot::State state(double t) const {
+    if (!separatrix_) {
+      const FlowState<double> s = triaxial_state<double>(k_, t);
+      return {s.q, s.omega_b};
+    }
+    // m = 1: sn = tanh u, cn = dn = sech u, and Π(−N; am u | 1) = ∫₀ᵘ du′/(1 + N tanh²u′)
+    // = (u + √N atan(√N tanh u))/(1 + N).
+    const double u = k_.lambda * t + k_.u0;
+    const SnCnDn<double> f = separatrix_sn_cn_dn(u);
+    const double rN = std::sqrt(N_);
+    const double Pi_u = (u + rN * std::atan(rN * f.sn)) / (1.0 + N_);
+    return {triaxial_q<double>(k_, t, f, Pi_u), triaxial_omega_b<double>(k_, f)};
+  }
+  double period_omega() const { return 4.0 * k_.jacobi.K / k_.lambda; }
+  double flip_interval() const { return 2.0 * k_.jacobi.K / k_.lambda; }
+  /// The constants of the flow, off the separatrix (the batched splitting drift evaluates them).
+  const TriaxialConstants<double>& constants() const { return k_; }
+  bool separatrix() const { return separatrix_; }
 
  private:
-  /// q(t) given v = sn, cn, dn, … at u = λt + u₀.
-  Quat q(double t, const JacobiValues& v) const;
-  // ω_s from sn, cn, dn (pole 3: ω₁ ∝ cn, ω₃ ∝ dn; pole 1: ω₁ ∝ dn, ω₃ ∝ cn).
-  Vec3 omega_s(const JacobiValues& v) const {
-    return pole_ == 3 ? Vec3(A_(0) * v.cn, A_(1) * v.sn, A_(2) * v.dn)
-                      : Vec3(A_(0) * v.dn, A_(1) * v.sn, A_(2) * v.cn);
-  }
-  /// Π(−N; am u | m), continued beyond |am u| ≤ π/2 by Π(n; φ + jπ) = Π(n; φ) + 2jΠ(n).
-  double Pi(double u, const JacobiValues& v) const {
-    if (separatrix_) {
-      // m = 1: Π(−N; am u | 1) = ∫₀ᵘ du′/(1 + N tanh²u′) = (u + √N atan(√N tanh u))/(1 + N).
-      const double rN = std::sqrt(N_);
-      return (u + rN * std::atan(rN * v.sn)) / (1.0 + N_);
-    }
-    return (*Pi_)(v);
-  }
-  /// The unit quaternion of Rz(φ) Rx(θ) Rz(ψ) for given φ: θ and ψ are the z-x-z angles of μ.
-  Quat body_part(double phi, const JacobiValues& v) const {
-    // Transverse part of μ up to the factor ρ (it is ρ·(h₁ cn, h₂ sn) for pole 3, ρ·(h₁ sn, h₂ cn) for
-    // pole 1), so ψ stays defined when ρ = 0 (spin exactly about the pole).
-    const double T1 = pole_ == 3 ? h_(0) * v.cn : h_(0) * v.sn;
-    const double T2 = pole_ == 3 ? h_(1) * v.sn : h_(1) * v.cn;
-    const double T = std::hypot(T1, T2);  // > 0: sn² + cn² = 1
-    // ψ = atan2(T₁, T₂) ∈ [−π, π] and θ = atan2(ρ|T|, c dn) ∈ [0, π/2) (c dn > 0), taken by their half
-    // angles without evaluating them: for an angle α with (sin α, cos α) = (y, x)/r,
-    //   cos(α/2) = √((r + x)/(2r)),  sin(α/2) = y/√(2r(r + x))                  (x ≥ 0),
-    //   sin(α/2) = ±√((r − x)/(2r)), cos(α/2) = |y|/√(2r(r − x)), ± the sign of y  (x < 0),
-    // each a sum of non-negative terms (no cancellation); cos(α/2) ≥ 0 and the sign of sin(α/2) is
-    // that of y, as with the angle from atan2 (its branch cut included).
-    double c_psi, s_psi;
-    if (T2 >= 0.0) {
-      const double w = std::sqrt(2.0 * T * (T + T2));
-      c_psi = (T + T2) / w;
-      s_psi = T1 / w;
-    } else {
-      const double w = std::sqrt(2.0 * T * (T - T2));
-      s_psi = std::copysign((T - T2) / w, T1);
-      c_psi = std::abs(T1) / w;
-    }
-    const double y = rho_ * T, x = c_ * v.dn, r = std::hypot(y, x);
-    const double w = std::sqrt(2.0 * r * (r + x));
-    return quat_zxz(phi, (r + x) / w, y / w, c_psi, s_psi);
-  }
-
-  int pole_ = 3;
   bool separatrix_ = false;
-  JacobiElliptic jacobi_{1.0, 0.0};  // set in the constructor (m = 1 costs nothing to set up)
-  double lambda_ = 0.0, u0_ = 0.0;   // u = λt + u₀ (λ in rad/s)
-  Vec3 A_;                           // signed amplitudes σ·A (rad/s)
-  Vec3 h_;                           // shape of the transverse momentum (first two entries used)
-  double rho_ = 0.0, c_ = 0.0;       // |μ_transverse| = ρ |T|, μ₃ = c dn
-  double N_ = 0.0, kappa_ = 0.0, rate_ = 0.0, Pi0_ = 0.0;
-  std::optional<EllipticPi> Pi_;  // Π(−N; am u | m) off the separatrix
-  Mat3 P_;
-  Quat G_, CP_;
+  double N_ = 0.0;
+  TriaxialConstants<double> k_;
 };
 
 // ---- The three together ----
@@ -184,6 +243,8 @@ class FreeRotation {
   double flip_interval() const {
     return std::visit([](const auto& f) { return f.flip_interval(); }, flow_);
   }
+  /// The triaxial flow, if this is one (else nullptr).
+  const TriaxialRotation* triaxial() const { return std::get_if<TriaxialRotation>(&flow_); }
 
  private:
   std::variant<SteadyRotation, AxisymmetricRotation, TriaxialRotation> flow_;

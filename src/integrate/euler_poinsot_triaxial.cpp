@@ -37,7 +37,9 @@ double sign_of(double x) { return std::signbit(x) ? -1.0 : 1.0; }
 
 }  // namespace
 
-TriaxialRotation::TriaxialRotation(const SortedBody& b, const Quat& q0, Regime& regime) : P_(b.P) {
+TriaxialRotation::TriaxialRotation(const SortedBody& b, const Quat& q0, Regime& regime) {
+  TriaxialConstants<double>& k = k_;
+  k.P = b.P;
   const double I1 = b.I(0), I2 = b.I(1), I3 = b.I(2);
   const double w1 = b.w(0), w2 = b.w(1), w3 = b.w(2);
   const double d1 = I2 * (I2 - I1) * w2 * w2 + I3 * (I3 - I1) * w3 * w3;
@@ -45,17 +47,16 @@ TriaxialRotation::TriaxialRotation(const SortedBody& b, const Quat& q0, Regime& 
   const double t1 = I1 * (I2 - I1) * w1 * w1, t3 = I3 * (I3 - I2) * w3 * w3;
   const double d2 = t1 - t3;
   separatrix_ = std::abs(d2) <= EulerPoinsot::kSeparatrixTolerance * (t1 + t3);
-  pole_ = d2 >= 0.0 ? 1 : 3;
-  regime = separatrix_  ? Regime::separatrix
-           : pole_ == 1 ? Regime::about_minor_axis
-                        : Regime::about_major_axis;
+  const int pole = d2 >= 0.0 ? 1 : 3;
+  k.pole = pole;
+  regime = separatrix_ ? Regime::separatrix : pole == 1 ? Regime::about_minor_axis : Regime::about_major_axis;
 
   const Vec3 L_s = b.I.cwiseProduct(b.w);
   const double L = L_s.norm();  // |L| in scaled units
   double lambda, m, m1, s1, s3;
   Vec3 A;
   double x, y;  // ∝ (cn u₀, sn u₀) (sech, tanh on the separatrix)
-  if (pole_ == 3) {
+  if (pole == 3) {
     lambda = std::sqrt((I3 - I2) * d1 / (I1 * I2 * I3));
     m = (I2 - I1) * d3 / ((I3 - I2) * d1);
     m1 = (I3 - I1) * (-d2) / ((I3 - I2) * d1);
@@ -64,10 +65,11 @@ TriaxialRotation::TriaxialRotation(const SortedBody& b, const Quat& q0, Regime& 
     s1 = separatrix_ ? sign_of(w1) : 1.0;
     s3 = sign_of(w3);
     N_ = I3 * (I2 - I1) / (I1 * (I3 - I2));
-    kappa_ = (I3 - I1) * L / (I1 * I3 * lambda);
-    c_ = std::sqrt(I3 * d1 / (I3 - I1)) / L;
-    rho_ = std::sqrt(d3) / L;
-    h_ = Vec3(std::sqrt(I1 / (I3 - I1)), std::sqrt(I2 / (I3 - I2)), 0.0);
+    k.kappa = (I3 - I1) * L / (I1 * I3 * lambda);
+    k.c = std::sqrt(I3 * d1 / (I3 - I1)) / L;
+    k.rho = std::sqrt(d3) / L;
+    k.h1 = std::sqrt(I1 / (I3 - I1));
+    k.h2 = std::sqrt(I2 / (I3 - I2));
     x = s1 * w1 * std::sqrt(I1 * (I3 - I1));
     y = s1 * s3 * w2 * std::sqrt(I2 * (I3 - I2));
   } else {
@@ -79,54 +81,55 @@ TriaxialRotation::TriaxialRotation(const SortedBody& b, const Quat& q0, Regime& 
     s1 = sign_of(w1);
     s3 = separatrix_ ? sign_of(w3) : 1.0;
     N_ = I1 * (I3 - I2) / (I3 * (I2 - I1));
-    kappa_ = -(I3 - I1) * L / (I1 * I3 * lambda);
-    c_ = std::sqrt(I1 * d3 / (I3 - I1)) / L;
-    rho_ = std::sqrt(d1) / L;
-    h_ = Vec3(std::sqrt(I2 / (I2 - I1)), std::sqrt(I3 / (I3 - I1)), 0.0);
+    k.kappa = -(I3 - I1) * L / (I1 * I3 * lambda);
+    k.c = std::sqrt(I1 * d3 / (I3 - I1)) / L;
+    k.rho = std::sqrt(d1) / L;
+    k.h1 = std::sqrt(I2 / (I2 - I1));
+    k.h2 = std::sqrt(I3 / (I3 - I1));
     x = s3 * w3 * std::sqrt(I3 * (I3 - I1));
     y = s1 * s3 * w2 * std::sqrt(I2 * (I2 - I1));
   }
-  A_ = b.omega_scale * Vec3(s1 * A(0), s1 * s3 * A(1), s3 * A(2));
-  lambda_ = b.omega_scale * lambda;
-  rate_ = b.omega_scale * L / (pole_ == 3 ? I3 : I1);  // |L|/I_p (rad/s)
+  k.A = b.omega_scale * Vec3(s1 * A(0), s1 * s3 * A(1), s3 * A(2));
+  k.lambda = b.omega_scale * lambda;
+  k.rate = b.omega_scale * L / (pole == 3 ? I3 : I1);  // |L|/I_p (rad/s)
 
-  // Initial phase u₀ from (cn u₀, sn u₀) ∝ (x, y).
+  // Initial phase u₀ from (cn u₀, sn u₀) ∝ (x, y), and Π₀ = Π(−N; am u₀ | m).
   const double norm = std::hypot(x, y);
+  SnCnDn<double> f0;
   if (separatrix_) {
-    jacobi_ = JacobiElliptic(1.0, 0.0);
+    k.jacobi.K = std::numeric_limits<double>::infinity();
     // sinh u₀ = tanh u₀ / sech u₀; x > 0 unless ω₁ and ω₃ underflowed.
-    u0_ = std::asinh(y / std::max(x, std::numeric_limits<double>::min()));
+    k.u0 = std::asinh(y / std::max(x, std::numeric_limits<double>::min()));
+    f0 = separatrix_sn_cn_dn(k.u0);
+    const double rN = std::sqrt(N_);
+    k.Pi0 = (k.u0 + rN * std::atan(rN * f0.sn)) / (1.0 + N_);
   } else {
     // m and k′² come from separate formulas; each is in [0, 1] in exact arithmetic.
-    jacobi_ = JacobiElliptic(std::clamp(m, 0.0, 1.0), std::clamp(m1, 0.0, 1.0));
+    const JacobiElliptic jacobi(std::clamp(m, 0.0, 1.0), std::clamp(m1, 0.0, 1.0));
+    k.jacobi = jacobi.constants();
     const double cn0 = norm > 0.0 ? x / norm : 1.0, sn0 = norm > 0.0 ? y / norm : 0.0;
     const double dn0 = std::sqrt(cn0 * cn0 + m1 * sn0 * sn0);
     // u₀ = F(φ₀ | m) = sn R_F(cn², dn², 1) for |φ₀| ≤ π/2; F(±π − φ) = ±2K − F(φ) beyond.
     const double F = elliptic_Pi_incomplete(0.0, sn0, cn0, dn0);
-    u0_ = cn0 >= 0.0 ? F : std::copysign(2.0 * jacobi_.K(), sn0) - F;
-    Pi_.emplace(-N_, jacobi_);
+    k.u0 = cn0 >= 0.0 ? F : std::copysign(2.0 * jacobi.K(), sn0) - F;
+    k.pi = EllipticPi(-N_, jacobi).constants();
+    const LandenPoint<double> p0 = landen_point<double>(k.jacobi, k.u0);
+    f0 = jacobi_sn_cn_dn<double>(k.jacobi, p0);
+    k.Pi0 = elliptic_pi<double>(k.pi, p0);
   }
-  const JacobiValues v0 = jacobi_(u0_);
-  Pi0_ = Pi(u0_, v0);
 
   // C P: C takes the pole axis to +e₃ with μ = (T₁, T₂, c dn); det C = +1.
   Mat3 C;
-  if (pole_ == 3) {
+  if (pole == 3) {
     C = Vec3(s1, s1 * s3, s3).asDiagonal();
   } else {
     Mat3 cyclic;  // (v₁, v₂, v₃) ↦ (v₂, v₃, v₁)
     cyclic << 0, 1, 0, 0, 0, 1, 1, 0, 0;
     C = Vec3(s1 * s3, s3, s1).asDiagonal() * cyclic;
   }
-  CP_ = Quat(Mat3(C * P_));
+  k.CP = Quat(Mat3(C * k.P));
   // R(0) = G B(0) C P = R₀  ⇒  G = R₀ (CP)ᵀ B(0)ᵀ.
-  G_ = q0 * CP_.conjugate() * body_part(0.0, v0).conjugate();
-}
-
-Quat TriaxialRotation::q(double t, const JacobiValues& v) const {
-  const double u = lambda_ * t + u0_;
-  const double phi = rate_ * t + kappa_ * (Pi(u, v) - Pi0_);
-  return (G_ * body_part(phi, v) * CP_).normalized();
+  k.G = q0 * k.CP.conjugate() * triaxial_body_part<double>(k, 0.0, f0).conjugate();
 }
 
 }  // namespace tumble::detail

@@ -19,71 +19,52 @@ JacobiElliptic::JacobiElliptic(double m, double m1) : m_(m), m1_(m1) {
                           " and m1 = 1 - m = " + std::to_string(m1) + " must lie in [0, 1] and add up to 1");
   }
   if (m1 == 0.0) {  // m = 1: sn = tanh, cn = dn = sech, no period
-    K_ = std::numeric_limits<double>::infinity();
+    c_.K = std::numeric_limits<double>::infinity();
     return;
   }
-  K_ = boost::math::ellint_rf(0.0, m1, 1.0);
+  c_.K = boost::math::ellint_rf(0.0, m1, 1.0);
+  c_.m1 = m1;
+  c_.k1 = std::sqrt(m1);
   // AGM: a₀ = 1, b₀ = k′, c₀ = k; aₙ = (aₙ₋₁ + bₙ₋₁)/2, bₙ = √(aₙ₋₁bₙ₋₁), and cₙ = (aₙ₋₁ − bₙ₋₁)/2
   // written as cₙ = cₙ₋₁²/(4aₙ) (since aₙ² − bₙ² = cₙ²), which never subtracts close numbers.
   double a = 1.0, b = std::sqrt(m1), c = std::sqrt(m);
   const double eps = std::numeric_limits<double>::epsilon();
   while (c > eps * a) {
-    if (steps_ == kMaxSteps)
+    if (c_.steps == kMaxLandenSteps)
       throw Error("JacobiElliptic: the AGM did not converge (m = " + std::to_string(m) + ")");
     const double a_next = 0.5 * (a + b);
     c = c * c / (4.0 * a_next);
     b = std::sqrt(a * b);
     a = a_next;
-    ratio_[steps_++] = c / a;
+    c_.ratio[c_.steps++] = c / a;
   }
-  a_N_ = a;
+  c_.a_N = a;
 }
 
 JacobiValues JacobiElliptic::operator()(double u) const {
   JacobiValues v;
   if (m1_ == 0.0) {
     // m = 1: sn = tanh u, cn = dn = sech u, am u = gd u = 2 atan(tanh(u/2)).
-    v.sn = v.sn_r = std::tanh(u);
-    v.cn = v.cn_r = v.dn = 1.0 / std::cosh(u);
+    const SnCnDn<double> f = separatrix_sn_cn_dn(u);
+    v.sn = v.sn_r = f.sn;
+    v.cn = v.cn_r = v.dn = f.cn;
     v.am = 2.0 * std::atan(std::tanh(0.5 * u));
     return v;
   }
-  // u = 2Kj + r, |r| ≤ K; fma rounds 2Kj − u once.
-  v.j = std::nearbyint(u / (2.0 * K_));
-  v.r = std::fma(-2.0 * K_, v.j, u);
-  const double r_abs = std::abs(v.r);
-  double phi = landen_am(r_abs <= 0.5 * K_ ? v.r : K_ - r_abs);
-  if (r_abs <= 0.5 * K_) {
-    v.sn_r = std::sin(phi);
-    v.cn_r = std::cos(phi);
-    // dn = √(1 − m sn²) = √(cn² + k′² sn²): a sum of squares, no cancellation.
-    v.dn = std::sqrt(v.cn_r * v.cn_r + m1_ * v.sn_r * v.sn_r);
-  } else {
-    // r = ±(K − v): sn r = ±cn v/dn v, cn r = k′ sn v/dn v, dn r = k′/dn v (A&S 16.8), all to full
-    // relative accuracy where cn r and dn r are small.
-    v.reflected = true;
-    v.v = K_ - r_abs;
-    v.sn_v = std::sin(phi);
-    v.cn_v = std::cos(phi);
-    v.dn_v = std::sqrt(v.cn_v * v.cn_v + m1_ * v.sn_v * v.sn_v);
-    const double k1 = std::sqrt(m1_);
-    v.sn_r = std::copysign(v.cn_v / v.dn_v, v.r);
-    v.cn_r = k1 * v.sn_v / v.dn_v;
-    v.dn = k1 / v.dn_v;
-    phi = std::copysign(std::atan2(v.cn_v, k1 * v.sn_v), v.r);  // am r
+  const LandenPoint<double> p = landen_point<double>(c_, u);
+  const SnCnDn<double> f = jacobi_sn_cn_dn<double>(c_, p);
+  v.sn = f.sn, v.cn = f.cn, v.dn = f.dn;
+  v.j = p.j, v.r = p.r;
+  v.reflected = p.reflected;
+  const double sign = std::fmod(p.j, 2.0) != 0.0 ? -1.0 : 1.0;  // (−1)ʲ, undone: sn r, cn r
+  v.sn_r = sign * f.sn, v.cn_r = sign * f.cn;
+  double phi = std::atan2(p.s, p.c);  // am r, |am r| ≤ π/2
+  if (p.reflected) {
+    v.v = p.arg, v.sn_v = p.s, v.cn_v = p.c, v.dn_v = p.d;
+    phi = std::copysign(std::atan2(p.c, c_.k1 * p.s), p.r);
   }
-  const bool odd = std::fmod(v.j, 2.0) != 0.0;
-  v.sn = odd ? -v.sn_r : v.sn_r;
-  v.cn = odd ? -v.cn_r : v.cn_r;
   v.am = v.j * std::numbers::pi + phi;
   return v;
-}
-
-double JacobiElliptic::landen_am(double r) const {
-  // φ_N = 2ᴺ a_N r, then φₙ₋₁ = (φₙ + asin((cₙ/aₙ) sin φₙ))/2 down to φ₀ = am r.
-  double phi = std::ldexp(a_N_ * r, steps_);
-  for (int n = steps_; n >= 1; --n) phi = 0.5 * (phi + std::asin(ratio_[n - 1] * std::sin(phi)));
-  return phi;
 }
 
 double elliptic_Pi_complete(double n, double m1) {
@@ -129,46 +110,36 @@ double elliptic_Pi_incomplete(double n, double s, double c, double d) {
 }  // namespace tumble
 
 namespace tumble {
-namespace {
 
-/// elliptic_Pi_incomplete with R_F and R_J evaluated in double: Boost's default promotes double to
-/// long double (x87, and a powl per R_J call for its stopping threshold), ~7× slower for R_J. Measured
-/// against 50-digit values on 2e4 arguments like EllipticPi's (m up to 1 − 1e-12, n from −1e-2 to
-/// −1e2): ≤ 2.3ε (R_F) and ≤ 3.1ε (R_J) relative, mean 0.6ε, against 0.5ε promoted.
-double Pi_incomplete_in_double(double n, double s, double c, double d) {
-  using NoPromotion = boost::math::policies::policy<boost::math::policies::promote_double<false>>;
-  if (s == 0.0) return 0.0;
-  const double c2 = c * c, d2 = d * d, s2 = s * s;
-  const double F = s * boost::math::ellint_rf(c2, d2, 1.0, NoPromotion());
-  if (n == 0.0) return F;
-  return F + n / 3.0 * s * s2 * boost::math::ellint_rj(c2, d2, 1.0, 1.0 - n * s2, NoPromotion());
-}
-
-}  // namespace
-
-EllipticPi::EllipticPi(double n, const JacobiElliptic& f) : n_(n), m_(f.m()), m1_(f.m1()) {
+EllipticPi::EllipticPi(double n, const JacobiElliptic& f) {
   if (!(n <= 0.0)) {
     throw InvalidArgument("EllipticPi: the characteristic n = " + std::to_string(n) + " must be <= 0");
   }
-  if (m1_ == 0.0) throw InvalidArgument("EllipticPi: m = 1 has no complete integral; use the closed form");
-  complete_ = elliptic_Pi_complete(n, m1_);
-  const double b = m_ - n;  // m − n ≥ 0; zero only for m = n = 0, where Π = u and no reflection term
+  const double m = f.m(), m1 = f.m1();
+  if (m1 == 0.0) throw InvalidArgument("EllipticPi: m = 1 has no complete integral; use the closed form");
+  c_.n = n;
+  c_.complete = elliptic_Pi_complete(n, m1);
+  c_.rj_max_steps = carlson_rj_steps(-n);
+  c_.rj_steps = c_.rj_max_steps;
+  const double b = m - n;  // m − n ≥ 0; zero only for m = n = 0, where Π = u and no reflection term
   if (b > 0.0) {
-    n_reflected_ = b / (1.0 - n);
-    c_linear_ = m_ / b;
-    c_Pi_ = -n * m1_ / (b * (1.0 - n));
+    c_.n_reflected = b / (1.0 - n);
+    c_.c_linear = m / b;
+    c_.c_Pi = -n * m1 / (b * (1.0 - n));
   } else {
-    c_linear_ = 1.0;
+    c_.c_linear = 1.0;
   }
 }
 
 double EllipticPi::operator()(const JacobiValues& v) const {
-  const double periods = 2.0 * v.j * complete_;
-  if (!v.reflected) return periods + Pi_incomplete_in_double(n_, v.sn_r, v.cn_r, v.dn);
-  const double tail =
-      c_linear_ * v.v +
-      (c_Pi_ == 0.0 ? 0.0 : c_Pi_ * Pi_incomplete_in_double(n_reflected_, v.sn_v, v.cn_v, v.dn_v));
-  return periods + std::copysign(complete_ - tail, v.r);
+  // The Landen point of v's argument, as landen_point left it (JacobiElliptic::operator()).
+  LandenPoint<double> p;
+  p.j = v.j, p.r = v.r, p.reflected = v.reflected;
+  p.arg = v.reflected ? v.v : v.r;
+  p.s = v.reflected ? v.sn_v : v.sn_r;
+  p.c = v.reflected ? v.cn_v : v.cn_r;
+  p.d = v.reflected ? v.dn_v : v.dn;
+  return elliptic_pi<double>(c_, p);
 }
 
 }  // namespace tumble

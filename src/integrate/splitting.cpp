@@ -46,12 +46,14 @@
 //    3.7e-10 rad after 2e4 steps of 5 ms in the tests, more than setting up a flow every step.
 //  - Memory: one FreeFlight per body, ~1 KB (an EulerPoinsot holds its flow by value, no heap), sized on
 //    the first step of a run.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <optional>
 #include <vector>
 
 #include "engine.hpp"
+#include "euler_poinsot_flows.hpp"
 #include "methods.hpp"
 #include "saved_state.hpp"
 #include "tumble/integrate/euler_poinsot.hpp"
@@ -59,50 +61,105 @@
 namespace tumble {
 namespace {
 
+using detail::FlowState;
+using detail::TriaxialConstants;
+using engine::Block;
+using engine::kWidth;
+using engine::Pack;
+
+/// Landen ratio columns kept per body: m₁ ≥ 1e-300 needs at most 15 AGM steps. A flow that needs
+/// more is evaluated by its EulerPoinsot, like the regimes below.
+constexpr int kRatioColumns = 16;
+
+/// How many constants visit_constants visits.
+size_t constant_count() {
+  TriaxialConstants<double> k;
+  size_t count = 0;
+  detail::visit_constants(k, kRatioColumns, [&](double&) { ++count; });
+  return count;
+}
+
+/// The kept flows of all bodies as columns, one row per body: the bookkeeping of each kept flow (time
+/// along it, the q and ω its last drift left, the Λ it was set up with) and, for a triaxial flow off
+/// the separatrix, its constants, so that a pack of bodies evaluates its flows in one pass of
+/// detail::triaxial_state<Pack>. Other flows (rest, sphere, axisymmetric, separatrix) are evaluated by
+/// their EulerPoinsot, body by body: each body takes the same path whatever its neighbours.
+struct FlowColumns {
+  enum : size_t {
+    tau,                     // time along the flow, τ + τ_lo (compensated sum of the drifts' h)
+    tau_lo,                  //
+    q,                       // 4: q the last drift left (w, x, y, z)
+    omega = q + 4,           // 3: ω the last drift left, in the formulation's variables
+    Lambda = omega + 3,      // 3: the moments the flow was set up with
+    has_flow = Lambda + 3,   // 1 once set up
+    in_pack = has_flow + 1,  // 1: a triaxial flow off the separatrix, evaluated in packs
+    steps = in_pack + 1,     // its AGM steps
+    constants = steps + 1    // visit_constants' order
+  };
+};
+
+/// A body's torque-free motion since the last torque (or change of its state), kept between steps:
+/// the flow and the state it was set up from (a checkpoint stores these, not the flow).
+struct FreeFlight {
+  std::optional<EulerPoinsot> flow;
+  Quat q0{1.0, 0.0, 0.0, 0.0};
+  Vec3 w0 = Vec3::Zero();
+};
+
+/// K(τ): v += τ f/m and L_w += τ τ_w with the pose frozen, in the formulation's variables.
+template <class T>
+TUMBLE_INLINE void kick(Formulation F, Coordinates<T>& c, T tau, const Vec3T<T>& f_w, const Vec3T<T>& tau_w,
+                        T m, const Vec3T<T>& Lambda) {
+  const QuatT<T> q_inv = c.q.conjugate();
+  const Vec3T<T> dv_w = tau * f_w / m;
+  const Vec3T<T> dw_b = tau * Vec3T<T>(q_inv * tau_w).cwiseQuotient(Lambda);  // Λ⁻¹ Rᵀ Δl
+  c.v += F == Formulation::body ? Vec3T<T>(q_inv * dv_w) : dv_w;
+  c.omega += F == Formulation::world ? Vec3T<T>(c.q * dw_b) : dw_b;
+}
+
 class Strang {
  public:
   void step(const Model& model, Formulation F, SystemCoordinates& x, double h, int threads) {
     engine_.prepare(model, F, threads);
     const size_t n = x.bodies.size();
     loads_.ensure(n, 6);
-    if (flights_.size() != n || F != flights_formulation_) {  // the first step of a run: allocates
-      flights_.assign(n, FreeFlight{});
-      flights_formulation_ = F;
-    }
+    if (flights_.size() != n || F != flights_formulation_) reset(n, F);  // the first step of a run: allocates
     const bool reuse = cached_ && same(x);
-    // K(h/2) with the loads at the start, then D(h), body by body.
-    auto kick_drift = [&](const engine::Block& blk, bool fresh) {
-      for (size_t i = blk.begin; i < std::min(blk.end, n); ++i) {
-        Coordinates<double> c = x.bodies.load(i);
-        const Vec3 f = fresh ? blk.force<double>(i) : cached(0, i),
-                   tau = fresh ? blk.torque<double>(i) : cached(3, i);
-        kick(F, c, 0.5 * h, f, tau, engine_.m<double>(i), engine_.Lambda<double>(i));
-        drift(F, c, h, engine_.Lambda<double>(i), flights_[i]);
-        x.bodies.store(i, c);
+    const BodyColumnsRef xr = x.bodies.ref();
+    const Pack half_h(0.5 * h);
+    // K(h/2) with the loads at the start, then D(h), a pack of bodies at a time.
+    auto kick_drift = [&](const Block& blk, bool fresh) {
+      for (size_t i = blk.begin; i < blk.end; i += kWidth) {
+        Coordinates<Pack> c = xr.load<Pack>(i);
+        const Vec3T<Pack> f = fresh ? blk.force<Pack>(i) : load3(0, i),
+                          tau = fresh ? blk.torque<Pack>(i) : load3(3, i);
+        kick<Pack>(F, c, half_h, f, tau, engine_.m<Pack>(i), engine_.Lambda<Pack>(i));
+        drift(F, c, h, engine_.Lambda<Pack>(i), i, n);
+        xr.store(i, c);
       }
     };
     if (reuse) {
-      engine_.for_each_block(n, [&](const engine::Block& blk) { kick_drift(blk, false); });
+      engine_.for_each_block(n, [&](const Block& blk) { kick_drift(blk, false); });
       for (size_t p = 0; p < x.particles.size(); ++p)
         x.particles[p].v += 0.5 * h * particle_loads_[p] / model.particles[p].mass;
     } else {
-      engine_.evaluate(x, [&](const engine::Block& blk) { kick_drift(blk, true); });
+      engine_.evaluate(x, [&](const Block& blk) { kick_drift(blk, true); });
       for (size_t p = 0; p < x.particles.size(); ++p)
         x.particles[p].v += 0.5 * h * engine_.particle_rates(p, x.particles[p]).v;
     }
     for (auto& p : x.particles) p.x += h * p.v;
     x.t += h;
     // K(h/2) with the loads at the end, which are kept for the next step.
-    engine_.evaluate(x, [&](const engine::Block& blk) {
-      for (size_t i = blk.begin; i < std::min(blk.end, n); ++i) {
-        Coordinates<double> c = x.bodies.load(i);
-        const Vec3 f = blk.force<double>(i), tau = blk.torque<double>(i);
+    engine_.evaluate(x, [&](const Block& blk) {
+      for (size_t i = blk.begin; i < blk.end; i += kWidth) {
+        Coordinates<Pack> c = xr.load<Pack>(i);
+        const Vec3T<Pack> f = blk.force<Pack>(i), tau = blk.torque<Pack>(i);
         for (size_t k = 0; k < 3; ++k) {
-          loads_[k][i] = f(static_cast<Eigen::Index>(k));
-          loads_[3 + k][i] = tau(static_cast<Eigen::Index>(k));
+          f(static_cast<Eigen::Index>(k)).store_aligned(loads_[k] + i);
+          tau(static_cast<Eigen::Index>(k)).store_aligned(loads_[3 + k] + i);
         }
-        kick(F, c, 0.5 * h, f, tau, engine_.m<double>(i), engine_.Lambda<double>(i));
-        x.bodies.store(i, c);
+        kick<Pack>(F, c, half_h, f, tau, engine_.m<Pack>(i), engine_.Lambda<Pack>(i));
+        xr.store(i, c);
       }
     });
     particle_loads_.assign(engine_.particle_forces().begin(), engine_.particle_forces().end());
@@ -117,11 +174,14 @@ class Strang {
     saved::Writer w(out);
     w.put(static_cast<double>(flights_.size()));
     w.put(static_cast<double>(flights_formulation_));
-    for (const FreeFlight& ff : flights_) {
+    for (size_t i = 0; i < flights_.size(); ++i) {
+      const FreeFlight& ff = flights_[i];
       w.put(ff.flow ? 1.0 : 0.0);
       w.put(ff.q0), w.put(ff.w0);
-      w.put(ff.tau), w.put(ff.tau_lo);
-      w.put(ff.q), w.put(ff.omega);
+      w.put(flows_[FlowColumns::tau][i]), w.put(flows_[FlowColumns::tau_lo][i]);
+      w.put(Quat(flows_[FlowColumns::q][i], flows_[FlowColumns::q + 1][i], flows_[FlowColumns::q + 2][i],
+                 flows_[FlowColumns::q + 3][i]));
+      w.put(column_vec3(FlowColumns::omega, i));
     }
     w.put(cached_ ? 1.0 : 0.0);
     if (!cached_) return;
@@ -136,15 +196,21 @@ class Strang {
     const size_t n = model.bodies.size(), np = model.particles.size();
     const size_t count = r.count(n);
     if (count != n && count != 0) r.fail();
-    flights_formulation_ = static_cast<Formulation>(r.count(2));
-    flights_.assign(count, FreeFlight{});
+    const auto F = static_cast<Formulation>(r.count(2));
+    reset(count, F);
     for (size_t i = 0; i < count; ++i) {
       FreeFlight& ff = flights_[i];
       const bool has_flow = r.flag();
       ff.q0 = r.quat(), ff.w0 = r.vec3();
-      ff.tau = r.get(), ff.tau_lo = r.get();
-      ff.q = r.quat(), ff.omega = r.vec3();
-      if (has_flow) ff.flow.emplace(model.bodies[i].Lambda(), ff.q0, ff.w0);
+      flows_[FlowColumns::tau][i] = r.get(), flows_[FlowColumns::tau_lo][i] = r.get();
+      const Quat q = r.quat();
+      const Vec3 omega = r.vec3();
+      if (has_flow) {
+        ff.flow.emplace(model.bodies[i].Lambda(), ff.q0, ff.w0);
+        adopt(i);
+      }
+      set_column_quat(FlowColumns::q, i, q);
+      set_column_vec3(FlowColumns::omega, i, omega);
     }
     cached_ = r.flag();
     if (!cached_) return;
@@ -156,8 +222,162 @@ class Strang {
   }
 
  private:
-  Vec3 cached(size_t first, size_t i) const {
-    return {loads_[first][i], loads_[first + 1][i], loads_[first + 2][i]};
+  Vec3T<Pack> load3(size_t first, size_t i) const {
+    return {Pack::load_aligned(loads_[first] + i), Pack::load_aligned(loads_[first + 1] + i),
+            Pack::load_aligned(loads_[first + 2] + i)};
+  }
+  Vec3 column_vec3(size_t first, size_t i) const {
+    return {flows_[first][i], flows_[first + 1][i], flows_[first + 2][i]};
+  }
+  void set_column_vec3(size_t first, size_t i, const Vec3& v) {
+    for (size_t k = 0; k < 3; ++k) flows_[first + k][i] = v(static_cast<Eigen::Index>(k));
+  }
+  void set_column_quat(size_t first, size_t i, const Quat& q) {
+    flows_[first][i] = q.w(), flows_[first + 1][i] = q.x(), flows_[first + 2][i] = q.y(),
+    flows_[first + 3][i] = q.z();
+  }
+
+  /// Sizes the flows for n bodies in formulation F, none set up yet. Padding rows hold the constants
+  /// of a harmless flow, so that a partly filled pack computes finite numbers in its spare lanes.
+  void reset(size_t n, Formulation F) {
+    flights_.assign(n, FreeFlight{});
+    flights_formulation_ = F;
+    flows_.resize(n, FlowColumns::constants + constant_count());
+    static const EulerPoinsot spare(Vec3(1.0, 2.0, 3.0), Quat::Identity(), Vec3(1.0, 0.5, 0.25));
+    const detail::TriaxialRotation* spare_flow = spare.free_rotation().triaxial();  // triaxial: 1 < 2 < 3
+    for (size_t i = n; i < flows_.stride() && spare_flow; ++i) write_constants(i, *spare_flow);
+  }
+
+  /// The columns of body i's newly set-up flow.
+  void adopt(size_t i) {
+    const EulerPoinsot& flow = *flights_[i].flow;
+    flows_[FlowColumns::has_flow][i] = 1.0;
+    set_column_vec3(FlowColumns::Lambda, i, flow.Lambda());
+    const detail::TriaxialRotation* triaxial = flow.free_rotation().triaxial();
+    const bool in_pack = triaxial && !triaxial->separatrix() &&
+                         triaxial->constants().jacobi.steps <= kRatioColumns;
+    flows_[FlowColumns::in_pack][i] = in_pack ? 1.0 : 0.0;
+    if (in_pack) write_constants(i, *triaxial);
+  }
+  void write_constants(size_t i, const detail::TriaxialRotation& triaxial) {
+    TriaxialConstants<double> k = triaxial.constants();
+    for (int r = k.jacobi.steps; r < kRatioColumns; ++r)
+      k.jacobi.ratio[r] = 0.0;  // the extra steps halve φ exactly
+    flows_[FlowColumns::in_pack][i] = 1.0;
+    flows_[FlowColumns::steps][i] = k.jacobi.steps;
+    size_t column = FlowColumns::constants;
+    detail::visit_constants(k, kRatioColumns, [&](double& value) { flows_[column++][i] = value; });
+  }
+
+  /// D(h) for the pack of bodies i … i + W − 1: o moves uniformly; the orientation and ω follow the
+  /// exact torque-free motion. When a body's rotational state entering the drift is, bit for bit, what
+  /// its last drift left (no torque in the kicks since, nobody changed it) and Λ is the same, the
+  /// motion continues the flow set up then: it is evaluated at τ + h. Otherwise a new flow is set up
+  /// from the body's state (body by body, in set_up).
+  void drift(Formulation F, Coordinates<Pack>& c, double h, const Vec3T<Pack>& Lambda, size_t i, size_t n) {
+    const Vec3T<Pack> v_w = F == Formulation::body ? Vec3T<Pack>(c.q * c.v) : c.v;
+    c.o += Pack(h) * v_w;
+    auto column = [&](size_t k) { return Pack::load_aligned(flows_[k] + i); };
+    alignas(64) double lane_index[kWidth];
+    for (size_t l = 0; l < kWidth; ++l) lane_index[l] = static_cast<double>(i + l);
+    const auto real = Pack::load_aligned(lane_index) < Pack(static_cast<double>(n));
+    auto kept = column(FlowColumns::has_flow) == Pack(1.0);
+    for (size_t k = 0; k < 3; ++k) {
+      kept = kept && column(FlowColumns::omega + k) == c.omega(static_cast<Eigen::Index>(k)) &&
+             column(FlowColumns::Lambda + k) == Lambda(static_cast<Eigen::Index>(k));
+    }
+    kept = kept && column(FlowColumns::q) == c.q.w() && column(FlowColumns::q + 1) == c.q.x() &&
+           column(FlowColumns::q + 2) == c.q.y() && column(FlowColumns::q + 3) == c.q.z();
+    kept = kept || !real;  // spare lanes keep their harmless flow
+    if (!xsimd::all(kept)) set_up(F, c, Lambda, kept, i, n);
+    // τ += h by Knuth's TwoSum: the rounding error of each addition is exact and kept in τ_lo. A new
+    // flow starts at τ = h.
+    const Pack tau = column(FlowColumns::tau), tau_lo = column(FlowColumns::tau_lo), H(h);
+    const Pack s = tau + H, b = s - tau;
+    const Pack tau_next = select(kept, s, H),
+               lo_next = select(kept, tau_lo + ((tau - (s - b)) + (H - b)), Pack(0.0));
+    tau_next.store_aligned(flows_[FlowColumns::tau] + i);
+    lo_next.store_aligned(flows_[FlowColumns::tau_lo] + i);
+    const Pack t = tau_next + lo_next;
+
+    FlowState<Pack> flow;
+    const auto in_pack = column(FlowColumns::in_pack) == Pack(1.0);
+    if (xsimd::any(in_pack && real)) flow = triaxial_state(t, i);
+    if (!xsimd::all(in_pack || !real)) evaluate_lanes(flow, t, in_pack, real, i);
+    c.q = QuatT<Pack>(select(real, flow.q.w(), c.q.w()), select(real, flow.q.x(), c.q.x()),
+                      select(real, flow.q.y(), c.q.y()), select(real, flow.q.z(), c.q.z()));
+    const Vec3T<Pack> omega = F == Formulation::world ? Vec3T<Pack>(c.q * flow.omega_b) : flow.omega_b;
+    for (Eigen::Index k = 0; k < 3; ++k) c.omega(k) = select(real, omega(k), c.omega(k));
+    if (F == Formulation::body) {
+      const Vec3T<Pack> v_b = c.q.conjugate() * v_w;
+      for (Eigen::Index k = 0; k < 3; ++k) c.v(k) = select(real, v_b(k), c.v(k));
+    }
+    c.q.w().store_aligned(flows_[FlowColumns::q] + i);
+    c.q.x().store_aligned(flows_[FlowColumns::q + 1] + i);
+    c.q.y().store_aligned(flows_[FlowColumns::q + 2] + i);
+    c.q.z().store_aligned(flows_[FlowColumns::q + 3] + i);
+    for (size_t k = 0; k < 3; ++k)
+      c.omega(static_cast<Eigen::Index>(k)).store_aligned(flows_[FlowColumns::omega + k] + i);
+  }
+
+  /// New flows for the bodies of the pack whose state is not what their last drift left.
+  void set_up(Formulation F, const Coordinates<Pack>& c, const Vec3T<Pack>& Lambda,
+              const decltype(Pack() < Pack())& kept, size_t i, size_t n) {
+    alignas(64) double q[4][kWidth], w[3][kWidth], L[3][kWidth], keep[kWidth];
+    c.q.w().store_aligned(q[0]), c.q.x().store_aligned(q[1]), c.q.y().store_aligned(q[2]),
+        c.q.z().store_aligned(q[3]);
+    for (size_t k = 0; k < 3; ++k) {
+      c.omega(static_cast<Eigen::Index>(k)).store_aligned(w[k]);
+      Lambda(static_cast<Eigen::Index>(k)).store_aligned(L[k]);
+    }
+    select(kept, Pack(1.0), Pack(0.0)).store_aligned(keep);
+    for (size_t l = 0; l < kWidth && i + l < n; ++l) {
+      if (keep[l] == 1.0) continue;
+      const Quat q_l(q[0][l], q[1][l], q[2][l], q[3][l]);
+      const Vec3 omega_l(w[0][l], w[1][l], w[2][l]);
+      const Vec3 w_b = F == Formulation::world ? Vec3(q_l.conjugate() * omega_l) : omega_l;
+      FreeFlight& ff = flights_[i + l];
+      ff.flow.emplace(Vec3(L[0][l], L[1][l], L[2][l]), q_l, w_b);
+      ff.q0 = q_l;
+      ff.w0 = w_b;
+      adopt(i + l);
+    }
+  }
+
+  /// detail::triaxial_state on the pack's constants at times t.
+  FlowState<Pack> triaxial_state(const Pack& t, size_t i) const {
+    TriaxialConstants<Pack> k;
+    size_t column = FlowColumns::constants;
+    detail::visit_constants(k, kRatioColumns,
+                            [&](Pack& value) { value = Pack::load_aligned(flows_[column++] + i); });
+    // The pack runs as many Landen steps as its slowest lane; the others have zero ratios there.
+    double steps = 0.0;
+    for (size_t l = 0; l < kWidth; ++l) steps = std::max(steps, flows_[FlowColumns::steps][i + l]);
+    k.jacobi.steps = static_cast<int>(steps);
+    alignas(64) double rj_steps[kWidth];
+    k.pi.rj_steps.store_aligned(rj_steps);
+    k.pi.rj_max_steps = static_cast<int>(*std::max_element(rj_steps, rj_steps + kWidth));
+    return detail::triaxial_state<Pack>(k, t);
+  }
+
+  /// The lanes whose flow is not evaluated in packs, each by its EulerPoinsot.
+  void evaluate_lanes(FlowState<Pack>& flow, const Pack& t, const decltype(Pack() < Pack())& in_pack,
+                      const decltype(Pack() < Pack())& real, size_t i) const {
+    alignas(64) double q[4][kWidth], w[3][kWidth], times[kWidth], scalar[kWidth];
+    flow.q.w().store_aligned(q[0]), flow.q.x().store_aligned(q[1]), flow.q.y().store_aligned(q[2]),
+        flow.q.z().store_aligned(q[3]);
+    for (size_t k = 0; k < 3; ++k) flow.omega_b(static_cast<Eigen::Index>(k)).store_aligned(w[k]);
+    t.store_aligned(times);
+    select(real && !in_pack, Pack(1.0), Pack(0.0)).store_aligned(scalar);
+    for (size_t l = 0; l < kWidth; ++l) {
+      if (scalar[l] != 1.0) continue;
+      const EulerPoinsot::State s = flights_[i + l].flow->state(times[l]);
+      q[0][l] = s.q.w(), q[1][l] = s.q.x(), q[2][l] = s.q.y(), q[3][l] = s.q.z();
+      for (size_t k = 0; k < 3; ++k) w[k][l] = s.omega_b(static_cast<Eigen::Index>(k));
+    }
+    flow.q = QuatT<Pack>(Pack::load_aligned(q[0]), Pack::load_aligned(q[1]), Pack::load_aligned(q[2]),
+                         Pack::load_aligned(q[3]));
+    for (size_t k = 0; k < 3; ++k) flow.omega_b(static_cast<Eigen::Index>(k)) = Pack::load_aligned(w[k]);
   }
 
   void remember(const SystemCoordinates& x) {
@@ -168,55 +388,9 @@ class Strang {
   }
   bool same(const SystemCoordinates& x) const { return x.t == t_ && same_variables(x, state_, particles_); }
 
-  /// K(τ): v += τ f/m and L_w += τ τ_w with the pose frozen, in the formulation's variables.
-  static void kick(Formulation F, Coordinates<double>& c, double tau, const Vec3& f_w, const Vec3& tau_w,
-                   double m, const Vec3& Lambda) {
-    const Quat q_inv = c.q.conjugate();
-    const Vec3 dv_w = tau * f_w / m;
-    const Vec3 dw_b = tau * (q_inv * tau_w).cwiseQuotient(Lambda);  // Λ⁻¹ Rᵀ Δl
-    c.v += F == Formulation::body ? Vec3(q_inv * dv_w) : dv_w;
-    c.omega += F == Formulation::world ? Vec3(c.q * dw_b) : dw_b;
-  }
-
-  /// A body's torque-free motion since the last torque (or change of its state), kept between steps.
-  struct FreeFlight {
-    std::optional<EulerPoinsot> flow;  // from the body's state at the start of the first drift of the run
-    Quat q0{1.0, 0.0, 0.0, 0.0};       // that state: q and ^bω (a checkpoint stores these, not the flow)
-    Vec3 w0 = Vec3::Zero();
-    double tau = 0.0, tau_lo = 0.0;  // time along it: the drifts' h summed, compensated (τ + τ_lo)
-    Quat q{1.0, 0.0, 0.0, 0.0};      // what the last drift left: q and ω in the formulation's variables
-    Vec3 omega = Vec3::Zero();
-  };
-
-  /// D(h): the exact force-free, torque-free motion. When the rotational state entering the drift is,
-  /// bit for bit, what the body's last drift left (no torque in the kicks since, nobody changed it) and
-  /// Λ is the same, the motion continues the flow set up then: it is evaluated at τ + h.
-  static void drift(Formulation F, Coordinates<double>& c, double h, const Vec3& Lambda, FreeFlight& ff) {
-    const Vec3 v_w = F == Formulation::body ? Vec3(c.q * c.v) : c.v;
-    c.o += h * v_w;
-    if (ff.flow && c.q.coeffs() == ff.q.coeffs() && c.omega == ff.omega && ff.flow->Lambda() == Lambda) {
-      // τ += h by Knuth's TwoSum: the rounding error of each addition is exact and kept in τ_lo.
-      const double s = ff.tau + h, b = s - ff.tau;
-      ff.tau_lo += (ff.tau - (s - b)) + (h - b);
-      ff.tau = s;
-    } else {
-      const Vec3 w_b = F == Formulation::world ? Vec3(c.q.conjugate() * c.omega) : c.omega;
-      ff.flow.emplace(Lambda, c.q, w_b);
-      ff.q0 = c.q;
-      ff.w0 = w_b;
-      ff.tau = h;
-      ff.tau_lo = 0.0;
-    }
-    const EulerPoinsot::State s = ff.flow->state(ff.tau + ff.tau_lo);
-    c.q = s.q;
-    c.omega = F == Formulation::world ? Vec3(c.q * s.omega_b) : s.omega_b;
-    if (F == Formulation::body) c.v = c.q.conjugate() * v_w;
-    ff.q = c.q;
-    ff.omega = c.omega;
-  }
-
   engine::Engine engine_;
   std::vector<FreeFlight> flights_;  // one per body
+  Columns flows_;                    // FlowColumns, one row per body
   Formulation flights_formulation_ = Formulation::mixed;
   Columns loads_;  // loads at the end of the last step: f (3), τ (3)
   std::vector<Vec3> particle_loads_;

@@ -10,6 +10,7 @@
 #include <limits>
 #include <string>
 
+#include "integrate/euler_poinsot_flows.hpp"
 #include "tumble/forces/forces.hpp"
 #include "tumble/integrate/euler_poinsot.hpp"
 #include "tumble/integrate/integrator.hpp"
@@ -57,10 +58,12 @@ double summed_time(const std::string& method, double h, long steps) {
 }
 
 /// Checks body i of x against `flow` at time t. The step evaluates the same flow at the compensated sum
-/// of its steps, which is t itself except within ~1e-12 ulp of a rounding tie (summed_time): the same
-/// bits (measured). The bound allows the other neighbour of t, one ulp of t away: |ω| ulp(t) in
-/// attitude and |ω̇| ulp(t) in ω, plus 4ε (relative, for ω) for the roundings of the comparison and, in
-/// the world formulation, another 4ε|ω| for rotating ω_b into ω_w.
+/// of its steps, which is t itself except within ~1e-12 ulp of a rounding tie (summed_time). The bound
+/// allows the other neighbour of t, one ulp of t away: |ω| ulp(t) in attitude and |ω̇| ulp(t) in ω,
+/// plus 4ε (relative, for ω) for the roundings of the comparison and, in the world formulation, another
+/// 4ε|ω| for rotating ω_b into ω_w; and the batched drift evaluates the flow on SIMD packs, whose sin,
+/// cos, asin, atan and hypot round otherwise than glibc's: 32ε(1 + |phase|) in attitude and
+/// 4ε(1 + |phase|)|ω| in ω (euler_poinsot_pack_test.cpp).
 void expect_on_flow(const EulerPoinsot& flow, double t, Formulation F, const SystemCoordinates& x, size_t i,
                     const std::string& what) {
   const Coordinates<double> c = x.bodies.load(i);
@@ -69,9 +72,13 @@ void expect_on_flow(const EulerPoinsot& flow, double t, Formulation F, const Sys
   const double ulp = std::nextafter(t, 2 * t + 1) - t;
   const Vec3 Lw = flow.Lambda().cwiseProduct(e.omega_b);
   const double omega_dot = Lw.cross(e.omega_b).cwiseQuotient(flow.Lambda()).norm();  // Euler's equation
-  EXPECT_LE(angle(c.q, e.q), e.omega_b.norm() * ulp + 4 * kEps) << what;
-  EXPECT_LE((c.omega - omega_e).norm(),
-            omega_dot * ulp + (F == Formulation::world ? 8 : 4) * kEps * omega_e.norm())
+  const detail::TriaxialRotation* triaxial = flow.free_rotation().triaxial();
+  const double phase =
+      triaxial ? std::abs(triaxial->constants().rate * t) + std::abs(triaxial->constants().lambda * t) : 0.0;
+  EXPECT_LE(angle(c.q, e.q), e.omega_b.norm() * ulp + 4 * kEps + 32 * kEps * (1 + phase)) << what;
+  EXPECT_LE((c.omega - omega_e).norm(), omega_dot * ulp +
+                                            (F == Formulation::world ? 8 : 4) * kEps * omega_e.norm() +
+                                            4 * kEps * (1 + phase) * omega_e.norm())
       << what;
 }
 
@@ -108,8 +115,8 @@ TEST(SplittingReuse, TorqueFreeStepsAreOneFlowEvaluatedAtTheSummedTime) {
   }
 }
 
-/// One step of splitting before its drifts were kept (commit 34b79ad), written out: kick(h/2) with the
-/// constant loads, a fresh EulerPoinsot evaluated at h, kick(h/2). Loads: gravity m g and a constant
+/// One step of splitting before its drifts were kept (commit 34b79ad), written out in double: kick(h/2)
+/// with the constant loads, a fresh EulerPoinsot evaluated at h, kick(h/2). Loads: gravity m g and a constant
 /// world torque, which the engine sums as 0 + m g and 0 + τ (exact, so the same bits).
 void old_kick(Formulation F, Coordinates<double>& c, double tau, const Vec3& f_w, const Vec3& tau_w, double m,
               const Vec3& Lambda) {
@@ -141,9 +148,12 @@ bool same_bits(const Coordinates<double>& a, const Coordinates<double>& b) {
 
 TEST(SplittingReuse, ATorquedBodyStepsExactlyAsBeforeBitForBit) {
   // Body 0 feels a constant world torque, body 1 (the same T-handle) none; both feel gravity. Body 0
-  // must get a fresh flow every step: it equals the former algorithm written out above, bit for bit,
-  // over 2000 steps in every formulation, for splitting and splitting4 (three Strang substeps). Body 1,
-  // beside it, continues its one flow (its own test above).
+  // must get a fresh flow every step: over 2000 steps in every formulation, for splitting and
+  // splitting4 (three Strang substeps), it equals, bit for bit, a run whose every step is taken by a
+  // new integrator (which keeps nothing: the former behaviour). Its first step also agrees with the
+  // former algorithm written out above in double, to the rounding of the SIMD functions the batched
+  // drift uses (euler_poinsot_pack_test.cpp: 32ε(1 + |phase|), |phase| < 1 here) and of the kicks.
+  // Body 1, beside it, continues its one flow (its own test above).
   Model model;
   model.add_body(RigidBody::from_principal_moments(0.1, kLambda, "torqued"));
   model.add_body(RigidBody::from_principal_moments(0.1, kLambda, "free"));
@@ -153,7 +163,7 @@ TEST(SplittingReuse, ATorquedBodyStepsExactlyAsBeforeBitForBit) {
   const double h = 2e-3, w1 = 1.0 / (2.0 - std::cbrt(2.0)), w0 = 1.0 - 2.0 * w1;
   for (const std::string method : {"splitting", "splitting4"}) {
     for (const Formulation F : kFormulations) {
-      SystemCoordinates x = to_coordinates(F, SystemState{0.0, {start(), start()}, {}});
+      SystemCoordinates x = to_coordinates(F, SystemState{0.0, {start(), start()}, {}}), fresh = x;
       const EulerPoinsot free_flow = flow_from(model, F, x, 1);
       Coordinates<double> old = x.bodies.load(0);
       const double m = model.bodies[0].mass();
@@ -162,12 +172,20 @@ TEST(SplittingReuse, ATorquedBodyStepsExactlyAsBeforeBitForBit) {
       long differing = 0;
       for (int k = 0; k < 2000; ++k) {
         integrator->step(model, F, x, h);
+        make_integrator(method)->step(model, F, fresh, h);
+        differing += same_bits(x.bodies.load(0), fresh.bodies.load(0)) ? 0 : 1;
+        if (k > 0) continue;
         if (method == "splitting") {
           old_strang(F, old, h, f_w, torque_w, m, Lambda);
         } else {
           for (const double w : {w1, w0, w1}) old_strang(F, old, w * h, f_w, torque_w, m, Lambda);
         }
-        differing += same_bits(x.bodies.load(0), old) ? 0 : 1;
+        const Coordinates<double> c = x.bodies.load(0);
+        const std::string what = method + ", " + formulation_name(F) + ", first step";
+        EXPECT_LE(angle(c.q, old.q), 64 * kEps) << what;
+        EXPECT_LE((c.omega - old.omega).norm(), 64 * kEps * old.omega.norm()) << what;
+        EXPECT_LE((c.v - old.v).norm(), 8 * kEps * old.v.norm()) << what;
+        EXPECT_LE((c.o - old.o).norm(), 8 * kEps * old.o.norm()) << what;
       }
       EXPECT_EQ(differing, 0) << method << ", " << formulation_name(F);
       expect_on_flow(free_flow, summed_time(method, h, 2000), F, x, 1, method + ", free body beside");
@@ -275,7 +293,10 @@ TEST(SplittingReuse, OneFlowIsMoreAccurateThanAFreshFlowEveryStep) {
       "[ measured ] 1e5 steps, 100 s: attitude error %.2e rad (one flow), %.2e rad (fresh each step)\n",
       e_kept, e_fresh);
   EXPECT_LT(e_kept, 20 * (t * (1 + 1e-12) - t) + 4 * kEps);  // the same flow at t (the first test)
-  EXPECT_LT(e_fresh, 1e-9);
+  // The fresh flows' error is a random walk of 1e5 roundings of the state, which the flips amplify: its
+  // size depends on the last bits of every step (measured 5e-10 with the angle form of the Landen
+  // recursion, 1.1e-9 with the product form now). The bound only says that path still works.
+  EXPECT_LT(e_fresh, 1e-8);
   EXPECT_LT(e_kept, e_fresh);
 }
 

@@ -93,6 +93,9 @@ class EulerPoinsot {
   double flip_interval() const;
 
   const Vec3& Lambda() const { return Lambda_; }
+  /// The closed-form flow itself, for the library's batched splitting drift (src/integrate), which
+  /// evaluates triaxial flows on SIMD packs with the same templates.
+  const detail::FreeRotation& free_rotation() const { return flow(); }
   /// Kinetic energy E = ½ ω_bᵀ Λ ω_b (J), from the initial data.
   double energy() const { return 0.5 * omega_b0_.dot(Lambda_.cwiseProduct(omega_b0_)); }
   /// World angular momentum L_w = R₀ Λ ω_b(0) (kg·m²/s), constant.

@@ -8,9 +8,139 @@
 // and K ≈ ln(4/k′) and the functions near u = K inherit the loss (shared/research/numerics.md §1:
 // 5e-11 relative error in a flip period against 3e-16 from k′). Here k′ is an input: the descending
 // Landen/AGM algorithm (Abramowitz & Stegun 16.4) is seeded with b₀ = k′, c₀ = k, and K = R_F(0, k′², 1).
+//
+// The evaluation itself is written once, as templates on the number type T (double for one argument, a
+// SIMD pack for one body per lane: math/lanes.hpp), branch-free on values: landen_point, jacobi_sn_cn_dn
+// and elliptic_pi below. JacobiElliptic and EllipticPi evaluate them on double; the batched splitting
+// drift (src/integrate/splitting.cpp) on packs.
+#include <cmath>
 #include <cstdint>
+#include <utility>
+
+#include "tumble/math/carlson.hpp"
+#include "tumble/math/lanes.hpp"
 
 namespace tumble {
+
+/// Most AGM steps of any parameter: m₁ = 1e-300 needs 15 (the ratio b/a doubles its exponent's square
+/// root per step, then converges quadratically).
+inline constexpr int kMaxLandenSteps = 40;
+
+/// What the Jacobi functions of one parameter need at every argument (one lane per body for a pack).
+template <class T>
+struct JacobiConstants {
+  T K = T(0);                ///< K(m)
+  T a_N = T(1);              ///< the arithmetic–geometric mean of 1 and k′
+  T m1 = T(1), k1 = T(1);    ///< k′² and k′
+  int steps = 0;             ///< AGM steps N: for a pack, the largest of its lanes'
+  T ratio[kMaxLandenSteps];  ///< k_n = c_n/a_n, n = 1 … N; a lane with fewer steps has zeros after its own
+};
+
+/// The argument u reduced and reflected, and sn, cn, dn at the point the Landen recursion evaluates.
+template <class T>
+struct LandenPoint {
+  using Mask = decltype(std::declval<T>() < std::declval<T>());
+  T j;             ///< half-periods removed (an integer): u = 2Kj + r
+  T r;             ///< |r| ≤ K
+  Mask reflected;  ///< |r| > K/2: the point is v = K − |r| (else r itself)
+  T arg;           ///< that point, r or v
+  T s, c, d;       ///< sn, cn, dn at arg
+};
+
+/// u = 2Kj + r, the point arg (r, or K − |r| beyond K/2) and sn, cn, dn there by the descending Landen
+/// (Gauss) transformation (DLMF 22.7.1–3), whose moduli are the AGM's k_n = c_n/a_n: with s, c, d the
+/// functions of modulus k_n at z/(1 + k_n),
+///   sn(z | k_{n−1}) = (1 + k_n) s/(1 + k_n s²),  cn(z | k_{n−1}) = c d/(1 + k_n s²),
+///   dn(z | k_{n−1}) = (1 − k_n s²)/(1 + k_n s²),
+/// from sin and cos of z_N = a_N·arg at the last level (k_N < ε: sn = sin, dn = 1 to ε²), since
+/// Π(1 + k_n) = 1/a_N; sn and cn are then scaled onto sn² + cn² = 1. One sin and one cos and a few products per level, where the angle form of the same
+/// recursion (A&S 16.4) took a sin and an asin per level (measured: 5× the cost on packs). Products keep
+/// cn's relative accuracy where it is small; dn at arg is then formed as √(cn² + k′² sn²) (no cancellation,
+/// where 1 − k_n s² would lose ε/√k′). A lane with fewer AGM steps than the pack's count has k_n = 0 in
+/// the extra levels, which leave s, c and d = 1 unchanged, bit for bit: the lane computes what its own
+/// count gives.
+template <class T>
+TUMBLE_INLINE LandenPoint<T> landen_point(const JacobiConstants<T>& J, T u) {
+  using std::abs, std::cos, std::fma, std::nearbyint, std::sin, std::sqrt;
+  LandenPoint<T> p;
+  p.j = nearbyint(u / (T(2) * J.K));
+  p.r = fma(-T(2) * J.K, p.j, u);  // rounds 2Kj − u once
+  const T r_abs = abs(p.r);
+  p.reflected = r_abs > T(0.5) * J.K;
+  p.arg = select(p.reflected, J.K - r_abs, p.r);
+  const T z = J.a_N * p.arg;
+  T s = sin(z), c = cos(z), d = T(1);
+  for (int n = J.steps; n >= 1; --n) {
+    const T k = J.ratio[n - 1], ks2 = k * s * s, inv = T(1) / (T(1) + ks2);
+    const T s_up = (T(1) + k) * s * inv;
+    c = c * d * inv;
+    d = (T(1) - ks2) * inv;
+    s = s_up;
+  }
+  // Each level rounds s and c apart, so sn² + cn² strays from 1 by about an ε a level; dividing by
+  // their norm puts the pair back on the circle (and dn² + m sn² = 1 with it), to ~2ε as sin and cos
+  // of one angle are.
+  const T norm = sqrt(s * s + c * c);
+  p.s = s / norm;
+  p.c = c / norm;
+  // dn = √(1 − m sn²) = √(cn² + k′² sn²): a sum of squares, no cancellation.
+  p.d = sqrt(p.c * p.c + J.m1 * p.s * p.s);
+  return p;
+}
+
+template <class T>
+struct SnCnDn {
+  T sn, cn, dn;
+};
+
+/// sn, cn, dn at u from its Landen point. Reflected: r = ±(K − v), sn r = ±cn v/dn v, cn r = k′ sn v/dn v,
+/// dn r = k′/dn v (A&S 16.8), all to full relative accuracy where cn r and dn r are small; then
+/// sn u = (−1)ʲ sn r, cn u = (−1)ʲ cn r, dn u = dn r.
+template <class T>
+TUMBLE_INLINE SnCnDn<T> jacobi_sn_cn_dn(const JacobiConstants<T>& J, const LandenPoint<T>& p) {
+  using std::copysign, std::floor;
+  const T sn_r = select(p.reflected, copysign(p.c / p.d, p.r), p.s);
+  const T cn_r = select(p.reflected, J.k1 * p.s / p.d, p.c);
+  const T dn = select(p.reflected, J.k1 / p.d, p.d);
+  const T half_j = T(0.5) * p.j;
+  const T sign = select(floor(half_j) != half_j, T(-1), T(1));  // (−1)ʲ
+  return {sign * sn_r, sign * cn_r, dn};
+}
+
+/// m = 1 (k′ = 0, the separatrix of the free rigid body): sn = tanh u, cn = dn = sech u, no period.
+inline SnCnDn<double> separatrix_sn_cn_dn(double u) {
+  const double sech = 1.0 / std::cosh(u);
+  return {std::tanh(u), sech, sech};
+}
+
+/// What Π(n; am u | m) of one n needs at every argument (EllipticPi below).
+template <class T>
+struct PiConstants {
+  T n = T(0);            ///< the characteristic, ≤ 0
+  T n_reflected = T(0);  ///< n′ = (m − n)/(1 − n)
+  T c_linear = T(1);     ///< m/(m − n)
+  T c_Pi = T(0);         ///< −n m₁/((m − n)(1 − n))
+  T complete = T(0);     ///< Π(n | m)
+  T rj_steps = T(8);     ///< carlson_rj_steps(−n): R_J's duplication steps (enough for n′ too)
+  int rj_max_steps = 8;  ///< for a pack, the largest of its lanes'
+};
+
+/// Π(n; am u | m) = 2jΠ(n) + Π(n; am r), continuous in u, from the Landen point of u (EllipticPi).
+/// The incomplete integral at the point (s, c, d) = sn, cn, dn there (|am| ≤ π/2) is
+///   s R_F(c², d², 1) + (n/3) s³ R_J(c², d², 1, 1 − n s²)          (DLMF 19.25.14),
+/// with n, or n′ where reflected: Π(n; am(K − v)) = Π(n) − (m/(m−n)) v − c_Π Π(n′; am v).
+template <class T>
+TUMBLE_INLINE T elliptic_pi(const PiConstants<T>& P, const LandenPoint<T>& p) {
+  using std::copysign;
+  const T n = select(p.reflected, P.n_reflected, P.n);
+  const T c2 = p.c * p.c, d2 = p.d * p.d, s2 = p.s * p.s;
+  const T incomplete = p.s * carlson_rf<T>(c2, d2, T(1)) +
+                       n / T(3) * p.s * s2 *
+                           carlson_rj<T>(c2, d2, T(1), T(1) - n * s2, P.rj_steps, P.rj_max_steps);
+  const T periods = T(2) * p.j * P.complete;
+  return periods + select(p.reflected, copysign(P.complete - (P.c_linear * p.arg + P.c_Pi * incomplete), p.r),
+                          incomplete);
+}
 
 /// sn, cn, dn and am at one argument u, written u = 2K·j + r with |r| ≤ K (j = 0 when m₁ = 0).
 /// Where |r| > K/2 the functions are evaluated at v = K − |r| and reflected (sn r = ±cd v,
@@ -38,19 +168,18 @@ class JacobiElliptic {
   double m() const { return m_; }
   double m1() const { return m1_; }
   /// K(m) = R_F(0, k′², 1) (Carlson; +∞ when m₁ = 0). sn, cn have period 4K, dn period 2K.
-  double K() const { return K_; }
+  double K() const { return c_.K; }
 
   /// sn, cn, dn, am at u. The argument is first reduced to |r| ≤ K (u = 2Kj + r): the cost does not
   /// grow with |u|, and sn u = (−1)ʲ sn r, cn u = (−1)ʲ cn r, dn u = dn r, am u = jπ + am r.
   JacobiValues operator()(double u) const;
 
+  /// The constants of landen_point (m < 1 only: m = 1 has no period and uses tanh and sech).
+  const JacobiConstants<double>& constants() const { return c_; }
+
  private:
-  static constexpr int kMaxSteps = 40;
-  double landen_am(double r) const;  // am r by the descending Landen recursion (|r| ≤ K/2 in use)
-  double m_, m1_, K_;
-  int steps_ = 0;            // N, the number of AGM steps
-  double a_N_ = 1.0;         // a_N, the arithmetic–geometric mean of 1 and k′
-  double ratio_[kMaxSteps];  // c_n / a_n, n = 1 … N
+  double m_, m1_;
+  JacobiConstants<double> c_;
 };
 
 /// The complete integral of the third kind, Π(n | m) = ∫₀^{π/2} dθ / ((1 − n sin²θ) √(1 − m sin²θ)),
@@ -70,16 +199,16 @@ class EllipticPi {
  public:
   /// Throws InvalidArgument unless n ≤ 0 (the free rigid body needs n = −N ≤ 0).
   EllipticPi(double n, const JacobiElliptic& f);
-  /// Π(n; am u | m) from the values f(u). The complete Π(n | m) (it multiplies the half-periods j) is
-  /// evaluated once, correctly rounded (elliptic_Pi_complete); the incomplete part
-  /// |Π(n; am r)| ≤ Π(n | m) evaluates R_F and R_J in double (≤ 3ε relative instead of 0.5ε, and
-  /// 3× faster): the phase of the free rigid body then moves by at most one ulp of itself.
+  /// Π(n; am u | m) from the values f(u) (elliptic_pi). The complete Π(n | m) (it multiplies the
+  /// half-periods j) is evaluated once, correctly rounded (elliptic_Pi_complete); the incomplete part
+  /// |Π(n; am r)| ≤ Π(n | m) evaluates R_F and R_J in double (math/carlson.hpp, a few ε relative
+  /// against 0.5ε): the phase of the free rigid body then moves by at most one ulp of itself.
   double operator()(const JacobiValues& v) const;
 
+  const PiConstants<double>& constants() const { return c_; }
+
  private:
-  double n_, m_, m1_;
-  double complete_ = 0.0;                                   // Π(n | m)
-  double n_reflected_ = 0.0, c_linear_ = 0.0, c_Pi_ = 0.0;  // n′, m/(m−n), −n m₁/((m−n)(1−n))
+  PiConstants<double> c_;
 };
 
 }  // namespace tumble

@@ -26,5 +26,8 @@ struct Lanes<double> {
 
 /// The scalar form of a lane-wise choice: a where `condition` holds, else b.
 inline double select(bool condition, double a, double b) { return condition ? a : b; }
+/// Whether a condition holds in every lane (xsimd::all for a pack's mask): for skipping work whose
+/// result every lane would discard, never for choosing a lane's value.
+inline bool all(bool condition) { return condition; }
 
 }  // namespace tumble
