@@ -6,8 +6,11 @@
 // pack, and the counter "per_lane" divides it by the pack width.
 #include <benchmark/benchmark.h>
 
+#include <vector>
+
 #include "integrate/euler_poinsot_flows.hpp"
 #include "tumble/integrate/euler_poinsot.hpp"
+#include "tumble/math/pack_pair.hpp"
 #include "tumble/math/simd.hpp"
 
 namespace {
@@ -99,6 +102,27 @@ void BM_StatePack(benchmark::State& state) {
   per_lane(state);
 }
 BENCHMARK(BM_StatePack);
+
+void BM_StatePackPair(benchmark::State& state) {
+  auto& single = const_cast<tumble::detail::TriaxialConstants<Pack>&>(generic_pack());
+  tumble::detail::TriaxialConstants<tumble::PackPair> k;
+  std::vector<Pack*> from;
+  tumble::detail::visit_constants(single, single.jacobi.steps, [&](Pack& v) { from.push_back(&v); });
+  size_t i = 0;
+  tumble::detail::visit_constants(k, single.jacobi.steps, [&](tumble::PackPair& v) {
+    v = {*from[i], *from[i]}, ++i;
+  });
+  k.jacobi.steps = single.jacobi.steps;
+  k.pi.rj_max_steps = single.pi.rj_max_steps;
+  tumble::PackPair t(1.0);
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(tumble::detail::triaxial_state<tumble::PackPair>(k, t));
+    t += tumble::PackPair(1e-3);
+  }
+  state.counters["per_lane"] = benchmark::Counter(static_cast<double>(state.iterations()) * 2 * Pack::size,
+                                                  benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_StatePackPair);
 
 void BM_LandenPack(benchmark::State& state) {
   const auto& k = generic_pack();

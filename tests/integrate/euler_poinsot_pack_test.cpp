@@ -2,7 +2,8 @@
 // template splitting's batched drift evaluates, one body per lane. Instantiated on double (what
 // EulerPoinsot evaluates), on the reference pack (each operation lane by lane with <cmath>: branch-free
 // and equal to double bit for bit, or the template is wrong) and on the SIMD pack (xsimd's own sin,
-// cos, asin, atan and hypot: equal to double up to their last bits, bounded below).
+// cos, asin, atan and hypot: equal to double up to their last bits, bounded below), and on a pair of
+// SIMD packs (how the drift evaluates two packs at once: equal to one pack, bit for bit).
 #include <gtest/gtest.h>
 
 #include <array>
@@ -16,6 +17,7 @@
 #include "../support/ref_pack.hpp"
 #include "integrate/euler_poinsot_flows.hpp"
 #include "tumble/integrate/euler_poinsot.hpp"
+#include "tumble/math/pack_pair.hpp"
 #include "tumble/math/simd.hpp"
 
 namespace tumble {
@@ -153,6 +155,20 @@ TEST(EulerPoinsotPack, TheSimdPackAgreesWithDoubleToItsFunctionsRounding) {
       "[ measured ] SIMD lanes against double: attitude %.2f eps (1 + |phase|), omega_b %.2f eps (1 + "
       "|phase|) |omega|\n",
       worst_angle, worst_omega);
+}
+
+}  // namespace
+}  // namespace tumble
+
+namespace tumble {
+namespace {
+
+TEST(EulerPoinsotPack, APairOfPacksEqualsOnePackBitForBit) {
+  const std::vector<Case> cs = cases();
+  const auto a = evaluate<SimdPack>(cs), b = evaluate<PackPair>(cs);
+  for (std::size_t i = 0; i < cs.size(); ++i) {
+    EXPECT_EQ(std::memcmp(a[i].data(), b[i].data(), sizeof(double) * 7), 0) << "case " << i;
+  }
 }
 
 }  // namespace
