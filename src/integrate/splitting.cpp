@@ -16,26 +16,36 @@
 // The loads at the end of a step are the loads at the start of the next: they are kept (with a copy of
 // the state they belong to, to notice a state changed between steps), so a step costs one force
 // evaluation (three for splitting4). The kick and the drift of a body follow its loads in the same
-// pass over the block. The exact flow is per body (its regimes branch on values); it allocates nothing.
+// pass over the block, a pack of bodies at a time; when every force is local and there are no
+// particles, steps(count) takes each block through all its steps while it is in cache (fused, as rk4).
 //
 // A body that feels no torque keeps its flow. When neither half kick changes ω (a free body, uniform
 // gravity, forces through the centre of mass), L_w is unchanged and consecutive drifts compose into one
-// torque-free motion from the state entering the first of them. Each body's FreeFlight keeps that
-// EulerPoinsot, the time τ along it and the q, ω the last drift left (in the formulation's variables); a
-// drift whose entering q, ω equal those bit for bit, with the same Λ, evaluates the kept flow at τ + h
-// instead of setting up a new one. Anything else (a torque in either half kick, a state changed by the
-// caller between steps, other moments, another formulation) sets up a fresh flow, and the step is then
-// what it was when every drift set one up, bit for bit (tests/integrate/splitting_reuse_test.cpp).
+// torque-free motion from the state entering the first of them. Each body keeps that flow, the time τ
+// along it and the q, ω the last drift left (in the formulation's variables); a drift whose entering
+// q, ω equal those bit for bit, with the same Λ, evaluates the kept flow at τ + h instead of setting up
+// a new one. Anything else (a torque in either half kick, a state changed by the caller between steps,
+// other moments, another formulation) sets up a fresh flow, and the step is then what a new integrator
+// (which keeps nothing) makes of it, bit for bit (tests/integrate/splitting_reuse_test.cpp).
 // splitting4's substeps add signed lengths to τ (the middle one is negative); nothing else changes.
-//  - Cost: the set-up (0.7 µs) is saved, and q and ω_b share one evaluation of sn, cn, dn
-//    (EulerPoinsot::state costs what q(t) alone did, 0.4–0.5 µs, where q(t) and ω_b(t) took 0.6–0.7):
-//    build/release/bin/euler_poinsot_bench. A torque-free body-step went from 1.5 µs to 0.6 µs
-//    (80× an RK4 body-step → 30×): `build/release/bin/batch_throughput out.csv 3 1000000
-//    splitting,splitting4,rk4 1,2`, free boxes under gravity, 1 thread, N = 10⁴: 6.8e5 → 1.7e6
-//    body-steps/s (splitting4 2.3e5 → 5.8e5), best median of four interleaved runs on a shared machine
-//    (docs/performance.md, bench/results/amd-epyc-avx512/splitting_reuse.txt).
+//
+// The flows on packs. A triaxial flow off the separatrix (every generic body) keeps its constants in
+// FlowColumns, a block of 8 bodies at a time, and a pack of bodies evaluates them in one pass of
+// detail::triaxial_state — the template EulerPoinsot evaluates on double: sn, cn, dn by the product form
+// of the descending Landen transformation and Π by tumble's Carlson R_F, R_J (jacobi_elliptic.hpp,
+// math/carlson.hpp), branch-free, with per-lane step counts padded exactly. Two packs go together
+// (PackPair: two independent chains the core overlaps). The other flows (rest, sphere, axisymmetric,
+// separatrix) are evaluated by their EulerPoinsot body by body; which way a body goes depends on its
+// flow alone, so a body steps the same whatever its neighbours, block or thread (tests/integrate/
+// batch_test.cpp). A pack's lanes agree with double to xsimd's rounding of sin, cos, atan, hypot
+// (≤ 32ε(1 + |phase|) in attitude, euler_poinsot_pack_test.cpp).
+//  - Cost (`build/release/bin/batch_throughput out.csv 3 1000000 rk4,splitting,splitting4 1,2 1,16`,
+//    free boxes under gravity, one thread, AVX-512): splitting 1.7e6 body-steps/s (24× an rk4
+//    body-step) with a scalar flow per body; 1.45e7–1.49e7 now, flat from 10⁴ to 10⁶ bodies, 2.8× rk4
+//    (bench/results/amd-epyc-avx512/splitting_simd.txt). A flow costs 39 ns a body on packs
+//    (euler_poinsot_bench: BM_StatePackPair), 0.42 µs on double.
 //  - Accuracy: nothing is rounded between steps. A fresh flow every step rounds q and ω every step, and
-//    the flips of a tumbling body amplify it: 2e-10 rad after 1e5 steps of the T-handle, against 0 for
+//    the flips of a tumbling body amplify it: 5e-10–1e-9 rad after 1e5 steps of the T-handle, against 0 for
 //    the kept flow, which is the exact flow from the first state evaluated at the summed time. Its own
 //    error at τ is the rounding of its phases, ≤ 1.4 ε|ω|τ measured up to τ = 1e4 s against a long-double
 //    reference: the attitude error that rounding τ itself to a double makes (euler_poinsot_test.cpp).
@@ -44,8 +54,8 @@
 //    faster than the rounding of τ, which is all one flow commits.
 //  - τ is summed with compensation (TwoSum): a plain τ += h carries the rounding of every addition,
 //    3.7e-10 rad after 2e4 steps of 5 ms in the tests, more than setting up a flow every step.
-//  - Memory: one FreeFlight per body, ~1 KB (an EulerPoinsot holds its flow by value, no heap), sized on
-//    the first step of a run.
+//  - Memory: one FreeFlight per body (its EulerPoinsot, ~1 KB: no heap) and ~70 doubles of FlowColumns,
+//    sized on the first step of a run: 1.85 KB per body in all.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
