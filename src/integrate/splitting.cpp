@@ -114,7 +114,7 @@ size_t constant_count() {
 struct FlowColumns {
   enum : size_t {
     tau,                     // time along the flow, τ + τ_lo (compensated sum of the drifts' h)
-    tau_lo,                  //
+    tau_lo,                  // the rounding error of that sum (TwoSum)
     q,                       // 4: q the last drift left (w, x, y, z)
     omega = q + 4,           // 3: ω the last drift left, in the formulation's variables
     Lambda = omega + 3,      // 3: the moments the flow was set up with

@@ -1,13 +1,13 @@
 #pragma once
 // Jacobi elliptic functions sn, cn, dn and the amplitude am for a parameter given as the pair
-// (m, m₁) = (k², k′²), and the complete integrals K and Π from k′² through Boost's Carlson forms.
+// (m, m₁) = (k², k′²), the complete integrals K and Π from k′², and the incomplete Π(n; am u | m).
 //
 // Why not boost::math::jacobi_elliptic(k, u, …) and ellint_1(k): they take the modulus k alone and
 // re-derive k′ = √(1 − k²) inside. Near m = 1 (the separatrix of the free rigid body, where k′² is a
 // small number computed accurately from the body's state) that subtraction loses most digits of k′,
 // and K ≈ ln(4/k′) and the functions near u = K inherit the loss (shared/research/numerics.md §1:
-// 5e-11 relative error in a flip period against 3e-16 from k′). Here k′ is an input: the descending
-// Landen/AGM algorithm (Abramowitz & Stegun 16.4) is seeded with b₀ = k′, c₀ = k, and K = R_F(0, k′², 1).
+// 5e-11 relative error in a flip period against 3e-16 from k′). Here k′ is an input: the AGM of the
+// descending Landen transformation is seeded with b₀ = k′, c₀ = k, and K = R_F(0, k′², 1) (Boost).
 //
 // The evaluation itself is written once, as templates on the number type T (double for one argument, a
 // SIMD pack for one body per lane: math/lanes.hpp), branch-free on values: landen_point, jacobi_sn_cn_dn
