@@ -55,12 +55,19 @@ void Engine::prepare(const Model& model, Formulation formulation, int threads, i
   formulation_ = formulation;
   threads_ = wanted;
 
-  constants_.resize(n_bodies_, 4);
-  for (size_t k = 0; k < 4; ++k) std::fill(constants_[k], constants_[k] + constants_.stride(), 1.0);
+  constants_.resize(n_bodies_, kConstants);
+  for (size_t k = 0; k < kConstants; ++k) std::fill(constants_[k], constants_[k] + constants_.stride(), 1.0);
   for (size_t i = 0; i < n_bodies_; ++i) {
-    constants_[0][i] = model.bodies[i].mass();
-    for (size_t k = 0; k < 3; ++k)
-      constants_[1 + k][i] = model.bodies[i].Lambda()(static_cast<Eigen::Index>(k));
+    const double m = model.bodies[i].mass();
+    const Vec3 Lambda = model.bodies[i].Lambda();
+    const MassConstants<double> c = mass_constants<double>(m, Lambda);
+    constants_[kM][i] = m;
+    constants_[kMInv][i] = c.m_inv;
+    for (size_t k = 0; k < 3; ++k) {
+      const auto e = static_cast<Eigen::Index>(k);
+      constants_[kLambda + k][i] = Lambda(e);
+      constants_[kLambdaInv + k][i] = c.Lambda_inv(e);
+    }
   }
 
   local_.clear();
@@ -104,9 +111,9 @@ Block Engine::local_loads(const BodyColumnsRef& y, double t, size_t begin, size_
   view.begin = begin;
   view.count = count;
   view.bodies = model_->bodies.data() + begin;
-  view.m = constants_[0] + begin;
+  view.m = constants_[kM] + begin;
   for (size_t k = 0; k < 3; ++k) {
-    view.Lambda[k] = constants_[1 + k] + begin;
+    view.Lambda[k] = constants_[kLambda + k] + begin;
     view.o[k] = y.at(BodyColumnsRef::o + k, begin);
   }
   for (size_t k = 0; k < 4; ++k) view.q[k] = y.at(BodyColumnsRef::q + k, begin);

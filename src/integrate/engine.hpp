@@ -103,7 +103,7 @@ class Engine {
   /// The Newton–Euler rates of body (or pack) i at y, with the loads of its block (newton_euler.hpp).
   template <class T>
   TUMBLE_INLINE CoordinateRates<T> rates(const Block& block, size_t i, const Coordinates<T>& y) const {
-    return newton_euler<T>(formulation_, m<T>(i), Lambda<T>(i), y, block.force<T>(i), block.torque<T>(i));
+    return newton_euler<T>(formulation_, mass<T>(i), y, block.force<T>(i), block.torque<T>(i));
   }
   /// (ẋ, v̇) of particle p at s, with the loads of the last evaluate().
   ParticleState particle_rates(size_t p, const ParticleState& s) const {
@@ -111,15 +111,19 @@ class Engine {
   }
   std::span<const Vec3> particle_forces() const { return system_loads_.particles; }
 
-  /// Per-body constants, padded with ones: m (kg) and Λ (kg·m²).
+  /// Per-body constants, padded with ones: m (kg), Λ (kg·m²), and the reciprocals the rates multiply by
+  /// (newton_euler.hpp's MassConstants).
   template <class T>
   TUMBLE_INLINE T m(size_t i) const {
-    return Lanes<T>::load(constants_[0] + i);
+    return Lanes<T>::load(constants_[kM] + i);
   }
   template <class T>
   TUMBLE_INLINE Vec3T<T> Lambda(size_t i) const {
-    return {Lanes<T>::load(constants_[1] + i), Lanes<T>::load(constants_[2] + i),
-            Lanes<T>::load(constants_[3] + i)};
+    return load3<T>(kLambda, i);
+  }
+  template <class T>
+  TUMBLE_INLINE MassConstants<T> mass(size_t i) const {
+    return {Lanes<T>::load(constants_[kMInv] + i), load3<T>(kLambda, i), load3<T>(kLambdaInv, i)};
   }
 
  private:
@@ -140,6 +144,14 @@ class Engine {
   /// Pack stores (GCC turns a fill with 0.0 into memset, which costs 15 % of a step in `rep stosb`).
   static void zero(Columns& c) {
     for (size_t i = 0; i < c.stride() * c.count(); i += kWidth) Pack(0.0).store_aligned(c[0] + i);
+  }
+
+  // The columns of constants_.
+  static constexpr size_t kM = 0, kLambda = 1, kMInv = 4, kLambdaInv = 5, kConstants = 8;
+  template <class T>
+  TUMBLE_INLINE Vec3T<T> load3(size_t column, size_t i) const {
+    return {Lanes<T>::load(constants_[column] + i), Lanes<T>::load(constants_[column + 1] + i),
+            Lanes<T>::load(constants_[column + 2] + i)};
   }
 
   const Model* model_ = nullptr;

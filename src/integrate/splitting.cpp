@@ -136,12 +136,11 @@ struct FreeFlight {
 /// K(τ): v += τ f/m and L_w += τ τ_w with the pose frozen, in the formulation's variables.
 template <class T>
 TUMBLE_INLINE void kick(Formulation F, Coordinates<T>& c, T tau, const Vec3T<T>& f_w, const Vec3T<T>& tau_w,
-                        T m, const Vec3T<T>& Lambda) {
-  const QuatT<T> q_inv = c.q.conjugate();
-  const Vec3T<T> dv_w = tau * f_w / m;
-  const Vec3T<T> dw_b = tau * Vec3T<T>(q_inv * tau_w).cwiseQuotient(Lambda);  // Λ⁻¹ Rᵀ Δl
-  c.v += F == Formulation::body ? Vec3T<T>(q_inv * dv_w) : dv_w;
-  c.omega += F == Formulation::world ? Vec3T<T>(c.q * dw_b) : dw_b;
+                        const MassConstants<T>& mass) {
+  const Vec3T<T> dv_w = tau * f_w * mass.m_inv;
+  const Vec3T<T> dw_b = tau * rotate_inverse<T>(c.q, tau_w).cwiseProduct(mass.Lambda_inv);  // Λ⁻¹ Rᵀ Δl
+  c.v += F == Formulation::body ? rotate_inverse<T>(c.q, dv_w) : dv_w;
+  c.omega += F == Formulation::world ? rotate<T>(c.q, dw_b) : dw_b;
 }
 
 class Strang {
@@ -345,7 +344,7 @@ class Strang {
   }
   void begin_kick_drift(Formulation F, const BodyColumnsRef& xr, double h, Drift& d, size_t i, size_t n) {
     d.c = xr.load<Pack>(i);
-    kick<Pack>(F, d.c, Pack(0.5 * h), load3(0, i), load3(3, i), engine_.m<Pack>(i), engine_.Lambda<Pack>(i));
+    kick<Pack>(F, d.c, Pack(0.5 * h), load3(0, i), load3(3, i), engine_.mass<Pack>(i));
     begin_drift(F, d, h, engine_.Lambda<Pack>(i), i, n);
   }
 
@@ -354,7 +353,7 @@ class Strang {
     keep_loads(blk);
     for (size_t i = blk.begin; i < blk.end; i += kWidth) {
       Coordinates<Pack> c = xr.load<Pack>(i);
-      kick<Pack>(F, c, Pack(0.5 * h), load3(0, i), load3(3, i), engine_.m<Pack>(i), engine_.Lambda<Pack>(i));
+      kick<Pack>(F, c, Pack(0.5 * h), load3(0, i), load3(3, i), engine_.mass<Pack>(i));
       xr.store(i, c);
     }
   }

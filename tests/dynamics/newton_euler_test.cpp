@@ -33,12 +33,10 @@ TEST(NewtonEuler, RatesOfTheThreeFormulationsDescribeTheSameMotion) {
     const double m = rng.uniform(0.5, 3.0);
     const BodyState s{rng.vec(-1, 1), Quat(rng.rotation()), rng.vec(-2, 2), rng.vec(-5, 5)};
     const Vec3 f = rng.vec(-3, 3), tau = rng.vec(-3, 3);
-    const auto w =
-        newton_euler<double>(Formulation::world, m, Lambda, to_coordinates(Formulation::world, s), f, tau);
-    const auto x =
-        newton_euler<double>(Formulation::mixed, m, Lambda, to_coordinates(Formulation::mixed, s), f, tau);
-    const auto b =
-        newton_euler<double>(Formulation::body, m, Lambda, to_coordinates(Formulation::body, s), f, tau);
+    const MassConstants<double> c = mass_constants<double>(m, Lambda);
+    const auto w = newton_euler<double>(Formulation::world, c, to_coordinates(Formulation::world, s), f, tau);
+    const auto x = newton_euler<double>(Formulation::mixed, c, to_coordinates(Formulation::mixed, s), f, tau);
+    const auto b = newton_euler<double>(Formulation::body, c, to_coordinates(Formulation::body, s), f, tau);
     const Vec3 omega_b = s.omega_b(), v_b = s.q.conjugate() * s.v;
     // Sums of O(10) products: rounding ~1e-15 of the largest term; 1e-13 absolute leaves a margin.
     EXPECT_LT((w.omega_dot - s.q * x.omega_dot).norm(), 1e-13);

@@ -121,7 +121,7 @@ TEST(GenericScalar, NewtonEulerInEveryFormulationIsTheSameOnDoublesAndPacks) {
     check("newton_euler", [F](auto& out, const auto& x, auto m, const auto& Lambda, const auto& f,
                               const auto& tau, auto, const auto&) {
       using T = std::decay_t<decltype(m)>;
-      put(out, newton_euler<T>(F, m, Lambda, x, f, tau));
+      put(out, newton_euler<T>(F, mass_constants<T>(m, Lambda), x, f, tau));
       const auto [o_dot, q_dot] = kinematics<T>(F, x);
       put(out, o_dot), put(out, q_dot);
     });
@@ -129,10 +129,12 @@ TEST(GenericScalar, NewtonEulerInEveryFormulationIsTheSameOnDoublesAndPacks) {
   check("newton_euler_world", [](auto& out, const auto& x, auto m, const auto& Lambda, const auto& f,
                                  const auto& tau, auto, const auto&) {
     using T = std::decay_t<decltype(m)>;
-    put(out, newton_euler_world<T>(m, Lambda, x, f, tau));
-    put(out, newton_euler_mixed<T>(m, Lambda, x, f, tau));
-    put(out, newton_euler_body<T>(m, Lambda, x, f, tau));
-    put(out, euler_body<T>(Lambda, x.omega, tau));
+    const MassConstants<T> c = mass_constants<T>(m, Lambda);
+    put(out, newton_euler_world<T>(c, x, f, tau));
+    put(out, newton_euler_mixed<T>(c, x, f, tau));
+    put(out, newton_euler_body<T>(c, x, f, tau));
+    put(out, euler_body<T>(c, x.omega, tau));
+    put(out, rotate<T>(x.q, f)), put(out, rotate_inverse<T>(x.q, f));
   });
 }
 
@@ -140,7 +142,7 @@ TEST(GenericScalar, StageUpdatesAndNormalisationAreTheSameOnDoublesAndPacks) {
   check("advanced, axpy, normalized", [](auto& out, const auto& x, auto m, const auto& Lambda, const auto& f,
                                          const auto& tau, auto h, const auto&) {
     using T = std::decay_t<decltype(m)>;
-    const CoordinateRates<T> k = newton_euler<T>(Formulation::mixed, m, Lambda, x, f, tau);
+    const CoordinateRates<T> k = newton_euler<T>(Formulation::mixed, mass_constants<T>(m, Lambda), x, f, tau);
     put(out, advanced<T>(x, h, k));
     put(out, axpy<T>(k, T(2.0), k));
     put(out, normalized<T>(QuatT<T>(x.q.coeffs() * T(1.5))));

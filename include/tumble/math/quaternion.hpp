@@ -37,6 +37,40 @@ TUMBLE_INLINE QuatT<T> quat_mul(const QuatT<T>& a, const QuatT<T>& b) {
                   a.w() * b.z() + a.x() * b.y() - a.y() * b.x() + a.z() * b.w());
 }
 
+/// q ⊗ (0, u) and (0, u) ⊗ q: quat_mul with a pure quaternion, its products with the zero left out
+/// (a·0 is not 0 in IEEE arithmetic, so the compiler keeps them). The same sums in the same order as
+/// quat_mul: equal to it bit for bit but for the sign of a zero.
+template <class T>
+TUMBLE_INLINE QuatT<T> quat_mul_pure(const QuatT<T>& q, const Vec3T<T>& u) {
+  return QuatT<T>(-(q.x() * u.x()) - q.y() * u.y() - q.z() * u.z(),
+                  q.w() * u.x() + q.y() * u.z() - q.z() * u.y(),
+                  q.w() * u.y() - q.x() * u.z() + q.z() * u.x(),
+                  q.w() * u.z() + q.x() * u.y() - q.y() * u.x());
+}
+template <class T>
+TUMBLE_INLINE QuatT<T> pure_mul_quat(const Vec3T<T>& u, const QuatT<T>& q) {
+  return QuatT<T>(-(u.x() * q.x()) - u.y() * q.y() - u.z() * q.z(),
+                  u.x() * q.w() + u.y() * q.z() - u.z() * q.y(),
+                  -(u.x() * q.z()) + u.y() * q.w() + u.z() * q.x(),
+                  u.x() * q.y() - u.y() * q.x() + u.z() * q.w());
+}
+
+/// R v for the unit quaternion q of R: v + w t + u × t with t = 2 u × v, q = (w, u) — Eigen's formula
+/// for q * v, written here so that it inlines into the pack loops (Eigen's call is not inlined there,
+/// and spilled the kernel's registers).
+template <class T>
+TUMBLE_INLINE Vec3T<T> rotate(const QuatT<T>& q, const Vec3T<T>& v) {
+  const Vec3T<T> u = q.vec();
+  Vec3T<T> t = u.cross(v);
+  t += t;
+  return v + q.w() * t + u.cross(t);
+}
+/// Rᵀ v.
+template <class T>
+TUMBLE_INLINE Vec3T<T> rotate_inverse(const QuatT<T>& q, const Vec3T<T>& v) {
+  return rotate<T>(q.conjugate(), v);
+}
+
 /// |v|² and |q|², summed in one fixed order (Eigen's reductions may vectorise for double).
 template <class T>
 TUMBLE_INLINE T squared_norm(const Vec3T<T>& v) {
