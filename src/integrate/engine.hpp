@@ -6,7 +6,7 @@
 // Two ways through a step:
 //  - fused (when every force model is local and there are no particles): each block of kBlock bodies
 //    is taken through all the stages of a step on its own, its stage variables in per-thread scratch
-//    that stays in cache. The only whole-system arrays are the state and the constants (17 doubles per
+//    that stays in cache. The only whole-system arrays are the state and the constants (21 doubles per
 //    body), read and written once per step, so the rate does not fall with the number of bodies;
 //  - staged (otherwise): stage by stage over the whole system, because a system model (a spring) needs
 //    every body's stage state before any body can move on; stage variables are whole-system columns.

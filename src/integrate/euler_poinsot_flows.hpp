@@ -128,9 +128,8 @@ TUMBLE_INLINE Vec3T<T> triaxial_omega_b(const TriaxialConstants<T>& k, const SnC
 /// 1e-9 rad at t = 1e6 s. Kept apart, the rounding of φ only rotates about the fixed L_w.
 template <class T>
 TUMBLE_INLINE QuatT<T> quat_zxz(T phi, T cos_half_theta, T sin_half_theta, T cos_half_psi, T sin_half_psi) {
-  using std::cos, std::sin;
-  const T half_phi = T(0.5) * phi;
-  const QuatT<T> qz_phi(cos(half_phi), T(0), T(0), sin(half_phi));
+  const auto [sin_half_phi, cos_half_phi] = sincos(T(0.5) * phi);
+  const QuatT<T> qz_phi(cos_half_phi, T(0), T(0), sin_half_phi);
   const QuatT<T> qx_theta(cos_half_theta, sin_half_theta, T(0), T(0));
   const QuatT<T> qz_psi(cos_half_psi, T(0), T(0), sin_half_psi);
   return quat_mul<T>(qz_phi, quat_mul<T>(qx_theta, qz_psi));

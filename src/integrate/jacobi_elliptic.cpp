@@ -119,7 +119,7 @@ EllipticPi::EllipticPi(double n, const JacobiElliptic& f) {
   if (m1 == 0.0) throw InvalidArgument("EllipticPi: m = 1 has no complete integral; use the closed form");
   c_.n = n;
   c_.complete = elliptic_Pi_complete(n, m1);
-  c_.rj_max_steps = carlson_rj_steps(-n);
+  c_.rj_max_steps = carlson_rj_steps(-n, m1);
   c_.rj_steps = c_.rj_max_steps;
   const double b = m - n;  // m − n ≥ 0; zero only for m = n = 0, where Π = u and no reflection term
   if (b > 0.0) {

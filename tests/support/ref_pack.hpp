@@ -138,6 +138,7 @@ struct RefPack {
   friend RefPack cos(const RefPack& a) {
     return map([](double x) { return std::cos(x); }, a);
   }
+  friend std::pair<RefPack, RefPack> sincos(const RefPack& a) { return {sin(a), cos(a)}; }
   friend RefPack asin(const RefPack& a) {
     return map([](double x) { return std::asin(x); }, a);
   }

@@ -61,7 +61,7 @@ struct LandenPoint {
 /// count gives.
 template <class T>
 TUMBLE_INLINE LandenPoint<T> landen_point(const JacobiConstants<T>& J, T u) {
-  using std::abs, std::cos, std::fma, std::nearbyint, std::sin, std::sqrt;
+  using std::abs, std::fma, std::nearbyint, std::sqrt;
   LandenPoint<T> p;
   p.j = nearbyint(u / (T(2) * J.K));
   p.r = fma(-T(2) * J.K, p.j, u);  // rounds 2Kj − u once
@@ -69,7 +69,8 @@ TUMBLE_INLINE LandenPoint<T> landen_point(const JacobiConstants<T>& J, T u) {
   p.reflected = r_abs > T(0.5) * J.K;
   p.arg = select(p.reflected, J.K - r_abs, p.r);
   const T z = J.a_N * p.arg;
-  T s = sin(z), c = cos(z), d = T(1);
+  const auto [sin_z, cos_z] = sincos(z);
+  T s = sin_z, c = cos_z, d = T(1);
   for (int n = J.steps; n >= 1; --n) {
     const T k = J.ratio[n - 1], ks2 = k * s * s, inv = T(1) / (T(1) + ks2);
     const T s_up = (T(1) + k) * s * inv;
@@ -121,7 +122,7 @@ struct PiConstants {
   T c_linear = T(1);     ///< m/(m − n)
   T c_Pi = T(0);         ///< −n m₁/((m − n)(1 − n))
   T complete = T(0);     ///< Π(n | m)
-  T rj_steps = T(8);     ///< carlson_rj_steps(−n): R_J's duplication steps (enough for n′ too)
+  T rj_steps = T(8);     ///< carlson_rj_steps(−n, m₁): R_J's duplication steps (enough for n′ too)
   int rj_max_steps = 8;  ///< for a pack, the largest of its lanes'
 };
 
@@ -129,14 +130,16 @@ struct PiConstants {
 /// The incomplete integral at the point (s, c, d) = sn, cn, dn there (|am| ≤ π/2) is
 ///   s R_F(c², d², 1) + (n/3) s³ R_J(c², d², 1, 1 − n s²)          (DLMF 19.25.14),
 /// with n, or n′ where reflected: Π(n; am(K − v)) = Π(n) − (m/(m−n)) v − c_Π Π(n′; am v).
+/// Its first term is F(am a | m) at the point's argument a (|a| ≤ K/2, on the principal branch of
+/// am), which is a itself: the argument is taken for it, exactly, instead of R_F (a third of the cost,
+/// and R_F would only return a to its rounding).
 template <class T>
 TUMBLE_INLINE T elliptic_pi(const PiConstants<T>& P, const LandenPoint<T>& p) {
   using std::copysign;
   const T n = select(p.reflected, P.n_reflected, P.n);
   const T c2 = p.c * p.c, d2 = p.d * p.d, s2 = p.s * p.s;
-  const T incomplete = p.s * carlson_rf<T>(c2, d2, T(1)) +
-                       n / T(3) * p.s * s2 *
-                           carlson_rj<T>(c2, d2, T(1), T(1) - n * s2, P.rj_steps, P.rj_max_steps);
+  const T incomplete = p.arg + n / T(3) * p.s * s2 *
+                                   carlson_rj<T>(c2, d2, T(1), T(1) - n * s2, P.rj_steps, P.rj_max_steps);
   const T periods = T(2) * p.j * P.complete;
   return periods + select(p.reflected, copysign(P.complete - (P.c_linear * p.arg + P.c_Pi * incomplete), p.r),
                           incomplete);
@@ -201,8 +204,8 @@ class EllipticPi {
   EllipticPi(double n, const JacobiElliptic& f);
   /// Π(n; am u | m) from the values f(u) (elliptic_pi). The complete Π(n | m) (it multiplies the
   /// half-periods j) is evaluated once, correctly rounded (elliptic_Pi_complete); the incomplete part
-  /// |Π(n; am r)| ≤ Π(n | m) evaluates R_F and R_J in double (math/carlson.hpp, a few ε relative
-  /// against 0.5ε): the phase of the free rigid body then moves by at most one ulp of itself.
+  /// |Π(n; am r)| ≤ Π(n | m) is the argument plus an R_J term in double (math/carlson.hpp, a few ε
+  /// relative against 0.5ε): the phase of the free rigid body then moves by at most one ulp of itself.
   double operator()(const JacobiValues& v) const;
 
   const PiConstants<double>& constants() const { return c_; }

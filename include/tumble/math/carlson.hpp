@@ -1,11 +1,13 @@
 #pragma once
-// Carlson's symmetric elliptic integrals R_F and R_J on tumble's number types (double or a pack of
-// lanes, math/lanes.hpp), for the exact Euler–Poinsot flow on packs:
-//     Π(n; φ | m) = s R_F(c², d², 1) + (n/3) s³ R_J(c², d², 1, 1 − n s²)   (DLMF 19.25.14).
-// Boost's ellint_rf/ellint_rj branch on the arguments and iterate until converged, so they cannot run
-// on a pack. Here every lane does the same work: a FIXED number of duplication steps (DLMF 19.36.1–2;
-// B. C. Carlson, "Numerical computation of real or complex elliptic integrals", Numer. Algorithms 10
-// (1995) 13–26), then the 5th-order series; the one choice (R_C at small argument) is a select.
+// Carlson's symmetric elliptic integral R_J on tumble's number types (double or a pack of lanes,
+// math/lanes.hpp), for the exact Euler–Poinsot flow on packs:
+//     Π(n; φ | m) = F(φ | m) + (n/3) s³ R_J(c², d², 1, 1 − n s²)   (DLMF 19.25.14),
+// where F(φ | m) = s R_F(c², d², 1) is the Jacobi argument itself at the points the flow evaluates
+// (jacobi_elliptic.hpp's elliptic_pi), so R_F is not needed there.
+// Boost's ellint_rj branches on the arguments and iterates until converged, so it cannot run on a
+// pack. Here every lane does the same work: a FIXED number of duplication steps (DLMF 19.36.2; B. C.
+// Carlson, "Numerical computation of real or complex elliptic integrals", Numer. Algorithms 10 (1995)
+// 13–26), then the 5th-order series; the one choice (R_C at small argument) is a select.
 //
 // The domain the step counts are tuned for (they hold the error there, not beyond):
 //     x = c², y = d², z = 1 with k′² = m₁ ∈ [1e-16, 1], c ∈ (0, 1], d ∈ [k′, 1], d² = c² + m₁ s²;
@@ -19,31 +21,27 @@
 //
 // The order of operations is as written (the build uses -ffp-contract=off, and nothing here is a
 // reduction that Eigen could reorder), so double, the reference pack and an xsimd pack agree lane by
-// lane: bit for bit for R_F (only +, −, ×, ÷ and √, all correctly rounded), and for R_J up to the last
-// bits of xsimd's own atan (≤ 2 ulps measured).
+// lane: bit for bit on double and the reference pack, and on xsimd packs up to the last bits of xsimd's
+// own atan (≤ 2 ulps measured).
 #include <cmath>
 
 #include "tumble/math/lanes.hpp"
 
 namespace tumble {
 
-/// Duplication steps of carlson_rf. The truncation error of the series, measured over the domain
-/// against Boost in long double, is 880ε after 6 steps and 0.22ε after 7 (both at x = y = 1e-8, the
-/// corner m₁ = 1e-16 with c = cn(K/2)); from 8 on it is below 0.002ε. 7 + 1 of margin: the error is
-/// then rounding alone, ≤ 3.3ε relative (mean 0.53ε) on 1.6e6 points, Boost in double ≤ 2.6ε.
-inline constexpr int kCarlsonRfSteps = 8;
-
-/// Duplication steps carlson_rj needs for p ≤ 1 + N (and for every reflected point, p ≤ 1). p ≫ x, y, z
-/// converges slowly: p_m − x_m = 4⁻ᵐ(p − x), so the steps grow like log₄ N. Smallest counts with
-/// truncation ≤ 0.05ε over the domain (measured against Boost in long double, as for R_F): 10 for
-/// N ≤ 1e2, 14 for 1e4, 17 for 1e6, 20 for 1e8, 24 for 1e10, 27 for 1e12 (26 leaves 16ε at
-/// x = y = 1e-8, N = 1e12), about 7 + log₄(1 + N); the reflected points converge within R_F's 8. This
-/// gives 8 + ⌈log₄(1 + N)⌉, one of margin: 12 for N ≤ 1e2, 28 for 1e12. The error is then rounding
-/// alone, on 1.6e6 points ≤ 5.3ε relative for p ≥ 1 (at N ~ 1e12) and ≤ 3.5ε reflected, mean 0.57ε;
-/// Boost in double ≤ 23ε (at x = y = z). A count per characteristic, rather than the 28 that N = 1e12
-/// needs for all, makes R_J of the usual bodies (N ≲ 1e2) 2.3× cheaper.
-inline int carlson_rj_steps(double N) {
-  int steps = 8;
+/// Duplication steps carlson_rj needs for the arguments of one flow: p ≤ 1 + N at m₁ = k′² (and its
+/// reflected points, p ≤ 1). p ≫ x, y, z converges slowly: p_m − x_m = 4⁻ᵐ(p − x), so the steps grow
+/// like log₄ N; small x, y (x ≥ k′/(1 + k′)) need a few more. The smallest counts whose truncation is
+/// ≤ 0.05ε over x ∈ [k′/(1 + k′), 1] (and the reflected p) were measured by evaluating carlson_rj in
+/// long double against Boost's in long double (bench/carlson_rj_steps.cpp), for 65 values of m₁ from
+/// 1e-16 to 1 and 40 of N from 0 to 1e12: they are base(m₁) + ⌈log₄(1 + N)⌉ at most, with base 4 for m₁ ≥ 0.056, 5 down to 1e-4,
+/// 6 down to 5.6e-10 and 7 below (e.g. 10 for N = 1e2 at m₁ = 1e-16, 27 for N = 1e12). The count
+/// below is that with the thresholds moved up (0.1, 1e-3, 1e-8) and one step of margin; the error is
+/// then rounding alone (tests/integrate/carlson_test.cpp: ≤ 6ε over the domain). The usual bodies
+/// (N ≲ 15, m₁ ≥ 0.1) take 6 or 7 steps, where a count from N alone (the m₁ = 1e-16 one) took 9 or 10,
+/// and the 28 that N = 1e12 needs would be 4× the cost.
+inline int carlson_rj_steps(double N, double m1) {
+  int steps = m1 >= 0.1 ? 5 : m1 >= 1e-3 ? 6 : m1 >= 1e-8 ? 7 : 8;
   for (double power = 1.0; power < 1.0 + N && steps < 64; power *= 4.0) ++steps;
   return steps;
 }
@@ -77,32 +75,6 @@ TUMBLE_INLINE T rc_one(T e) {
 
 }  // namespace carlson_detail
 
-/// R_F(x, y, z) = ½ ∫₀^∞ dt / √((t + x)(t + y)(t + z)), for x, y, z ≥ 0 in the domain above.
-template <class T>
-TUMBLE_INLINE T carlson_rf(T x, T y, T z) {
-  using std::sqrt;
-  // A₀ = (x + y + z)/3. Each duplication maps x ← (x + λ)/4 (likewise y, z, A) with
-  // λ = √x√y + √x√z + √y√z; R_F is unchanged, and A_m − x_m = 4⁻ᵐ(A₀ − x), so the deviations are
-  // taken once at step 0 (no cancellation later) and only A is carried to the end.
-  T A = (x + y + z) / T(3);
-  const T dx = A - x, dy = A - y;
-  for (int m = 0; m < kCarlsonRfSteps; ++m) {
-    const T sx = sqrt(x), sy = sqrt(y), sz = sqrt(z);
-    const T lambda = sx * sy + sx * sz + sy * sz;
-    x = (x + lambda) * T(0.25);
-    y = (y + lambda) * T(0.25);
-    z = (z + lambda) * T(0.25);
-    A = (A + lambda) * T(0.25);
-  }
-  // X = (A₀ − x)/(4ᴹ A_M), Y likewise, Z = −X − Y; E₂ = XY − Z², E₃ = XYZ;
-  // R_F ≈ (1 − E₂/10 + E₃/14 + E₂²/24 − 3E₂E₃/44)/√A_M.
-  constexpr double scale = carlson_detail::quarter_power(kCarlsonRfSteps);
-  const T X = dx * T(scale) / A, Y = dy * T(scale) / A, Z = -(X + Y);
-  const T E2 = X * Y - Z * Z, E3 = X * Y * Z;
-  const T series = T(1) + E2 * (T(1.0 / 24) * E2 - T(0.1) - T(3.0 / 44) * E3) + T(1.0 / 14) * E3;
-  return series / sqrt(A);
-}
-
 /// R_J(x, y, z, p) = (3/2) ∫₀^∞ dt / ((t + p) √((t + x)(t + y)(t + z))), in the domain above (p ≥ x and
 /// δ ≥ 0: every e_m ≥ 0, so R_C(1, 1 + e_m) is the atan form), with `steps` duplication steps
 /// (carlson_rj_steps). On a pack each lane has its own count: the loop runs `max_steps`, the largest,
@@ -110,7 +82,9 @@ TUMBLE_INLINE T carlson_rf(T x, T y, T z) {
 template <class T>
 TUMBLE_INLINE T carlson_rj(T x, T y, T z, T p, T steps, int max_steps) {
   using std::sqrt;
-  // A₀ = (x + y + z + 2p)/5, duplicated like R_F's, and p_m likewise. Step m adds
+  // A₀ = (x + y + z + 2p)/5. Each duplication maps x ← (x + λ)/4 (likewise y, z, A, p) with
+  // λ = √x√y + √x√z + √y√z; A_m − x_m = 4⁻ᵐ(A₀ − x), so the deviations are taken once at step 0 (no
+  // cancellation later) and only A is carried to the end. Step m adds
   // 6·4⁻ᵐ R_C(1, 1 + e_m)/d_m with d_m = (√p_m + √x_m)(√p_m + √y_m)(√p_m + √z_m) and
   // e_m = 4⁻³ᵐ δ/d_m², δ = (p − x)(p − y)(p − z) from the inputs (p_m − x_m = 4⁻ᵐ(p − x): no
   // cancellation); e_m = Π (√p_m − √x_m)/(√p_m + √x_m) ∈ [0, 1).

@@ -65,6 +65,11 @@ struct PackPair {
   TUMBLE_PAIR_UNARY(floor)
   TUMBLE_PAIR_UNARY(abs)
 #undef TUMBLE_PAIR_UNARY
+  [[gnu::always_inline]] friend std::pair<PackPair, PackPair> sincos(const PackPair& x) {
+    const auto [sin_a, cos_a] = xsimd::sincos(x.a);
+    const auto [sin_b, cos_b] = xsimd::sincos(x.b);
+    return {{sin_a, sin_b}, {cos_a, cos_b}};
+  }
 #define TUMBLE_PAIR_OF_TWO(f)                                                      \
   [[gnu::always_inline]] friend PackPair f(const PackPair& x, const PackPair& y) { \
     return {xsimd::f(x.a, y.a), xsimd::f(x.b, y.b)};                               \

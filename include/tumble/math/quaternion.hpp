@@ -87,14 +87,13 @@ TUMBLE_INLINE T squared_norm(const QuatT<T>& q) {
 /// computed and `select` keeps one per lane (the other may be 0/0 there, and is discarded).
 template <class T>
 TUMBLE_INLINE QuatT<T> quat_exp(const Vec3T<T>& phi) {
-  using std::cos;
-  using std::sin;
   using std::sqrt;
   const T theta2 = squared_norm<T>(phi);
   const T theta = sqrt(theta2);
   const auto small = theta2 < T(1e-8);
-  const T c = select(small, T(1) - theta2 / T(8) + theta2 * theta2 / T(384), cos(theta / T(2)));
-  const T s = select(small, T(0.5) - theta2 / T(48) + theta2 * theta2 / T(3840), sin(theta / T(2)) / theta);
+  const auto [sin_half, cos_half] = sincos(theta / T(2));
+  const T c = select(small, T(1) - theta2 / T(8) + theta2 * theta2 / T(384), cos_half);
+  const T s = select(small, T(0.5) - theta2 / T(48) + theta2 * theta2 / T(3840), sin_half / theta);
   return QuatT<T>(c, s * phi.x(), s * phi.y(), s * phi.z());
 }
 
