@@ -32,8 +32,8 @@
 // The flows on packs. A triaxial flow off the separatrix (every generic body) keeps its constants in
 // FlowColumns, a block of 8 bodies at a time, and a pack of bodies evaluates them in one pass of
 // detail::triaxial_state — the template EulerPoinsot evaluates on double: sn, cn, dn by the product form
-// of the descending Landen transformation and Π by tumble's Carlson R_F, R_J (jacobi_elliptic.hpp,
-// math/carlson.hpp), branch-free, with per-lane step counts padded exactly. Two packs go together
+// of the descending Landen transformation and Π as the argument plus tumble's Carlson R_J
+// (jacobi_elliptic.hpp, math/carlson.hpp), branch-free, with per-lane step counts padded exactly. Two packs go together
 // (PackPair: two independent chains the core overlaps). The other flows (rest, sphere, axisymmetric,
 // separatrix) are evaluated by their EulerPoinsot body by body; which way a body goes depends on its
 // flow alone, so a body steps the same whatever its neighbours, block or thread (tests/integrate/
@@ -41,9 +41,9 @@
 // (≤ 32ε(1 + |phase|) in attitude, euler_poinsot_pack_test.cpp).
 //  - Cost (`build/release/bin/batch_throughput out.csv 3 1000000 rk4,splitting,splitting4 1,2 1,16`,
 //    free boxes under gravity, one thread, AVX-512): splitting 1.7e6 body-steps/s (24× an rk4
-//    body-step) with a scalar flow per body; 1.45e7–1.49e7 now, flat from 10⁴ to 10⁶ bodies, 2.8× rk4
-//    (bench/results/amd-epyc-avx512/splitting_simd.txt). A flow costs 39 ns a body on packs
-//    (euler_poinsot_bench: BM_StatePackPair), 0.42 µs on double.
+//    body-step) with a scalar flow per body; 2.2e7 on packs, flat from 10² to 10⁶ bodies, 2.8× an rk4
+//    body-step (bench/results/amd-epyc-avx512/batch_throughput.txt, rk4_splitting_ab.txt). A flow
+//    costs 25 ns a body on packs (euler_poinsot_bench: BM_StatePackPair), 0.28 µs on double.
 //  - Accuracy: nothing is rounded between steps. A fresh flow every step rounds q and ω every step, and
 //    the flips of a tumbling body amplify it: 5e-10–1e-9 rad after 1e5 steps of the T-handle, against 0 for
 //    the kept flow, which is the exact flow from the first state evaluated at the summed time. Its own
