@@ -33,7 +33,7 @@ SystemState to_state(Formulation formulation, const SystemCoordinates& x) {
   return s;
 }
 
-std::string first_non_finite(const Model& model, const SystemCoordinates& x) {
+size_t first_non_finite_body(const SystemCoordinates& x) {
   // x·0 is 0 for a finite x and NaN for ±∞ and NaN: one sum per column finds out whether to look closer.
   // Summed in packs over the padded columns (padding holds finite values): eight independent sums, not
   // one chain of dependent additions, which cost as much as an RK4 step.
@@ -44,14 +44,26 @@ std::string first_non_finite(const Model& model, const SystemCoordinates& x) {
     const double* c = x.bodies[k];
     for (size_t i = 0; i < x.bodies.stride(); i += Pack::size) sum += Pack::load_aligned(c + i) * Pack(0.0);
   }
-  const double probe = xsimd::hadd(sum);
-  if (!std::isfinite(probe)) {
-    for (size_t i = 0; i < n; ++i) {
-      for (size_t k = 0; k < BodyColumns::kCount; ++k) {
-        if (!std::isfinite(x.bodies[k][i])) return fmt::format("body '{}'", model.bodies[i].name());
-      }
+  if (std::isfinite(xsimd::hadd(sum))) return n;
+  for (size_t i = 0; i < n; ++i) {
+    for (size_t k = 0; k < BodyColumns::kCount; ++k) {
+      if (!std::isfinite(x.bodies[k][i])) return i;
     }
   }
+  return n;
+}
+
+void copy_bodies(const SystemCoordinates& x, size_t first, size_t n, SystemCoordinates& part) {
+  part.t = x.t;
+  part.bodies.ensure(n);
+  for (size_t k = 0; k < BodyColumns::kCount; ++k)
+    std::memcpy(part.bodies[k], x.bodies[k] + first, n * sizeof(double));
+  part.particles.clear();
+}
+
+std::string first_non_finite(const Model& model, const SystemCoordinates& x) {
+  if (const size_t i = first_non_finite_body(x); i < x.bodies.size())
+    return fmt::format("body '{}'", model.bodies[i].name());
   for (size_t i = 0; i < x.particles.size(); ++i) {
     if (!x.particles[i].x.allFinite() || !x.particles[i].v.allFinite()) {
       return fmt::format("particle '{}'", model.particles[i].name);

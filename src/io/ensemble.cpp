@@ -6,12 +6,15 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <mutex>
 #include <thread>
 
 #include "ensemble_impl.hpp"
+#include "tumble/forces/stack.hpp"
 #include "tumble/sim/drift_monitor.hpp"
 #include "tumble/sim/event_specs.hpp"
 #include "tumble/sim/output_fields.hpp"
@@ -19,6 +22,8 @@
 namespace tumble {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+/// At most this many runs are stepped together by run_ensemble.
+constexpr size_t kBatchRuns = 512;
 
 struct EnsembleStudy::Impl {
   std::string text;
@@ -29,6 +34,9 @@ struct EnsembleStudy::Impl {
   std::vector<std::string> columns;
   size_t draw_columns = 0;
   std::vector<std::string> rows;  // the base scene's bodies and particles
+  /// The draw columns (after "run") of variations that change a run's structure: anything but the
+  /// values of a body (mass, shape, initial state) or of an event, which stay within the run's lane.
+  std::vector<size_t> structural_columns;
 };
 
 namespace {
@@ -116,6 +124,10 @@ EnsembleStudy EnsembleStudy::parse(const std::string& text, const std::filesyste
   impl->rows = row_names(impl->base.model);
   impl->columns = {"run"};
   for (const Variation& v : impl->study.variations) {
+    const bool within_lane = v.path.starts_with("bodies.") || v.path.starts_with("events.");
+    for (size_t k = 0; k < v.names.size(); ++k) {
+      if (!within_lane) impl->structural_columns.push_back(impl->columns.size() - 1 + k);
+    }
     impl->columns.insert(impl->columns.end(), v.names.begin(), v.names.end());
   }
   impl->draw_columns = impl->columns.size() - 1;
@@ -174,89 +186,184 @@ Scene EnsembleStudy::scene_of_run(long i) const {
   }
 }
 
-EnsembleRow EnsembleStudy::run(
-    long i, const std::function<void(const Scene&, const SystemState&)>& trajectory) const {
-  const Scene s = scene_of_run(i);
-  RunSettings settings = s.settings;
-  settings.threads = 1;  // the runs are spread over the threads, not the bodies of one run
-  const EnsembleOutputs& o = impl_->study.outputs;
-  const size_t R = impl_->rows.size();
+namespace {
 
-  // Extrema per (row, column), event tallies, drift maxima, the last state.
-  std::vector<std::pair<const BodyField*, int>> extrema;
-  for (const std::string& c : o.extrema) extrema.push_back(*find_column(c));
-  std::vector<double> lo(R * extrema.size(), kNaN), hi(R * extrema.size(), kNaN);
-  struct Tally {
-    long count = 0;
-    double first = kNaN, last = kNaN;
-  };
-  std::vector<Tally> tallies(s.events.size());
-  double energy_drift = kNaN, momentum_drift = kNaN;
-  SystemState last;
-  DriftMonitor monitor(s.model, s.initial, s.conserved, 0.0, settings);
-  RunHooks hooks;
-  hooks.events = make_events(s.model, s.events);
-  hooks.on_event = [&](const EventHit& hit) {
-    Tally& t = tallies[hit.index];
+/// A run's row, gathered as the run goes from its samples and crossings: the same code for a run
+/// simulated alone and for a lane of a batch, so their rows are the same numbers.
+class RowReducer {
+ public:
+  RowReducer(const EnsembleOutputs& outputs, const Scene& s, size_t rows, long run, std::vector<double> draws)
+      : o_(outputs), s_(s), rows_(rows), monitor_(s.model, s.initial, s.conserved, 0.0, s.settings) {
+    row_.run = run;
+    row_.values = std::move(draws);
+    for (const std::string& c : o_.extrema) extrema_.push_back(*find_column(c));
+    lo_.assign(rows_ * extrema_.size(), kNaN);
+    hi_.assign(rows_ * extrema_.size(), kNaN);
+    tallies_.resize(s.events.size());
+  }
+
+  void on_event(const EventHit& hit) {
+    Tally& t = tallies_[hit.index];
     if (t.count++ == 0) t.first = hit.state.t;
     t.last = hit.state.t;
-  };
-  const auto larger = [](double current, double x) {
-    return std::isnan(current) || x > current ? x : current;
-  };
-  hooks.on_sample = [&](const SystemState& state) {
-    const DriftSample d = monitor.observe(state);
-    if (d.energy_drift) energy_drift = larger(energy_drift, std::abs(*d.energy_drift));
+  }
+
+  bool on_sample(const SystemState& state) {
+    const DriftSample d = monitor_.observe(state);
+    if (d.energy_drift) energy_drift_ = larger(energy_drift_, std::abs(*d.energy_drift));
     if (d.angular_momentum_drift)
-      momentum_drift = larger(momentum_drift, std::abs(*d.angular_momentum_drift));
+      momentum_drift_ = larger(momentum_drift_, std::abs(*d.angular_momentum_drift));
     double x[4];
-    for (size_t r = 0; r < R; ++r) {
-      for (size_t k = 0; k < extrema.size(); ++k) {
-        field_of_row(*extrema[k].first, s.model, state, r, x);
-        const double v = x[extrema[k].second];
-        double& l = lo[r * extrema.size() + k];
-        double& h = hi[r * extrema.size() + k];
+    for (size_t r = 0; r < rows_; ++r) {
+      for (size_t k = 0; k < extrema_.size(); ++k) {
+        field_of_row(*extrema_[k].first, s_.model, state, r, x);
+        const double v = x[extrema_[k].second];
+        double& l = lo_[r * extrema_.size() + k];
+        double& h = hi_[r * extrema_.size() + k];
         l = std::isnan(l) || v < l ? v : l;
         h = larger(h, v);
       }
     }
-    if (trajectory) trajectory(s, state);
-    last = state;
+    last_ = state;
     return true;
-  };
-  simulate(s.model, s.initial, settings, hooks);
+  }
 
-  EnsembleRow row;
-  row.run = i;
-  row.values = draws(i);
-  if (o.events) {
-    for (const Tally& t : tallies) {
-      row.values.push_back(static_cast<double>(t.count));
-      row.values.push_back(t.first);
-      row.values.push_back(t.count > 1 ? (t.last - t.first) / static_cast<double>(t.count - 1) : kNaN);
+  EnsembleRow row() && {
+    std::vector<double>& v = row_.values;
+    if (o_.events) {
+      for (const Tally& t : tallies_) {
+        v.push_back(static_cast<double>(t.count));
+        v.push_back(t.first);
+        v.push_back(t.count > 1 ? (t.last - t.first) / static_cast<double>(t.count - 1) : kNaN);
+      }
+    }
+    for (size_t r = 0; r < rows_; ++r) {
+      for (size_t k = 0; k < extrema_.size(); ++k) {
+        v.push_back(lo_[r * extrema_.size() + k]);
+        v.push_back(hi_[r * extrema_.size() + k]);
+      }
+    }
+    const std::vector<const BodyField*> finals = o_.final_fields.empty() ? std::vector<const BodyField*>{}
+                                                                         : body_fields(o_.final_fields);
+    for (size_t r = 0; r < rows_; ++r) {
+      for (const BodyField* f : finals) {
+        double x[4];
+        field_of_row(*f, s_.model, last_, r, x);
+        v.insert(v.end(), x, x + f->width);
+      }
+    }
+    if (o_.drift) {
+      v.push_back(energy_drift_);
+      v.push_back(momentum_drift_);
+    }
+    return std::move(row_);
+  }
+
+ private:
+  static double larger(double current, double x) { return std::isnan(current) || x > current ? x : current; }
+  struct Tally {
+    long count = 0;
+    double first = kNaN, last = kNaN;
+  };
+  const EnsembleOutputs& o_;
+  const Scene& s_;
+  size_t rows_;
+  DriftMonitor monitor_;
+  EnsembleRow row_;
+  std::vector<std::pair<const BodyField*, int>> extrema_;  // per (row, column): min and max
+  std::vector<double> lo_, hi_;
+  std::vector<Tally> tallies_;
+  double energy_drift_ = kNaN, momentum_drift_ = kNaN;
+  SystemState last_;
+};
+
+/// The settings a run of a study is simulated with: the runs are spread over the threads, not the
+/// bodies of one run.
+RunSettings study_settings(const Scene& s) {
+  RunSettings settings = s.settings;
+  settings.threads = 1;
+  return settings;
+}
+
+/// Run i of a study simulated alone, from its scene: its row.
+EnsembleRow run_alone(const EnsembleOutputs& outputs, size_t rows, const Scene& s, long i,
+                      std::vector<double> draws,
+                      const std::function<void(const Scene&, const SystemState&)>& trajectory = {}) {
+  RowReducer reducer(outputs, s, rows, i, std::move(draws));
+  RunHooks hooks;
+  hooks.events = make_events(s.model, s.events);
+  hooks.on_event = [&](const EventHit& hit) { reducer.on_event(hit); };
+  hooks.on_sample = [&](const SystemState& state) {
+    if (trajectory) trajectory(s, state);
+    return reducer.on_sample(state);
+  };
+  simulate(s.model, s.initial, study_settings(s), hooks);
+  return std::move(reducer).row();
+}
+
+}  // namespace
+
+EnsembleRow EnsembleStudy::run(
+    long i, const std::function<void(const Scene&, const SystemState&)>& trajectory) const {
+  return run_alone(impl_->study.outputs, impl_->rows.size(), scene_of_run(i), i, draws(i), trajectory);
+}
+
+std::vector<EnsembleRow> EnsembleStudy::run_batch(std::span<const long> runs) const {
+  // Runs whose structural draws (anything but a body's values or an event's) are equal, bit for bit,
+  // share their settings, force models and bodies' count: a group, stepped as one stacked system.
+  std::vector<Scene> scenes;
+  scenes.reserve(runs.size());
+  std::vector<std::vector<double>> drawn;
+  for (const long i : runs) {
+    scenes.push_back(scene_of_run(i));
+    drawn.push_back(draws(i));
+  }
+  std::vector<std::vector<size_t>> groups;
+  {
+    std::map<std::vector<std::uint64_t>, size_t> group_of;
+    for (size_t k = 0; k < runs.size(); ++k) {
+      std::vector<std::uint64_t> key;
+      for (const size_t c : impl_->structural_columns)
+        key.push_back(std::bit_cast<std::uint64_t>(drawn[k][c]));
+      const auto [it, fresh] = group_of.try_emplace(std::move(key), groups.size());
+      if (fresh) groups.emplace_back();
+      groups[it->second].push_back(k);
     }
   }
-  for (size_t r = 0; r < R; ++r) {
-    for (size_t k = 0; k < extrema.size(); ++k) {
-      row.values.push_back(lo[r * extrema.size() + k]);
-      row.values.push_back(hi[r * extrema.size() + k]);
+  std::vector<EnsembleRow> rows(runs.size());
+  for (const std::vector<size_t>& group : groups) {
+    const Scene& first = scenes[group.front()];
+    std::vector<const Model*> models;
+    for (const size_t k : group) models.push_back(&scenes[k].model);
+    std::optional<Model> stacked;
+    if (group.size() > 1 && !is_adaptive(first.settings.integrator)) stacked = stack_runs(models);
+    if (!stacked) {  // each run alone
+      for (const size_t k : group)
+        rows[k] =
+            run_alone(impl_->study.outputs, impl_->rows.size(), scenes[k], runs[k], std::move(drawn[k]));
+      continue;
     }
-  }
-  const std::vector<const BodyField*> finals = o.final_fields.empty()
-                                                   ? std::vector<const BodyField*>{}
-                                                   : body_fields(o.final_fields);  // none asked: none
-  for (size_t r = 0; r < R; ++r) {
-    for (const BodyField* f : finals) {
-      double x[4];
-      field_of_row(*f, s.model, last, r, x);
-      row.values.insert(row.values.end(), x, x + f->width);
+    SystemState initial;
+    initial.t = first.initial.t;
+    std::vector<RowReducer> reducers;
+    reducers.reserve(group.size());
+    RunHooks hooks;
+    for (const size_t k : group) {
+      const Scene& s = scenes[k];
+      initial.bodies.insert(initial.bodies.end(), s.initial.bodies.begin(), s.initial.bodies.end());
+      RowReducer& reducer =
+          reducers.emplace_back(impl_->study.outputs, s, impl_->rows.size(), runs[k], std::move(drawn[k]));
+      Lane& lane = hooks.lanes.emplace_back();
+      lane.model = &s.model;
+      lane.label = fmt::format("run {}", runs[k]);
+      lane.events = make_events(s.model, s.events);
+      lane.on_sample = [&reducer](const SystemState& state) { return reducer.on_sample(state); };
+      lane.on_event = [&reducer](const EventHit& hit) { reducer.on_event(hit); };
     }
+    simulate(*stacked, std::move(initial), study_settings(first), hooks);
+    for (size_t j = 0; j < group.size(); ++j) rows[group[j]] = std::move(reducers[j]).row();
   }
-  if (o.drift) {
-    row.values.push_back(energy_drift);
-    row.values.push_back(momentum_drift);
-  }
-  return row;
+  return rows;
 }
 
 std::vector<ColumnSummary> summarize(const std::vector<std::string>& columns,
@@ -315,6 +422,13 @@ std::vector<long> every_run(const EnsembleStudy& study) {
 std::vector<EnsembleRow> run_ensemble(const EnsembleStudy& study, const std::vector<long>& runs, int threads,
                                       const std::function<void(const EnsembleRow&)>& done,
                                       const std::function<bool()>& stop) {
+  const unsigned n = threads > 0 ? static_cast<unsigned>(threads)
+                                 : std::max(1u, std::thread::hardware_concurrency());
+  // Batches of consecutive runs, stepped together (EnsembleStudy::run_batch): large enough to fill the
+  // engine's packs and blocks many times over, small enough that every thread gets several (a row
+  // does not depend on the batch it is in) and that Ctrl-C, asked between batches, is answered soon.
+  const size_t batch = std::clamp<size_t>(runs.size() / (4 * n), 1, kBatchRuns);
+  const size_t batches = (runs.size() + batch - 1) / batch;
   std::vector<std::optional<EnsembleRow>> rows(runs.size());
   std::atomic<size_t> next{0};
   std::atomic<bool> halt{false};
@@ -322,13 +436,17 @@ std::vector<EnsembleRow> run_ensemble(const EnsembleStudy& study, const std::vec
   std::exception_ptr failure;
   const auto work = [&] {
     for (;;) {
-      const size_t k = next.fetch_add(1);
-      if (k >= runs.size() || halt.load()) return;
+      const size_t b = next.fetch_add(1);
+      if (b >= batches || halt.load()) return;
+      const size_t begin = b * batch, count = std::min(batch, runs.size() - begin);
       try {
-        EnsembleRow row = study.run(runs[k]);
+        std::vector<EnsembleRow> computed =
+            study.run_batch(std::span<const long>(runs).subspan(begin, count));
         const std::lock_guard<std::mutex> guard(lock);
-        if (done) done(row);
-        rows[k] = std::move(row);
+        for (size_t k = 0; k < count; ++k) {
+          if (done) done(computed[k]);
+          rows[begin + k] = std::move(computed[k]);
+        }
         if (stop && stop()) halt = true;
       } catch (...) {
         const std::lock_guard<std::mutex> guard(lock);
@@ -338,11 +456,9 @@ std::vector<EnsembleRow> run_ensemble(const EnsembleStudy& study, const std::vec
       }
     }
   };
-  const unsigned n = threads > 0 ? static_cast<unsigned>(threads)
-                                 : std::max(1u, std::thread::hardware_concurrency());
   {
     std::vector<std::jthread> pool;
-    for (unsigned t = 1; t < std::min<size_t>(n, runs.size()); ++t) pool.emplace_back(work);
+    for (unsigned t = 1; t < std::min<size_t>(n, batches); ++t) pool.emplace_back(work);
     work();
   }
   if (failure) std::rethrow_exception(failure);

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
-#include <tuple>
 
 #include "tumble/error.hpp"
 #include "tumble/sim/run_plan.hpp"
@@ -35,9 +34,9 @@ bool crosses(const Event& e, double g0, double g1) {
   return (rising && e.direction >= 0) || (falling && e.direction <= 0);
 }
 
-/// The variables at an offset τ ∈ (0, h] into the current step: one step of length τ from the step's
-/// start (fixed-step methods) or the dense output (adaptive ones).
-using StateInStep = std::function<SystemCoordinates(double tau)>;
+/// The variables of one run at an offset τ ∈ (0, h] into the current step: one step of length τ from
+/// the step's start (fixed-step methods) or the dense output (adaptive ones), into `y`.
+using StateInStep = std::function<void(double tau, SystemCoordinates& y)>;
 
 struct Hit {
   double tau;
@@ -45,40 +44,46 @@ struct Hit {
   SystemCoordinates x;
 };
 
-/// Every crossing in the step of length h whose end state is `after`, located by bisection on τ to
-/// 4 ulp of the time and returned in time order; g_prev (the values at the step's start) is updated
-/// to the values at its end.
-std::vector<Hit> find_hits(const std::vector<Event>& events, std::vector<double>& g_prev, Formulation F,
-                           const SystemCoordinates& after, double t_start, double h,
-                           const StateInStep& state_at) {
-  std::vector<Hit> hits;
-  const SystemState end = to_state(F, after);
-  const double resolution = 4 * 2.220446049250313e-16 * std::max(std::abs(t_start), h);
-  for (size_t i = 0; i < events.size(); ++i) {
-    const double g0 = g_prev[i], g1 = evaluate(events[i], end);
-    g_prev[i] = g1;
-    if (!crosses(events[i], g0, g1)) continue;
-    double lo = 0.0, hi = h;
-    SystemCoordinates at_hi = after;
-    for (int k = 0; k < 200 && hi - lo > resolution; ++k) {
-      const double mid = 0.5 * (lo + hi);
-      SystemCoordinates y = state_at(mid);
-      const double g = evaluate(events[i], to_state(F, y));
-      if ((g0 < 0) == (g < 0) && g != 0) {
-        lo = mid;
-      } else {
-        hi = mid;
-        at_hi = std::move(y);
-      }
+/// The τ ∈ (0, h] where g, of sign g0 ≠ 0 at τ = 0 and of the other sign (or zero) at h, changes sign,
+/// to `resolution`: the Illinois variant of regula falsi on a bracket [lo, hi] that always holds the
+/// change (g has g0's sign at lo, the other sign or zero at hi), with a bisection whenever two
+/// iterations have not halved the bracket. A handful of evaluations where bisection to 4 ulp took ~50,
+/// which matters when every run of a study locates its crossings. Returns hi and the variables there.
+double locate(const Event& e, Formulation F, double g0, double g1, double h, double resolution,
+              const StateInStep& state_at, SystemCoordinates& at_hi, SystemState& scratch) {
+  double lo = 0.0, hi = h, g_lo = g0, g_hi = g1;
+  int kept_side = 0;            // +1: lo moved last time, −1: hi moved (Illinois halves the other g)
+  double width_before = 2 * h;  // the bracket two iterations ago
+  SystemCoordinates y;
+  for (int k = 0; k < 200 && hi - lo > resolution && g_hi != 0; ++k) {
+    double tau = hi - g_hi * (hi - lo) / (g_hi - g_lo);
+    if (k % 2 == 0) {
+      if (hi - lo > 0.5 * width_before) tau = 0.5 * (lo + hi);
+      width_before = hi - lo;
     }
-    hits.push_back({hi, i, std::move(at_hi)});
+    // Never on an end of the bracket: at least a quarter of the resolution inside.
+    tau = std::clamp(tau, lo + 0.25 * resolution, hi - 0.25 * resolution);
+    if (!(tau > lo && tau < hi)) tau = 0.5 * (lo + hi);
+    state_at(tau, y);
+    to_state(F, y, scratch);
+    const double g = evaluate(e, scratch);
+    if ((g0 < 0) == (g < 0) && g != 0) {
+      lo = tau;
+      g_lo = g;
+      if (kept_side == 1) g_hi *= 0.5;
+      kept_side = 1;
+    } else {
+      hi = tau;
+      g_hi = g;
+      std::swap(at_hi, y);
+      if (kept_side == -1) g_lo *= 0.5;
+      kept_side = -1;
+    }
   }
-  std::sort(hits.begin(), hits.end(), [](const Hit& a, const Hit& b) { return a.tau < b.tau; });
-  return hits;
+  return hi;
 }
 
 }  // namespace
-
 void validate(const RunSettings& s) {
   require(std::isfinite(s.duration) && s.duration >= 0,
           fmt::format("duration {} s is invalid: give a finite time >= 0", s.duration));
@@ -119,12 +124,71 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
   return simulate(model, std::move(state), settings, hooks);
 }
 
+namespace {
+
+/// What simulate keeps of each run it steps: one covering the whole system, or each lane of a batch.
+struct RunInBatch {
+  const Model* model = nullptr;
+  const std::vector<Event>* events = nullptr;
+  const SampleSink* on_sample = nullptr;  ///< the lane's own (a single run's is the system's)
+  const std::function<void(const EventHit&)>* on_event = nullptr;
+  std::string_view label;
+  size_t first = 0, n = 0;            ///< its bodies in the system
+  std::vector<double> g_prev;         ///< g of each event at the start of the step
+  bool done = false;                  ///< a lane that stopped or needs no more samples
+  SystemState state;                  ///< a lane's state, copied out of the system's (reused storage)
+  SystemCoordinates at_hi;            ///< the variables where a crossing was located
+  std::unique_ptr<Integrator> probe;  ///< steps inside a step to locate crossings (never the run's own)
+  std::vector<Hit> hits;
+};
+
+/// The runs of a simulate call: the system alone, or its lanes (checked against the system).
+std::vector<RunInBatch> runs_of(const Model& model, const RunHooks& hooks, const RunSettings& settings) {
+  std::vector<RunInBatch> runs;
+  if (hooks.lanes.empty()) {
+    RunInBatch& r = runs.emplace_back();
+    r.model = &model;
+    r.events = &hooks.events;
+    r.on_event = &hooks.on_event;
+    r.n = model.bodies.size();
+    return runs;
+  }
+  require(hooks.events.empty() && !hooks.on_event,
+          "a batch of runs (RunHooks::lanes) watches each lane's events: leave RunHooks::events empty");
+  require(!hooks.run_point && !hooks.resume_from,
+          "a batch of runs (RunHooks::lanes) has no run points: resume a study by its runs");
+  require(!is_adaptive(settings.integrator),
+          fmt::format("{} cannot step a batch of runs (its step size would depend on every run's error): "
+                      "run them one at a time",
+                      settings.integrator));
+  const size_t L = hooks.lanes.size(), n = model.bodies.size() / L;
+  require(n * L == model.bodies.size() && model.particles.empty(),
+          fmt::format("a batch of {} runs needs the same number of bodies in each and no particles; the "
+                      "system has {} bodies and {} particles",
+                      L, model.bodies.size(), model.particles.size()));
+  for (size_t r = 0; r < L; ++r) {
+    const Lane& lane = hooks.lanes[r];
+    require(lane.model && lane.model->bodies.size() == n && lane.model->particles.empty(),
+            fmt::format("lane {} ({}) needs its own model of the {} bodies it holds", r, lane.label, n));
+    RunInBatch& run = runs.emplace_back();
+    run.model = lane.model;
+    run.events = &lane.events;
+    run.on_sample = &lane.on_sample;
+    run.on_event = &lane.on_event;
+    run.label = lane.label;
+    run.first = r * n;
+    run.n = n;
+  }
+  return runs;
+}
+
+}  // namespace
+
 SystemState simulate(const Model& model, SystemState state, const RunSettings& settings,
                      const RunHooks& hooks) {
   const SampleSink& on_sample = hooks.on_sample;
   IntegratorStats* stats = hooks.stats;
   const std::function<bool()>& stop_requested = hooks.stop_requested;
-  const std::vector<Event>& events = hooks.events;
   validate(settings);
   if (state.bodies.size() != model.bodies.size() || state.particles.size() != model.particles.size()) {
     throw InvalidArgument(fmt::format("state has {} bodies and {} particles, the model {} and {}",
@@ -132,18 +196,29 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
                                       model.particles.size()));
   }
   if (!is_adaptive(settings.integrator)) make_integrator(settings.integrator)->check(model);
+  const bool batch = !hooks.lanes.empty();
+  std::vector<RunInBatch> runs = runs_of(model, hooks, settings);
+  const Formulation F = settings.formulation;
   const RunPoint* const from = hooks.resume_from;
-  SystemCoordinates x = from ? from->x : to_coordinates(settings.formulation, state);
+  SystemCoordinates x = from ? from->x : to_coordinates(F, state);
   if (from) {
     if (from->t0 != state.t || x.bodies.size() != model.bodies.size() ||
-        x.particles.size() != model.particles.size() || from->event_values.size() != events.size() ||
+        x.particles.size() != model.particles.size() || from->event_values.size() != hooks.events.size() ||
         from->next_sample < 1 || from->samples < 1) {
       throw InvalidArgument(
           "the run point to resume from does not belong to this run (another initial state, model or set "
           "of events)");
     }
   }
-  if (const std::string bad = first_non_finite(model, x); !bad.empty()) {
+  // Which run a body belongs to, for messages about it: "run 17: body 'box'".
+  const auto body_named = [&](const SystemCoordinates& y) -> std::string {
+    if (!batch) return first_non_finite(model, y);
+    const size_t i = first_non_finite_body(y);
+    if (i == y.bodies.size()) return {};
+    const RunInBatch& run = runs[i / runs[0].n];
+    return fmt::format("body '{}' of {}", model.bodies[i].name(), run.label);
+  };
+  if (const std::string bad = body_named(x); !bad.empty()) {
     throw InvalidArgument(fmt::format("{} state of {} is not finite", from ? "the resumed" : "initial", bad));
   }
   const double t0 = state.t;
@@ -154,15 +229,35 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
   long k_out = from ? from->next_sample : 1;
   // Samples handed over, counted for run points (a resumed run continues the count).
   long samples = from ? from->samples : 0;
+
+  // A run's view of a state of the system: the system's itself, or a lane's bodies copied out.
+  const auto view = [&](RunInBatch& run, const SystemState& s) -> const SystemState& {
+    if (!batch) return s;
+    run.state.t = s.t;
+    run.state.bodies.assign(s.bodies.begin() + static_cast<std::ptrdiff_t>(run.first),
+                            s.bodies.begin() + static_cast<std::ptrdiff_t>(run.first + run.n));
+    return run.state;
+  };
+  const auto all_done = [&] {
+    return std::all_of(runs.begin(), runs.end(), [](const RunInBatch& r) { return r.done; });
+  };
+  // A sample of the system, to every run that still wants them; false ends the run.
   auto emit = [&](const SystemState& s) {
     ++samples;
-    return !on_sample || on_sample(s);
+    bool go_on = !on_sample || on_sample(s);
+    if (batch) {
+      for (RunInBatch& run : runs) {
+        if (!run.done && *run.on_sample && !(*run.on_sample)(view(run, s))) run.done = true;
+      }
+      go_on = go_on && !all_done();
+    }
+    return go_on;
   };
   if (!from && !emit(state)) return state;
   // `steps` > 1: the last of several steps taken together from t_start, checked only after them.
   auto check = [&](const SystemCoordinates& y, long step, double step_h, long steps = 1,
                    double t_start = 0.0) {
-    if (const std::string bad = first_non_finite(model, y); !bad.empty()) {
+    if (const std::string bad = body_named(y); !bad.empty()) {
       const std::string when = steps == 1 ? fmt::format("at t = {} s (step {}", y.t, step)
                                           : fmt::format("between t = {} s and t = {} s (steps {} to {}",
                                                         t_start, y.t, step - steps + 1, step);
@@ -173,30 +268,64 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
     }
   };
 
-  std::vector<double> g_prev;
-  for (const Event& e : events) {
-    if (!e.g) throw InvalidArgument(fmt::format("event '{}' has no function g", e.name));
-    if (!from) g_prev.push_back(evaluate(e, state));
+  bool any_events = false;
+  for (RunInBatch& run : runs) {
+    for (const Event& e : *run.events) {
+      if (!e.g) throw InvalidArgument(fmt::format("event '{}' has no function g", e.name));
+      if (!from) run.g_prev.push_back(evaluate(e, view(run, state)));
+    }
+    any_events = any_events || !run.events->empty();
   }
-  if (from) g_prev = from->event_values;
-  // Reports the crossings of one step in time order; the state of a stopping event ends the run.
-  auto report = [&](const Hit& hit, SystemState& out) {
-    out = to_state(settings.formulation, hit.x);
-    if (hooks.on_event) hooks.on_event(EventHit{events[hit.event].name, hit.event, out});
-    if (!events[hit.event].stop) return false;
-    emit(out);
+  if (from) runs[0].g_prev = from->event_values;
+  SystemState end_of_step, scratch;  // the system at the end of a step; a run's state inside it
+  // The crossings of `run`'s events in the step [t_start, t_start + step_h] that ended in x, located
+  // and put in time order in run.hits; g_prev becomes the values at the step's end.
+  const auto find_hits = [&](RunInBatch& run, const SystemCoordinates& x_end, double t_start, double step_h,
+                             const StateInStep& state_at) {
+    run.hits.clear();
+    const SystemState& end = view(run, end_of_step);
+    const double resolution = 4 * 2.220446049250313e-16 * std::max(std::abs(t_start), step_h);
+    for (size_t i = 0; i < run.events->size(); ++i) {
+      const Event& e = (*run.events)[i];
+      const double g0 = run.g_prev[i], g1 = evaluate(e, end);
+      run.g_prev[i] = g1;
+      if (!crosses(e, g0, g1)) continue;
+      if (batch) {
+        copy_bodies(x_end, run.first, run.n, run.at_hi);
+      } else {
+        run.at_hi = x_end;
+      }
+      const double tau = locate(e, F, g0, g1, step_h, resolution, state_at, run.at_hi, scratch);
+      run.hits.push_back({tau, i, run.at_hi});
+    }
+    std::sort(run.hits.begin(), run.hits.end(), [](const Hit& a, const Hit& b) { return a.tau < b.tau; });
+  };
+  // Reports a crossing; true when it stops its run (its state there is the run's last sample).
+  const auto report = [&](RunInBatch& run, const Hit& hit) {
+    SystemState at = to_state(F, hit.x);
+    const Event& e = (*run.events)[hit.event];
+    if (*run.on_event) (*run.on_event)(EventHit{e.name, hit.event, at});
+    if (!e.stop) return false;
+    if (batch) {
+      if (*run.on_sample) (*run.on_sample)(at);
+      run.done = true;
+      return all_done();
+    }
+    state = std::move(at);
+    emit(state);
     return true;
   };
 
   if (is_adaptive(settings.integrator)) {
+    RunInBatch& run = runs[0];  // an adaptive integrator steps one run (runs_of refuses batches)
     const auto integrator = make_adaptive_integrator(settings.integrator, settings.tolerances);
-    integrator->start(model, settings.formulation, x, std::min(h, std::max(settings.duration, h)));
+    integrator->start(model, F, x, std::min(h, std::max(settings.duration, h)));
     bool finished = t_end <= t0;
     if (from) {
       integrator->load_state(from->integrator);
       finished = from->finished;
       // A point after the final sample: x is that sample's state (the step's end is clipped to t_end).
-      if (finished) return to_state(settings.formulation, x);
+      if (finished) return to_state(F, x);
     }
     // A run point after a step that held samples: nothing of the step is pending then.
     auto keep = [&](const SystemCoordinates& at) {
@@ -210,7 +339,7 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
       p.samples = samples;
       p.finished = finished;
       p.stats = integrator->stats();
-      p.event_values = g_prev;
+      p.event_values = run.g_prev;
       p.integrator = integrator->save_state();
       if (hooks.on_run_point) hooks.on_run_point(p);
     };
@@ -222,24 +351,27 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
       const SystemCoordinates x_b = integrator->interpolate(t_b);
       check(x_b, integrator->stats().steps, t_b - t_a);
       if (stats) *stats = integrator->stats();
-      const std::vector<Hit> hits =
-          events.empty() ? std::vector<Hit>{}
-                         : find_hits(events, g_prev, settings.formulation, x_b, t_a, t_b - t_a,
-                                     [&](double tau) { return integrator->interpolate(t_a + tau); });
+      run.hits.clear();
+      if (any_events) {
+        to_state(F, x_b, end_of_step);
+        find_hits(run, x_b, t_a, t_b - t_a,
+                  [&](double tau, SystemCoordinates& y) { y = integrator->interpolate(t_a + tau); });
+      }
       // Samples and crossings inside this step, in time order.
       size_t next_hit = 0;
       bool sampled = false;
       while (true) {
         const double t_sample = std::min(t0 + static_cast<double>(k_out) * dt_out, t_end);
-        const bool hit_first = next_hit < hits.size() && t_a + hits[next_hit].tau <= std::min(t_sample, t_b);
+        const bool hit_first = next_hit < run.hits.size() &&
+                               t_a + run.hits[next_hit].tau <= std::min(t_sample, t_b);
         if (hit_first) {
-          if (report(hits[next_hit++], state)) return state;
+          if (report(run, run.hits[next_hit++])) return state;
           continue;
         }
         if (t_sample > t_b) break;
         x = integrator->interpolate(t_sample);
         ++k_out;
-        to_state(settings.formulation, x, state);  // reuses the storage: no allocation per sample
+        to_state(F, x, state);  // reuses the storage: no allocation per sample
         finished = t_sample >= t_end;
         sampled = true;
         if (!emit(state)) return state;
@@ -247,7 +379,7 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
       }
       if (sampled) keep(x_b);
       if (!finished && stop_requested && stop_requested()) {
-        state = to_state(settings.formulation, x_b);
+        state = to_state(F, x_b);
         emit(state);
         return state;
       }
@@ -261,11 +393,11 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
   // A step shorter than this fraction of h is rounding of the sample grid, not a real step.
   const double tiny = 1e-9 * h;
   SystemCoordinates x_prev;
-  const bool chunks = events.empty() && integrator->fuses_steps(model);
+  const bool chunks = !any_events && integrator->fuses_steps(model);
   double t_last_sample = t0;
   long steps_since_sample = 0;
   if (from) {
-    integrator->load_state(model, settings.formulation, from->integrator);
+    integrator->load_state(model, F, from->integrator);
     step = from->stats.steps;
     t_last_sample = from->t_last_sample;
     steps_since_sample = from->steps_since_sample;
@@ -283,11 +415,21 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
     p.finished = !(x.t < t_end - tiny);
     p.stats = {step, 0,
                integrator->evaluations_counted().value_or(step * integrator->evaluations_per_step())};
-    p.event_values = g_prev;
+    p.event_values = runs[0].g_prev;
     p.integrator = integrator->save_state();
     if (hooks.on_run_point) hooks.on_run_point(p);
   };
   if (!from) keep();
+  // Steps inside a step, to locate a crossing: a run's own integrator of the same method, from the
+  // step's start (the run's integrator itself is never handed a state it did not produce, so locating
+  // a crossing does not change the run — splitting keeps its flows, exact its anchor).
+  const auto probe_of = [&](RunInBatch& run) -> Integrator& {
+    if (!run.probe) {
+      run.probe = make_integrator(settings.integrator);
+      run.probe->set_threads(batch ? 1 : settings.threads);
+    }
+    return *run.probe;
+  };
   while (x.t < t_end - tiny) {
     const double t_sample = std::min(t0 + static_cast<double>(k_out) * dt_out, t_end);
     if (chunks) {
@@ -300,7 +442,7 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
       }
       if (count > 1) {
         const double t_start = x.t;
-        integrator->steps(model, settings.formulation, x, h, count);
+        integrator->steps(model, F, x, h, count);
         step += count;
         steps_since_sample += count;
         x.t = t_last_sample + static_cast<double>(steps_since_sample) * h;  // the clock on its grid
@@ -310,7 +452,7 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
         }
         check(x, step, h, count, t_start);
         if (stop_requested && stop_requested()) {
-          to_state(settings.formulation, x, state);
+          to_state(F, x, state);
           emit(state);
           return state;
         }
@@ -322,8 +464,8 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
     // x.t ≥ t_sample / 2 (Sterbenz), so the state is computed at the sample time itself.
     const double remaining = t_sample - x.t;
     const double step_h = remaining <= h + tiny ? remaining : h;
-    if (!events.empty()) x_prev = x;
-    integrator->step(model, settings.formulation, x, step_h);
+    if (any_events) x_prev = x;  // reuses the storage
+    integrator->step(model, F, x, step_h);
     ++step;
     if (stats) {
       *stats = {step, 0,
@@ -335,14 +477,22 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
     ++steps_since_sample;
     x.t = x.t >= t_sample - tiny ? t_sample : t_last_sample + static_cast<double>(steps_since_sample) * h;
     check(x, step, step_h);
-    if (!events.empty()) {
-      const auto hits = find_hits(events, g_prev, settings.formulation, x, x_prev.t, step_h, [&](double tau) {
-        SystemCoordinates y = x_prev;
-        integrator->step(model, settings.formulation, y, tau);
-        return y;
-      });
-      for (const Hit& hit : hits) {
-        if (report(hit, state)) return state;
+    if (any_events) {
+      to_state(F, x, end_of_step);
+      for (RunInBatch& run : runs) {
+        if (run.done || run.events->empty()) continue;
+        find_hits(run, x, x_prev.t, step_h, [&](double tau, SystemCoordinates& y) {
+          if (batch) {
+            copy_bodies(x_prev, run.first, run.n, y);
+          } else {
+            y = x_prev;
+          }
+          probe_of(run).step(*run.model, F, y, tau);
+        });
+        for (const Hit& hit : run.hits) {
+          if (report(run, hit)) return batch ? to_state(F, x) : state;
+          if (run.done) break;
+        }
       }
     }
     const bool stop = stop_requested && stop_requested();
@@ -353,13 +503,13 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
         t_last_sample = t_sample;
         steps_since_sample = 0;
       }
-      to_state(settings.formulation, x, state);  // reuses the storage: no allocation per sample
+      to_state(F, x, state);  // reuses the storage: no allocation per sample
       const bool go_on = emit(state);
       if (on_grid) keep();
       if (!go_on || stop) return state;
     }
   }
-  return to_state(settings.formulation, x);
+  return to_state(F, x);
 }
 
 }  // namespace tumble

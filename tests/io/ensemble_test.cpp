@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <bit>
 #include <cmath>
 #include <numbers>
 #include <set>
@@ -195,6 +196,174 @@ final = ["orientation"]
       const double a = one[k].values[c], b = two[k].values[c];
       EXPECT_TRUE(a == b || (std::isnan(a) && std::isnan(b))) << s.columns()[c + 1] << " run " << k;
     }
+  }
+}
+
+/// Every value of the rows of run_batch equals that of each run simulated alone (run(i)), bit for bit
+/// (NaN where NaN).
+void expect_batch_equals_runs_alone(const EnsembleStudy& s) {
+  const std::vector<long> runs = every_run(s);
+  const std::vector<EnsembleRow> batch = s.run_batch(runs);
+  ASSERT_EQ(batch.size(), runs.size());
+  for (size_t k = 0; k < runs.size(); ++k) {
+    const EnsembleRow alone = s.run(runs[k]);
+    ASSERT_EQ(batch[k].run, runs[k]);
+    ASSERT_EQ(batch[k].values.size(), alone.values.size());
+    for (size_t c = 0; c < alone.values.size(); ++c) {
+      const double a = alone.values[c], b = batch[k].values[c];
+      EXPECT_TRUE(std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b) ||
+                  (std::isnan(a) && std::isnan(b)))
+          << s.columns()[c + 1] << " of run " << runs[k] << ": alone " << a << ", in the batch " << b;
+    }
+  }
+}
+
+// The runs of a study stepped as lanes of one system give the rows of each run stepped alone, bit for
+// bit: the engine steps a body alike in any company, each lane locates its crossings by stepping its
+// own model, and the rows are reduced by the same code. Per integrator, with draws of the initial state,
+// the mass, the attitude and an event's value, and forces shared (gravity) or copied per run (a torque
+// and a force on the body, damping of the body).
+TEST(Ensemble, RunsSteppedAsOneBatchGiveTheRowsOfEachRunAloneBitForBit) {
+  for (const char* integrator : {"rk4", "splitting", "lie_rk4", "midpoint", "implicit_gyro", "exact"}) {
+    SCOPED_TRACE(integrator);
+    const bool free = std::string(integrator) == "exact";  // exact refuses torques and damping
+    const std::string forces = free ? ""
+                                    : "[[forces]]\ntype = \"torque\"\nbody = \"racket\"\ntorque = [0.0, 0.0, "
+                                      "1e-3]\nframe = \"reference\"\n"
+                                      "[[forces]]\ntype = \"force\"\nbody = \"racket\"\nforce = [0.1, 0.0, "
+                                      "0.0]\npoint = [0.0, 0.05, 0.0]\n"
+                                      "[[forces]]\ntype = \"damping\"\nbody = \"racket\"\nangular = 1e-4\n";
+    std::string scene = test::racket_scene(2.0) + forces;
+    scene.insert(scene.find("timestep"), fmt::format("integrator = \"{}\"\n", integrator));
+    scene.insert(scene.find("[[bodies]]"), "[world]\ngravity = [0.0, 0.0, -9.81]\n");
+    const EnsembleStudy s = EnsembleStudy::parse(scene + R"([[events]]
+name = "tilt"
+body = "racket"
+axis = [0.0, 0.0, 1.0]
+toward = [0.0, 0.0, 1.0]
+angle_deg = 20.0
+[ensemble]
+runs = 37
+seed = 5
+[[ensemble.vary]]
+path = "bodies.racket.angular_velocity"
+distribution = "direction"
+magnitude = 10.0
+[[ensemble.vary]]
+path = "bodies.racket.mass"
+distribution = "uniform"
+low = 0.5
+high = 2.0
+[[ensemble.vary]]
+path = "bodies.racket.orientation"
+distribution = "rotation"
+[[ensemble.vary]]
+path = "events.tilt.angle_deg"
+distribution = "uniform"
+low = 5.0
+high = 90.0
+[ensemble.outputs]
+extrema = ["w1", "w2", "com_z"]
+final = ["orientation", "angular_velocity"]
+)",
+                                                 "study.toml");
+    expect_batch_equals_runs_alone(s);
+  }
+}
+
+// A run that stops at its event ends its lane there, while the others go on: its final values are
+// those at the crossing, as when it runs alone.
+TEST(Ensemble, ALaneThatStopsAtItsEventEndsThereAndTheOthersGoOn) {
+  std::string scene = test::racket_scene(8.0);
+  scene.insert(scene.find("[[bodies]]"), "[world]\ngravity = [0.0, 0.0, -9.81]\n");
+  scene.insert(scene.find("angular_velocity ="), "velocity = [0.0, 0.0, 0.0]\n");
+  const EnsembleStudy s = EnsembleStudy::parse(scene + R"([[events]]
+name = "fallen"
+body = "racket"
+column = "com_z"
+value = -1.0
+stop = true
+[ensemble]
+runs = 20
+[[ensemble.vary]]
+path = "bodies.racket.velocity[2]"
+distribution = "uniform"
+low = -2.0
+high = 8.0
+[ensemble.outputs]
+final = ["com_position"]
+)",
+                                               "study.toml");
+  expect_batch_equals_runs_alone(s);
+  // Each run stops where its centre of mass reaches z = −1 m, at t = (v + √(v² + 2g)) / g.
+  const auto& c = s.columns();
+  const auto at = [&](const std::string& name) {
+    const auto k = std::find(c.begin(), c.end(), name);
+    EXPECT_NE(k, c.end()) << name;
+    return static_cast<size_t>(k - c.begin()) - 1;
+  };
+  int stopped = 0;
+  for (const EnsembleRow& r : s.run_batch(every_run(s))) {
+    const double v = r.values[0], t = (v + std::sqrt(v * v + 2 * 9.81)) / 9.81;
+    if (t > 8.0) continue;  // still falling at the end
+    // RK4 integrates the parabola exactly; the crossing is located to 4 ulp of t.
+    EXPECT_NEAR(r.values[at("racket.com_z_final")], -1.0, 1e-12) << "run " << r.run;
+    EXPECT_NEAR(r.values[at("fallen.first_t")], t, 1e-12) << "run " << r.run;
+    ++stopped;
+  }
+  EXPECT_GT(stopped, 10);
+}
+
+// Draws that change the structure (here the step) put the runs into groups that share it: each group
+// is one batch, and the rows are still those of each run alone; a spring between a body and the world
+// (a system model) keeps every run on its own.
+TEST(Ensemble, RunsAreBatchedByStructureAndSystemModelsRunAlone) {
+  expect_batch_equals_runs_alone(study(R"([ensemble]
+runs = 30
+[[ensemble.vary]]
+path = "simulation.timestep"
+distribution = "grid"
+values = [1e-3, 2e-3, 4e-3]
+[[ensemble.vary]]
+path = "bodies.racket.angular_velocity[0]"
+distribution = "uniform"
+low = 0.01
+high = 0.2
+)"));
+  expect_batch_equals_runs_alone(study(R"([[forces]]
+type = "spring"
+a = { body = "racket", point = [0.0, 0.0, 0.15] }
+b = { anchor = [0.0, 0.0, 1.0] }
+stiffness = 10.0
+[ensemble]
+runs = 6
+[[ensemble.vary]]
+path = "bodies.racket.angular_velocity[0]"
+distribution = "uniform"
+low = 0.01
+high = 0.2
+)"));
+}
+
+// A run that blows up inside a batch is named with its draws' run number.
+TEST(Ensemble, ARunThatBlowsUpInABatchIsNamed) {
+  const EnsembleStudy s = study(R"([[forces]]
+type = "drag"
+body = "racket"
+angular = 1e-3
+[ensemble]
+runs = 16
+[[ensemble.vary]]
+path = "bodies.racket.angular_velocity[1]"
+distribution = "list"
+values = [1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1e6, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0]
+)");
+  try {
+    (void)s.run_batch(every_run(s));
+    FAIL() << "the blow-up went unnoticed";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("body 'racket' of run 7 became non-finite"), std::string::npos)
+        << e.what();
   }
 }
 

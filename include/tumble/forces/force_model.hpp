@@ -99,6 +99,9 @@ class ForceModel {
   /// each centre of mass (no torque about it). nullopt for every other model. The `exact` integrator
   /// and the drift monitor's advice ask it.
   virtual std::optional<Vec3> uniform_acceleration() const { return std::nullopt; }
+  /// Whether the model treats every body by the same rule, whatever its index (uniform gravity, central
+  /// gravity, damping of all bodies): runs stacked into one system (stack.hpp) then share it as it is.
+  virtual bool acts_alike_on_every_body() const { return false; }
   /// Throws InvalidArgument when the model refers to a body or particle index the system does not
   /// have. Called once before a run, so that evaluations need not check.
   virtual void check(size_t /*n_bodies*/, size_t /*n_particles*/) const {}

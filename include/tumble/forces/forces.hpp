@@ -19,6 +19,7 @@ class UniformGravity final : public LocalForceModel {
   void accumulate_particles(const SystemView& view, std::span<Vec3> f) const override;
   bool needs_velocity() const override { return false; }
   std::optional<Vec3> uniform_acceleration() const override { return g_; }
+  bool acts_alike_on_every_body() const override { return true; }
   std::string describe() const override;
   std::optional<double> potential_energy(const SystemView& view) const override;
 
@@ -68,6 +69,7 @@ class ViscousDamping final : public LocalForceModel {
   void accumulate_block(const BodyBlock& block, BlockLoads& loads) const override;
   void accumulate_particles(const SystemView& view, std::span<Vec3> f) const override;
   void check(size_t n_bodies, size_t n_particles) const override;
+  bool acts_alike_on_every_body() const override { return body_ == all_bodies; }
   std::string describe() const override;
 
  private:
@@ -83,6 +85,7 @@ class QuadraticDrag final : public LocalForceModel {
   void accumulate_block(const BodyBlock& block, BlockLoads& loads) const override;
   void accumulate_particles(const SystemView& view, std::span<Vec3> f) const override;
   void check(size_t n_bodies, size_t n_particles) const override;
+  bool acts_alike_on_every_body() const override { return body_ == all_bodies; }
   std::string describe() const override;
 
  private:
@@ -126,6 +129,7 @@ class GravityGradient final : public LocalForceModel {
       : mu_(mu), center_(center), torque_only_(torque_only) {}
   void accumulate_block(const BodyBlock& block, BlockLoads& loads) const override;
   bool needs_velocity() const override { return false; }
+  bool acts_alike_on_every_body() const override { return true; }
   std::string describe() const override;
   std::optional<double> potential_energy(const SystemView& view) const override;
 

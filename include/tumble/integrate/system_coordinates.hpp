@@ -29,5 +29,11 @@ bool same_variables(const SystemCoordinates& x, const BodyColumns& bodies,
 /// The first body or particle of x that is not finite, as "body 'name'" or "particle 'name'"; empty
 /// when everything is finite.
 std::string first_non_finite(const Model& model, const SystemCoordinates& x);
+/// The index of the first body of x that is not finite; x.bodies.size() when every body is finite.
+size_t first_non_finite_body(const SystemCoordinates& x);
+
+/// Bodies first … first + n − 1 of x (and no particles) into `part`, at x's time, reusing its storage:
+/// one run's variables out of a batch of runs stepped together (sim/simulate.hpp, Lane).
+void copy_bodies(const SystemCoordinates& x, size_t first, size_t n, SystemCoordinates& part);
 
 }  // namespace tumble

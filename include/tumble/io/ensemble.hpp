@@ -16,6 +16,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -81,8 +82,14 @@ class EnsembleStudy {
   /// The scene of run i: the file with run i's values, read by the scene reader. SceneError names the
   /// run and the values when they make the scene invalid (e.g. a negative mass).
   Scene scene_of_run(long i) const;
-  /// Runs run i: its row. `trajectory`, if given, receives every sample (for the chosen runs' files).
+  /// Runs run i alone: its row. `trajectory`, if given, receives every sample (for the chosen runs'
+  /// files).
   EnsembleRow run(long i, const std::function<void(const Scene&, const SystemState&)>& trajectory = {}) const;
+  /// The rows of several runs, in their order: runs whose draws leave the structure alone (they change
+  /// bodies' values and events only) are stepped together as lanes of one system (sim/simulate.hpp,
+  /// Lane), many per SIMD pack; the others one group per structure (one run alone when none share it,
+  /// or for an adaptive integrator). Each row equals run(i)'s, bit for bit.
+  std::vector<EnsembleRow> run_batch(std::span<const long> runs) const;
 
  private:
   struct Impl;

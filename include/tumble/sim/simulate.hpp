@@ -30,9 +30,11 @@ void validate(const RunSettings& settings);
 using SampleSink = std::function<bool(const SystemState&)>;
 
 /// A condition watched during a run: the moment g(state) crosses zero (a flip, an impact, an
-/// attitude reached). Located within a step by bisection, to 4 ulp of the time, on states the run's
-/// own integrator gives inside the step: one step of the shorter length from the step's start
-/// (fixed-step methods) or the dense output (adaptive ones, accurate to their tolerance).
+/// attitude reached). Located within a step to 4 ulp of the time (the Illinois variant of regula falsi,
+/// bracketing, with bisection where it stalls), on states the run's own method gives inside the step:
+/// one step of the shorter length from the step's start by a second instance of the integrator, so
+/// that locating a crossing never changes the run (fixed-step methods), or the dense output (adaptive
+/// ones, accurate to their tolerance).
 struct Event {
   std::string name;
   std::function<double(const SystemState&)> g;
@@ -64,6 +66,19 @@ struct RunPoint {
   std::vector<double> integrator;    ///< Integrator::save_state(), AdaptiveIntegrator::save_state()
 };
 
+/// One of several independent runs stepped together as one system: a study's runs of one structure,
+/// stacked by forces/stack.hpp (run r's n bodies are bodies r·n … r·n + n − 1 of the stacked model).
+/// Each lane watches its own events, located by stepping its own model alone from the start of the
+/// step, and sees only its own states. Since the engine steps a body alike in any company (any N, block
+/// or thread), a lane's samples and crossings are those of the run simulated alone, bit for bit.
+struct Lane {
+  const Model* model = nullptr;  ///< the run's own model: its bodies (the stacked ones' values) and forces
+  std::string label;             ///< names the run in errors, e.g. "run 17"
+  std::vector<Event> events;
+  SampleSink on_sample;  ///< the run's own state at every sample; return false when it needs no more
+  std::function<void(const EventHit&)> on_event;
+};
+
 /// What a run reports back, all optional.
 struct RunHooks {
   /// Called with every sample (the initial state first); return false to stop the run early.
@@ -90,6 +105,14 @@ struct RunHooks {
   /// settings and events; the samples before it are not handed to on_sample again. The run from there
   /// is bit for bit the run that was not stopped.
   const RunPoint* resume_from = nullptr;
+
+  /// A batch of independent runs (see Lane): when not empty, the system is these runs laid end to end,
+  /// each watching its own events (`events` and `on_event` above must then be empty); on_sample still
+  /// receives the whole system. A lane whose stopping event fires, or whose on_sample returns false, is
+  /// done: it is stepped on with the others but reports nothing more; the run ends when all are done.
+  /// Fixed-step integrators only (an adaptive step size would depend on every run's error), and no
+  /// run points (a study resumes by whole runs).
+  std::vector<Lane> lanes;
 };
 
 /// Runs the model from `state` and returns the final state. Throws tumble::Error naming the body,
