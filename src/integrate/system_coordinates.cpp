@@ -27,6 +27,14 @@ void to_state(Formulation formulation, const SystemCoordinates& x, SystemState& 
   s.particles = x.particles;
 }
 
+void to_state(Formulation formulation, const SystemCoordinates& x, size_t first, size_t n,
+              SystemState& part) {
+  part.t = x.t;
+  part.bodies.resize(n);
+  for (size_t i = 0; i < n; ++i) part.bodies[i] = to_state(formulation, x.bodies.load(first + i));
+  part.particles.clear();
+}
+
 SystemState to_state(Formulation formulation, const SystemCoordinates& x) {
   SystemState s;
   to_state(formulation, x, s);

@@ -209,10 +209,12 @@ class RowReducer {
   }
 
   bool on_sample(const SystemState& state) {
-    const DriftSample d = monitor_.observe(state);
-    if (d.energy_drift) energy_drift_ = larger(energy_drift_, std::abs(*d.energy_drift));
-    if (d.angular_momentum_drift)
-      momentum_drift_ = larger(momentum_drift_, std::abs(*d.angular_momentum_drift));
+    if (o_.drift) {
+      const DriftSample d = monitor_.observe(state);
+      if (d.energy_drift) energy_drift_ = larger(energy_drift_, std::abs(*d.energy_drift));
+      if (d.angular_momentum_drift)
+        momentum_drift_ = larger(momentum_drift_, std::abs(*d.angular_momentum_drift));
+    }
     double x[4];
     for (size_t r = 0; r < rows_; ++r) {
       for (size_t k = 0; k < extrema_.size(); ++k) {

@@ -51,19 +51,21 @@ DriftMonitor::DriftMonitor(const Model& model, const SystemState& initial, Conse
   // The energy is relative to max(|E₀|, T₀): |E₀| alone can be ~0 by the choice of the potential's
   // zero (a thrown body, a bound orbit near escape), which would make any drift look infinite.
   if (const auto E0 = energy(initial_)) energy_scale_ = std::max(std::abs(*E0), initial_.kinetic_energy);
+  // What every sample is compared with, formed once (a study observes millions of samples).
+  E0_ = energy(initial_);
+  p0_ = initial_.linear_momentum.norm();
+  L0_ = initial_.angular_momentum.norm();
 }
 
 DriftSample DriftMonitor::observe(const SystemState& state) {
   DriftSample d;
   d.invariants = invariants(model_, state);
-  const auto E0 = energy(initial_);
   const auto E = energy(d.invariants);
-  if (E0 && E && energy_scale_ > 0) d.energy_drift = (*E - *E0) / energy_scale_;
-  if (const double p0 = initial_.linear_momentum.norm(); p0 > 0) {
-    d.linear_momentum_drift = (d.invariants.linear_momentum - initial_.linear_momentum).norm() / p0;
-  }
-  if (const double L0 = initial_.angular_momentum.norm(); L0 > 0) {
-    d.angular_momentum_drift = (d.invariants.angular_momentum - initial_.angular_momentum).norm() / L0;
+  if (E0_ && E && energy_scale_ > 0) d.energy_drift = (*E - *E0_) / energy_scale_;
+  if (p0_ > 0)
+    d.linear_momentum_drift = (d.invariants.linear_momentum - initial_.linear_momentum).norm() / p0_;
+  if (L0_ > 0) {
+    d.angular_momentum_drift = (d.invariants.angular_momentum - initial_.angular_momentum).norm() / L0_;
   }
 
   if (warned_ || !(threshold_ > 0)) return d;

@@ -9,12 +9,32 @@ namespace tumble {
 Event make_event(const Model& model, const EventSpec& spec) {
   Event e{spec.name, {}, spec.direction, spec.stop};
   const size_t r = spec.row;
+  const bool body = r < model.bodies.size();
   if (spec.kind == EventSpec::Kind::column) {
     e.g = [&model, r, field = spec.field, k = spec.component, value = spec.value](const SystemState& s) {
       double x[4];
       field_of_row(*field, model, s, r, x);
       return x[k] - value;  // g = x_k − value
     };
+    if (!body) return e;
+    // Every step, from the body's own variables: ^bω is the mixed and body formulations' own ω (no
+    // rotation to the world and back); any other column from the body's state alone.
+    e.body = r;
+    if (spec.field->name == "angular_velocity_principal") {
+      e.g_variables = [k = spec.component, value = spec.value](const BodyColumns& x, size_t i,
+                                                               Formulation F) {
+        if (F != Formulation::world) return x[BodyColumns::omega + static_cast<size_t>(k)][i] - value;
+        const Coordinates<double> c = x.load(i);
+        return rotate_inverse<double>(c.q, c.omega)(k) - value;
+      };
+    } else {
+      e.g_variables = [&b = model.bodies[r], field = spec.field, k = spec.component,
+                       value = spec.value](const BodyColumns& x, size_t i, Formulation F) {
+        double out[4];
+        field->of_body(b, to_state(F, x.load(i)), out);
+        return out[k] - value;
+      };
+    }
     return e;
   }
   const Vec3 d = spec.toward.normalized();
@@ -23,6 +43,15 @@ Event make_event(const Model& model, const EventSpec& spec) {
     const Vec3 a_w = r < model.bodies.size() ? Vec3(s.bodies[r].q * Vec3(model.bodies[r].U().transpose() * a))
                                              : a;
     return std::atan2(a_w.cross(d).norm(), a_w.dot(d)) - angle;  // g = ∠(R_ref a, d) − θ
+  };
+  if (!body) return e;
+  e.body = r;
+  e.g_variables = [a_b = Vec3(model.bodies[r].U().transpose() * spec.axis.normalized()), d,
+                   angle = spec.angle](const BodyColumns& x, size_t i, Formulation) {
+    const Quat q(x[BodyColumns::q][i], x[BodyColumns::q + 1][i], x[BodyColumns::q + 2][i],
+                 x[BodyColumns::q + 3][i]);
+    const Vec3 a_w = rotate<double>(q, a_b);  // the same bits as q * (Uᵀ a) on the state
+    return std::atan2(a_w.cross(d).norm(), a_w.dot(d)) - angle;
   };
   return e;
 }

@@ -17,14 +17,37 @@ void require(bool ok, const std::string& message) {
   if (!ok) throw InvalidArgument(message);
 }
 
-/// g of an event at a state; a NaN or infinity would hide every crossing, so it is an error.
-double evaluate(const Event& e, const SystemState& s) {
-  const double g = e.g(s);
+/// A run's variables at one moment (its bodies first … first + n − 1 of y, or all of y), and its state,
+/// converted from them only when an event needs more than one body's variables (Event::g_variables).
+struct Moment {
+  Formulation F;
+  const SystemCoordinates& y;
+  size_t first, n;
+  SystemState& state;
+  bool converted = false;
+};
+
+/// g of an event at a moment; a NaN or infinity would hide every crossing, so it is an error.
+double evaluate(const Event& e, Moment& m) {
+  double g;
+  if (e.g_variables) {
+    g = e.g_variables(m.y.bodies, m.first + e.body, m.F);
+  } else {
+    if (!m.converted) {
+      if (m.first == 0 && m.n == m.y.bodies.size()) {
+        to_state(m.F, m.y, m.state);  // the whole system, particles too (reusing the storage)
+      } else {
+        to_state(m.F, m.y, m.first, m.n, m.state);
+      }
+      m.converted = true;
+    }
+    g = e.g(m.state);
+  }
   if (!std::isfinite(g)) {
     throw InvalidArgument(
         fmt::format("event '{}' returned {} at t = {} s; an event function must return a "
                     "finite number whose sign changes at the event",
-                    e.name, g, s.t));
+                    e.name, g, m.y.t));
   }
   return g;
 }
@@ -33,10 +56,6 @@ bool crosses(const Event& e, double g0, double g1) {
   const bool rising = g0 < 0 && g1 >= 0, falling = g0 > 0 && g1 <= 0;
   return (rising && e.direction >= 0) || (falling && e.direction <= 0);
 }
-
-/// The variables of one run at an offset τ ∈ (0, h] into the current step: one step of length τ from
-/// the step's start (fixed-step methods) or the dense output (adaptive ones), into `y`.
-using StateInStep = std::function<void(double tau, SystemCoordinates& y)>;
 
 struct Hit {
   double tau;
@@ -49,6 +68,9 @@ struct Hit {
 /// change (g has g0's sign at lo, the other sign or zero at hi), with a bisection whenever two
 /// iterations have not halved the bracket. A handful of evaluations where bisection to 4 ulp took ~50,
 /// which matters when every run of a study locates its crossings. Returns hi and the variables there.
+/// `state_at(τ, y)` puts the run's variables at an offset τ ∈ (0, h] into the step in y: one step of
+/// length τ from the step's start (fixed-step methods) or the dense output (adaptive ones).
+template <class StateInStep>
 double locate(const Event& e, Formulation F, double g0, double g1, double h, double resolution,
               const StateInStep& state_at, SystemCoordinates& at_hi, SystemState& scratch) {
   double lo = 0.0, hi = h, g_lo = g0, g_hi = g1;
@@ -65,8 +87,8 @@ double locate(const Event& e, Formulation F, double g0, double g1, double h, dou
     tau = std::clamp(tau, lo + 0.25 * resolution, hi - 0.25 * resolution);
     if (!(tau > lo && tau < hi)) tau = 0.5 * (lo + hi);
     state_at(tau, y);
-    to_state(F, y, scratch);
-    const double g = evaluate(e, scratch);
+    Moment m{F, y, 0, y.bodies.size(), scratch};
+    const double g = evaluate(e, m);
     if ((g0 < 0) == (g < 0) && g != 0) {
       lo = tau;
       g_lo = g;
@@ -253,6 +275,26 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
     }
     return go_on;
   };
+  // The same at the variables x on the output grid (or where a stop was asked for): a batch converts
+  // each lane's own bodies, the whole system only for RunHooks::on_sample.
+  auto emit_at = [&](const SystemCoordinates& y) {
+    if (!batch) {
+      to_state(F, y, state);  // reuses the storage: no allocation per sample
+      return emit(state);
+    }
+    ++samples;
+    bool go_on = true;
+    if (on_sample) {
+      to_state(F, y, state);
+      go_on = on_sample(state);
+    }
+    for (RunInBatch& run : runs) {
+      if (run.done || !*run.on_sample) continue;
+      to_state(F, y, run.first, run.n, run.state);
+      if (!(*run.on_sample)(run.state)) run.done = true;
+    }
+    return go_on && !all_done();
+  };
   if (!from && !emit(state)) return state;
   // `steps` > 1: the last of several steps taken together from t_start, checked only after them.
   auto check = [&](const SystemCoordinates& y, long step, double step_h, long steps = 1,
@@ -269,21 +311,26 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
   };
 
   bool any_events = false;
+  SystemState scratch;  // a run's state at a moment, when its events need it
   for (RunInBatch& run : runs) {
+    Moment m{F, x, run.first, run.n, scratch};
     for (const Event& e : *run.events) {
-      if (!e.g) throw InvalidArgument(fmt::format("event '{}' has no function g", e.name));
-      if (!from) run.g_prev.push_back(evaluate(e, view(run, state)));
+      if (!e.g && !e.g_variables) throw InvalidArgument(fmt::format("event '{}' has no function g", e.name));
+      if (e.g_variables && e.body >= run.n) {
+        throw InvalidArgument(
+            fmt::format("event '{}' watches body #{}, but the run has {} bodies", e.name, e.body, run.n));
+      }
+      if (!from) run.g_prev.push_back(evaluate(e, m));
     }
     any_events = any_events || !run.events->empty();
   }
   if (from) runs[0].g_prev = from->event_values;
-  SystemState end_of_step, scratch;  // the system at the end of a step; a run's state inside it
-  // The crossings of `run`'s events in the step [t_start, t_start + step_h] that ended in x, located
+  // The crossings of `run`'s events in the step [t_start, t_start + step_h] that ended in x_end, located
   // and put in time order in run.hits; g_prev becomes the values at the step's end.
   const auto find_hits = [&](RunInBatch& run, const SystemCoordinates& x_end, double t_start, double step_h,
-                             const StateInStep& state_at) {
+                             const auto& state_at) {
     run.hits.clear();
-    const SystemState& end = view(run, end_of_step);
+    Moment end{F, x_end, run.first, run.n, scratch};
     const double resolution = 4 * 2.220446049250313e-16 * std::max(std::abs(t_start), step_h);
     for (size_t i = 0; i < run.events->size(); ++i) {
       const Event& e = (*run.events)[i];
@@ -295,7 +342,8 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
       } else {
         run.at_hi = x_end;
       }
-      const double tau = locate(e, F, g0, g1, step_h, resolution, state_at, run.at_hi, scratch);
+      SystemState inside;
+      const double tau = locate(e, F, g0, g1, step_h, resolution, state_at, run.at_hi, inside);
       run.hits.push_back({tau, i, run.at_hi});
     }
     std::sort(run.hits.begin(), run.hits.end(), [](const Hit& a, const Hit& b) { return a.tau < b.tau; });
@@ -353,7 +401,6 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
       if (stats) *stats = integrator->stats();
       run.hits.clear();
       if (any_events) {
-        to_state(F, x_b, end_of_step);
         find_hits(run, x_b, t_a, t_b - t_a,
                   [&](double tau, SystemCoordinates& y) { y = integrator->interpolate(t_a + tau); });
       }
@@ -452,9 +499,8 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
         }
         check(x, step, h, count, t_start);
         if (stop_requested && stop_requested()) {
-          to_state(F, x, state);
-          emit(state);
-          return state;
+          emit_at(x);
+          return to_state(F, x);
         }
         continue;
       }
@@ -478,7 +524,6 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
     x.t = x.t >= t_sample - tiny ? t_sample : t_last_sample + static_cast<double>(steps_since_sample) * h;
     check(x, step, step_h);
     if (any_events) {
-      to_state(F, x, end_of_step);
       for (RunInBatch& run : runs) {
         if (run.done || run.events->empty()) continue;
         find_hits(run, x, x_prev.t, step_h, [&](double tau, SystemCoordinates& y) {
@@ -503,10 +548,9 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
         t_last_sample = t_sample;
         steps_since_sample = 0;
       }
-      to_state(F, x, state);  // reuses the storage: no allocation per sample
-      const bool go_on = emit(state);
+      const bool go_on = emit_at(x);
       if (on_grid) keep();
-      if (!go_on || stop) return state;
+      if (!go_on || stop) return batch ? to_state(F, x) : state;
     }
   }
   return to_state(F, x);

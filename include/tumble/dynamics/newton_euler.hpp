@@ -163,9 +163,9 @@ inline BodyState to_state(Formulation formulation, const Coordinates<double>& x)
     case Formulation::world:
       return {x.o, x.q, x.v, x.omega};
     case Formulation::mixed:
-      return {x.o, x.q, x.v, x.q * x.omega};
+      return {x.o, x.q, x.v, rotate<double>(x.q, x.omega)};
     case Formulation::body:
-      return {x.o, x.q, x.q * x.v, x.q * x.omega};
+      return {x.o, x.q, rotate<double>(x.q, x.v), rotate<double>(x.q, x.omega)};
   }
   return {};
 }

@@ -28,7 +28,7 @@ inline Vec3 linear_momentum(const RigidBody& body, const BodyState& s) { return 
 
 /// Angular momentum about the centre of mass, world: l = Iω = R Λ ^bω.
 inline Vec3 angular_momentum(const RigidBody& body, const BodyState& s) {
-  return s.q * Vec3(body.Lambda().cwiseProduct(s.omega_b()));
+  return rotate<double>(s.q, Vec3(body.Lambda().cwiseProduct(s.omega_b())));  // Eigen's q * v, inlined
 }
 
 /// Angular momentum about a fixed world point x₀: l = (o − x₀) × p + Iω.

@@ -26,7 +26,7 @@ struct BodyState {
 
   Mat3 R() const { return q.toRotationMatrix(); }
   /// ^bω = Rᵀ ω (tutorial, section VI).
-  Vec3 omega_b() const { return q.conjugate() * omega_w; }
+  Vec3 omega_b() const { return rotate_inverse<double>(q, omega_w); }  // Eigen's q̄ ω, bit for bit
 };
 
 /// Pose and velocity of the body reference frame, as a user describes a body.

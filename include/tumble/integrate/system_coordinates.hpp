@@ -19,6 +19,9 @@ SystemCoordinates to_coordinates(Formulation formulation, const SystemState& sta
 SystemState to_state(Formulation formulation, const SystemCoordinates& x);
 /// The same into `state`, reusing its storage.
 void to_state(Formulation formulation, const SystemCoordinates& x, SystemState& state);
+/// Bodies first … first + n − 1 of x (no particles) into `part`, reusing its storage: one run's state out
+/// of a batch of runs stepped together (sim/simulate.hpp, Lane).
+void to_state(Formulation formulation, const SystemCoordinates& x, size_t first, size_t n, SystemState& part);
 
 /// Whether x holds exactly these variables, bit for bit (the time is not compared): how integrators that
 /// keep something between steps (splitting's loads and flows, exact's anchor) notice that the state they

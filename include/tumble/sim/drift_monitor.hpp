@@ -51,6 +51,8 @@ class DriftMonitor {
   const Model& model_;
   Invariants initial_;
   double energy_scale_ = 0.0;
+  std::optional<double> E0_;  ///< the initial energy, |p₀| and |L₀|
+  double p0_ = 0.0, L0_ = 0.0;
   Conservation conserved_;
   double threshold_;
   RunSettings settings_;

@@ -40,6 +40,13 @@ struct Event {
   std::function<double(const SystemState&)> g;
   int direction = 0;  ///< +1: only rising crossings (g < 0 → g ≥ 0), −1: only falling, 0: both
   bool stop = false;  ///< end the run at the crossing (the state there is the last sample)
+  /// Optional, in place of g: g from the variables of one body, `body`, in the run's formulation (row i
+  /// of the columns x: i = `body` in a run alone, its row in the batch for a lane). It spares converting
+  /// the whole state at every step, which cost several times the step itself when g reads one number
+  /// (ω₂ about the intermediate axis is the mixed formulation's own ^bω₂). When set, simulate evaluates
+  /// this one only.
+  std::function<double(const BodyColumns& x, size_t i, Formulation formulation)> g_variables = {};
+  size_t body = 0;
 };
 
 /// An event that happened: its name and the state just after the crossing.
