@@ -64,8 +64,11 @@ size_t first_non_finite_body(const SystemCoordinates& x) {
 void copy_bodies(const SystemCoordinates& x, size_t first, size_t n, SystemCoordinates& part) {
   part.t = x.t;
   part.bodies.ensure(n);
-  for (size_t k = 0; k < BodyColumns::kCount; ++k)
-    std::memcpy(part.bodies[k], x.bodies[k] + first, n * sizeof(double));
+  for (size_t k = 0; k < BodyColumns::kCount; ++k) {
+    const double* from = x.bodies[k] + first;
+    double* to = part.bodies[k];
+    for (size_t i = 0; i < n; ++i) to[i] = from[i];  // a lane holds a body or a few: no call to memcpy
+  }
   part.particles.clear();
 }
 

@@ -188,19 +188,30 @@ Scene EnsembleStudy::scene_of_run(long i) const {
 
 namespace {
 
-/// A run's row, gathered as the run goes from its samples and crossings: the same code for a run
-/// simulated alone and for a lane of a batch, so their rows are the same numbers.
+/// A run's row, gathered as the run goes from its samples (its variables, unconverted: VariableColumn,
+/// DriftMonitor::observe of variables) and crossings: the same code for a run simulated alone and for a
+/// lane of a batch, so their rows are the same numbers.
 class RowReducer {
  public:
-  RowReducer(const EnsembleOutputs& outputs, const Scene& s, size_t rows, long run, std::vector<double> draws)
-      : o_(outputs), s_(s), rows_(rows), monitor_(s.model, s.initial, s.conserved, 0.0, s.settings) {
+  RowReducer(const EnsembleOutputs& outputs, const Scene& s, long run, std::vector<double> draws)
+      : o_(outputs), s_(s), F_(s.settings.formulation), n_(s.model.bodies.size()) {
     row_.run = run;
     row_.values = std::move(draws);
-    for (const std::string& c : o_.extrema) extrema_.push_back(*find_column(c));
-    lo_.assign(rows_ * extrema_.size(), kNaN);
-    hi_.assign(rows_ * extrema_.size(), kNaN);
+    if (o_.drift) {
+      SystemState scratch;
+      const Invariants at_start = invariants(s.model, F_, to_coordinates(F_, s.initial), 0, scratch);
+      monitor_.emplace(s.model, at_start, s.conserved, 0.0, s.settings);
+    }
+    for (const std::string& c : o_.extrema) {
+      const auto [field, k] = *find_column(c);
+      extrema_.emplace_back(*field, k);
+    }
+    const size_t rows = n_ + s.model.particles.size();
+    lo_.assign(rows * extrema_.size(), kNaN);
+    hi_.assign(rows * extrema_.size(), kNaN);
     tallies_.resize(s.events.size());
   }
+  RowReducer(RowReducer&&) = default;
 
   void on_event(const EventHit& hit) {
     Tally& t = tallies_[hit.index];
@@ -208,25 +219,28 @@ class RowReducer {
     t.last = hit.state.t;
   }
 
-  bool on_sample(const SystemState& state) {
-    if (o_.drift) {
-      const DriftSample d = monitor_.observe(state);
+  /// A sample: the run's bodies are rows first … first + n − 1 of x.
+  bool on_variables(const SystemCoordinates& x, size_t first) {
+    if (monitor_) {
+      const DriftSample d = monitor_->observe(x, first);
       if (d.energy_drift) energy_drift_ = larger(energy_drift_, std::abs(*d.energy_drift));
       if (d.angular_momentum_drift)
         momentum_drift_ = larger(momentum_drift_, std::abs(*d.angular_momentum_drift));
     }
-    double x[4];
-    for (size_t r = 0; r < rows_; ++r) {
-      for (size_t k = 0; k < extrema_.size(); ++k) {
-        field_of_row(*extrema_[k].first, s_.model, state, r, x);
-        const double v = x[extrema_[k].second];
-        double& l = lo_[r * extrema_.size() + k];
-        double& h = hi_[r * extrema_.size() + k];
-        l = std::isnan(l) || v < l ? v : l;
-        h = larger(h, v);
+    const size_t E = extrema_.size();
+    for (size_t r = 0; r < n_; ++r) {
+      for (size_t k = 0; k < E; ++k)
+        take(r * E + k, extrema_[k].column(s_.model.bodies[r], x.bodies, first + r, F_));
+    }
+    for (size_t p = 0; p < x.particles.size(); ++p) {  // a run alone may have particles
+      for (size_t k = 0; k < E; ++k) {
+        double v[4];
+        extrema_[k].field->of_particle(x.particles[p], v);
+        take((n_ + p) * E + k, v[extrema_[k].component]);
       }
     }
-    last_ = state;
+    copy_bodies(x, first, n_, last_);
+    last_.particles = x.particles;
     return true;
   }
 
@@ -239,18 +253,17 @@ class RowReducer {
         v.push_back(t.count > 1 ? (t.last - t.first) / static_cast<double>(t.count - 1) : kNaN);
       }
     }
-    for (size_t r = 0; r < rows_; ++r) {
-      for (size_t k = 0; k < extrema_.size(); ++k) {
-        v.push_back(lo_[r * extrema_.size() + k]);
-        v.push_back(hi_[r * extrema_.size() + k]);
-      }
+    for (size_t i = 0; i < lo_.size(); ++i) {
+      v.push_back(lo_[i]);
+      v.push_back(hi_[i]);
     }
     const std::vector<const BodyField*> finals = o_.final_fields.empty() ? std::vector<const BodyField*>{}
                                                                          : body_fields(o_.final_fields);
-    for (size_t r = 0; r < rows_; ++r) {
+    const SystemState last = to_state(F_, last_);
+    for (size_t r = 0; r < n_ + s_.model.particles.size(); ++r) {
       for (const BodyField* f : finals) {
         double x[4];
-        field_of_row(*f, s_.model, last_, r, x);
+        field_of_row(*f, s_.model, last, r, x);
         v.insert(v.end(), x, x + f->width);
       }
     }
@@ -263,20 +276,33 @@ class RowReducer {
 
  private:
   static double larger(double current, double x) { return std::isnan(current) || x > current ? x : current; }
+  void take(size_t at, double v) {
+    double& l = lo_[at];
+    double& h = hi_[at];
+    l = std::isnan(l) || v < l ? v : l;
+    h = larger(h, v);
+  }
   struct Tally {
     long count = 0;
     double first = kNaN, last = kNaN;
   };
+  struct Extremum {
+    Extremum(const BodyField& f, int k) : field(&f), component(k), column(f, k) {}
+    const BodyField* field;
+    int component;
+    VariableColumn column;
+  };
   const EnsembleOutputs& o_;
   const Scene& s_;
-  size_t rows_;
-  DriftMonitor monitor_;
+  Formulation F_;
+  size_t n_;
+  std::optional<DriftMonitor> monitor_;
   EnsembleRow row_;
-  std::vector<std::pair<const BodyField*, int>> extrema_;  // per (row, column): min and max
+  std::vector<Extremum> extrema_;  // per (row, column): min and max
   std::vector<double> lo_, hi_;
   std::vector<Tally> tallies_;
   double energy_drift_ = kNaN, momentum_drift_ = kNaN;
-  SystemState last_;
+  SystemCoordinates last_;  // the variables at the last sample
 };
 
 /// The settings a run of a study is simulated with: the runs are spread over the threads, not the
@@ -288,16 +314,20 @@ RunSettings study_settings(const Scene& s) {
 }
 
 /// Run i of a study simulated alone, from its scene: its row.
-EnsembleRow run_alone(const EnsembleOutputs& outputs, size_t rows, const Scene& s, long i,
-                      std::vector<double> draws,
+EnsembleRow run_alone(const EnsembleOutputs& outputs, const Scene& s, long i, std::vector<double> draws,
                       const std::function<void(const Scene&, const SystemState&)>& trajectory = {}) {
-  RowReducer reducer(outputs, s, rows, i, std::move(draws));
+  RowReducer reducer(outputs, s, i, std::move(draws));
   RunHooks hooks;
   hooks.events = make_events(s.model, s.events);
   hooks.on_event = [&](const EventHit& hit) { reducer.on_event(hit); };
-  hooks.on_sample = [&](const SystemState& state) {
-    if (trajectory) trajectory(s, state);
-    return reducer.on_sample(state);
+  if (trajectory) {
+    hooks.on_sample = [&](const SystemState& state) {
+      trajectory(s, state);
+      return true;
+    };
+  }
+  hooks.on_variables = [&](const SystemCoordinates& x, size_t first) {
+    return reducer.on_variables(x, first);
   };
   simulate(s.model, s.initial, study_settings(s), hooks);
   return std::move(reducer).row();
@@ -307,7 +337,7 @@ EnsembleRow run_alone(const EnsembleOutputs& outputs, size_t rows, const Scene& 
 
 EnsembleRow EnsembleStudy::run(
     long i, const std::function<void(const Scene&, const SystemState&)>& trajectory) const {
-  return run_alone(impl_->study.outputs, impl_->rows.size(), scene_of_run(i), i, draws(i), trajectory);
+  return run_alone(impl_->study.outputs, scene_of_run(i), i, draws(i), trajectory);
 }
 
 std::vector<EnsembleRow> EnsembleStudy::run_batch(std::span<const long> runs) const {
@@ -341,8 +371,7 @@ std::vector<EnsembleRow> EnsembleStudy::run_batch(std::span<const long> runs) co
     if (group.size() > 1 && !is_adaptive(first.settings.integrator)) stacked = stack_runs(models);
     if (!stacked) {  // each run alone
       for (const size_t k : group)
-        rows[k] =
-            run_alone(impl_->study.outputs, impl_->rows.size(), scenes[k], runs[k], std::move(drawn[k]));
+        rows[k] = run_alone(impl_->study.outputs, scenes[k], runs[k], std::move(drawn[k]));
       continue;
     }
     SystemState initial;
@@ -353,13 +382,14 @@ std::vector<EnsembleRow> EnsembleStudy::run_batch(std::span<const long> runs) co
     for (const size_t k : group) {
       const Scene& s = scenes[k];
       initial.bodies.insert(initial.bodies.end(), s.initial.bodies.begin(), s.initial.bodies.end());
-      RowReducer& reducer =
-          reducers.emplace_back(impl_->study.outputs, s, impl_->rows.size(), runs[k], std::move(drawn[k]));
+      RowReducer& reducer = reducers.emplace_back(impl_->study.outputs, s, runs[k], std::move(drawn[k]));
       Lane& lane = hooks.lanes.emplace_back();
       lane.model = &s.model;
       lane.label = fmt::format("run {}", runs[k]);
       lane.events = make_events(s.model, s.events);
-      lane.on_sample = [&reducer](const SystemState& state) { return reducer.on_sample(state); };
+      lane.on_variables = [&reducer](const SystemCoordinates& x, size_t row) {
+        return reducer.on_variables(x, row);
+      };
       lane.on_event = [&reducer](const EventHit& hit) { reducer.on_event(hit); };
     }
     simulate(*stacked, std::move(initial), study_settings(first), hooks);

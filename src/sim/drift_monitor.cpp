@@ -43,11 +43,11 @@ std::string advice(const Model& model, const RunSettings& s) {
 
 DriftMonitor::DriftMonitor(const Model& model, const SystemState& initial, Conservation conserved,
                            double threshold, const RunSettings& settings)
-    : model_(model),
-      initial_(invariants(model, initial)),
-      conserved_(conserved),
-      threshold_(threshold),
-      settings_(settings) {
+    : DriftMonitor(model, invariants(model, initial), conserved, threshold, settings) {}
+
+DriftMonitor::DriftMonitor(const Model& model, const Invariants& initial, Conservation conserved,
+                           double threshold, const RunSettings& settings)
+    : model_(model), initial_(initial), conserved_(conserved), threshold_(threshold), settings_(settings) {
   // The energy is relative to max(|E₀|, T₀): |E₀| alone can be ~0 by the choice of the potential's
   // zero (a thrown body, a bound orbit near escape), which would make any drift look infinite.
   if (const auto E0 = energy(initial_)) energy_scale_ = std::max(std::abs(*E0), initial_.kinetic_energy);
@@ -57,9 +57,17 @@ DriftMonitor::DriftMonitor(const Model& model, const SystemState& initial, Conse
   L0_ = initial_.angular_momentum.norm();
 }
 
+DriftSample DriftMonitor::observe(const SystemCoordinates& x, size_t first) {
+  return judge(invariants(model_, settings_.formulation, x, first, scratch_), x.t);
+}
+
 DriftSample DriftMonitor::observe(const SystemState& state) {
+  return judge(invariants(model_, state), state.t);
+}
+
+DriftSample DriftMonitor::judge(const Invariants& at, double t) {
   DriftSample d;
-  d.invariants = invariants(model_, state);
+  d.invariants = at;
   const auto E = energy(d.invariants);
   if (E0_ && E && energy_scale_ > 0) d.energy_drift = (*E - *E0_) / energy_scale_;
   if (p0_ > 0)
@@ -87,7 +95,7 @@ DriftSample DriftMonitor::observe(const SystemState& state) {
         "{} drifted by {:.3g} (relative to t = 0) at t = {} s, past the drift threshold {:g}; the "
         "forces conserve it, so this is integration error of '{}': {}; or raise drift_threshold in "
         "[simulation] (--drift-threshold)",
-        quantity, value, state.t, threshold_, settings_.integrator, advice(model_, settings_));
+        quantity, value, t, threshold_, settings_.integrator, advice(model_, settings_));
     first_warning_ = pending_;
   }
   return d;

@@ -17,24 +17,12 @@ Event make_event(const Model& model, const EventSpec& spec) {
       return x[k] - value;  // g = x_k − value
     };
     if (!body) return e;
-    // Every step, from the body's own variables: ^bω is the mixed and body formulations' own ω (no
-    // rotation to the world and back); any other column from the body's state alone.
+    // Every step, from the body's own variables (VariableColumn: ^bω is the mixed formulation's ω).
     e.body = r;
-    if (spec.field->name == "angular_velocity_principal") {
-      e.g_variables = [k = spec.component, value = spec.value](const BodyColumns& x, size_t i,
-                                                               Formulation F) {
-        if (F != Formulation::world) return x[BodyColumns::omega + static_cast<size_t>(k)][i] - value;
-        const Coordinates<double> c = x.load(i);
-        return rotate_inverse<double>(c.q, c.omega)(k) - value;
-      };
-    } else {
-      e.g_variables = [&b = model.bodies[r], field = spec.field, k = spec.component,
-                       value = spec.value](const BodyColumns& x, size_t i, Formulation F) {
-        double out[4];
-        field->of_body(b, to_state(F, x.load(i)), out);
-        return out[k] - value;
-      };
-    }
+    e.g_variables = [&b = model.bodies[r], column = VariableColumn(*spec.field, spec.component),
+                     value = spec.value](const BodyColumns& x, size_t i, Formulation F) {
+      return column(b, x, i, F) - value;
+    };
     return e;
   }
   const Vec3 d = spec.toward.normalized();

@@ -267,4 +267,23 @@ std::optional<std::pair<const BodyField*, int>> find_column(std::string_view col
   return std::nullopt;
 }
 
+VariableColumn::VariableColumn(const BodyField& field, int component)
+    : read_(field.name == "angular_velocity_principal" ? Read::omega_b
+            : field.name == "com_position"             ? Read::com
+                                                       : Read::state),
+      field_(&field),
+      k_(component) {}
+
+double VariableColumn::operator()(const RigidBody& body, const BodyColumns& x, size_t i,
+                                  Formulation F) const {
+  const auto k = static_cast<size_t>(k_);
+  if (read_ == Read::com) return x[BodyColumns::o + k][i];
+  if (read_ == Read::omega_b && F != Formulation::world) return x[BodyColumns::omega + k][i];
+  const Coordinates<double> c = x.load(i);
+  if (read_ == Read::omega_b) return rotate_inverse<double>(c.q, c.omega)(k_);  // ^bω = Rᵀ ω
+  double out[4];
+  field_->of_body(body, to_state(F, c), out);
+  return out[k];
+}
+
 }  // namespace tumble

@@ -153,6 +153,7 @@ struct RunInBatch {
   const Model* model = nullptr;
   const std::vector<Event>* events = nullptr;
   const SampleSink* on_sample = nullptr;  ///< the lane's own (a single run's is the system's)
+  const VariablesSink* on_variables = nullptr;
   const std::function<void(const EventHit&)>* on_event = nullptr;
   std::string_view label;
   size_t first = 0, n = 0;            ///< its bodies in the system
@@ -196,6 +197,7 @@ std::vector<RunInBatch> runs_of(const Model& model, const RunHooks& hooks, const
     run.model = lane.model;
     run.events = &lane.events;
     run.on_sample = &lane.on_sample;
+    run.on_variables = &lane.on_variables;
     run.on_event = &lane.on_event;
     run.label = lane.label;
     run.first = r * n;
@@ -263,39 +265,38 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
   const auto all_done = [&] {
     return std::all_of(runs.begin(), runs.end(), [](const RunInBatch& r) { return r.done; });
   };
-  // A sample of the system, to every run that still wants them; false ends the run.
-  auto emit = [&](const SystemState& s) {
+  // A sample at the variables y, to every run that still wants them; false ends the run. `ready`: the
+  // state there, when the caller has it (the initial state as given; a crossing's); else it is
+  // converted from y: the whole system for a run alone (into `state`), each lane's own bodies.
+  auto emit = [&](const SystemCoordinates& y, const SystemState* ready) {
     ++samples;
-    bool go_on = !on_sample || on_sample(s);
-    if (batch) {
-      for (RunInBatch& run : runs) {
-        if (!run.done && *run.on_sample && !(*run.on_sample)(view(run, s))) run.done = true;
-      }
-      go_on = go_on && !all_done();
-    }
-    return go_on;
-  };
-  // The same at the variables x on the output grid (or where a stop was asked for): a batch converts
-  // each lane's own bodies, the whole system only for RunHooks::on_sample.
-  auto emit_at = [&](const SystemCoordinates& y) {
     if (!batch) {
-      to_state(F, y, state);  // reuses the storage: no allocation per sample
-      return emit(state);
+      if (ready != &state) to_state(F, y, state);  // reuses the storage: no allocation per sample
+      const bool go_on = !on_sample || on_sample(state);
+      return (!hooks.on_variables || hooks.on_variables(y, 0)) && go_on;
     }
-    ++samples;
     bool go_on = true;
     if (on_sample) {
-      to_state(F, y, state);
-      go_on = on_sample(state);
+      if (!ready) to_state(F, y, state);
+      go_on = on_sample(ready ? *ready : state);
     }
     for (RunInBatch& run : runs) {
-      if (run.done || !*run.on_sample) continue;
-      to_state(F, y, run.first, run.n, run.state);
-      if (!(*run.on_sample)(run.state)) run.done = true;
+      if (run.done) continue;
+      bool more = true;
+      if (*run.on_sample) {
+        if (ready) {
+          view(run, *ready);
+        } else {
+          to_state(F, y, run.first, run.n, run.state);
+        }
+        more = (*run.on_sample)(run.state);
+      }
+      if (*run.on_variables) more = (*run.on_variables)(y, run.first) && more;
+      if (!more) run.done = true;
     }
     return go_on && !all_done();
   };
-  if (!from && !emit(state)) return state;
+  if (!from && !emit(x, &state)) return state;
   // `steps` > 1: the last of several steps taken together from t_start, checked only after them.
   auto check = [&](const SystemCoordinates& y, long step, double step_h, long steps = 1,
                    double t_start = 0.0) {
@@ -354,13 +355,14 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
     const Event& e = (*run.events)[hit.event];
     if (*run.on_event) (*run.on_event)(EventHit{e.name, hit.event, at});
     if (!e.stop) return false;
-    if (batch) {
+    if (batch) {  // the lane's last sample; its variables are its own (first body 0)
       if (*run.on_sample) (*run.on_sample)(at);
+      if (*run.on_variables) (*run.on_variables)(hit.x, 0);
       run.done = true;
       return all_done();
     }
     state = std::move(at);
-    emit(state);
+    emit(hit.x, &state);
     return true;
   };
 
@@ -418,16 +420,14 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
         if (t_sample > t_b) break;
         x = integrator->interpolate(t_sample);
         ++k_out;
-        to_state(F, x, state);  // reuses the storage: no allocation per sample
         finished = t_sample >= t_end;
         sampled = true;
-        if (!emit(state)) return state;
+        if (!emit(x, nullptr)) return state;
         if (finished) break;
       }
       if (sampled) keep(x_b);
       if (!finished && stop_requested && stop_requested()) {
-        state = to_state(F, x_b);
-        emit(state);
+        emit(x_b, nullptr);
         return state;
       }
     }
@@ -499,7 +499,7 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
         }
         check(x, step, h, count, t_start);
         if (stop_requested && stop_requested()) {
-          emit_at(x);
+          emit(x, nullptr);
           return to_state(F, x);
         }
         continue;
@@ -548,7 +548,7 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
         t_last_sample = t_sample;
         steps_since_sample = 0;
       }
-      const bool go_on = emit_at(x);
+      const bool go_on = emit(x, nullptr);
       if (on_grid) keep();
       if (!go_on || stop) return batch ? to_state(F, x) : state;
     }

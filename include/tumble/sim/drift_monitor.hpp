@@ -33,8 +33,16 @@ class DriftMonitor {
   DriftMonitor(const Model& model, const SystemState& initial, Conservation conserved, double threshold,
                const RunSettings& settings);
 
+  /// The same, relative to invariants at t = 0 given (e.g. from the initial variables, as the variables
+  /// of later samples will give them).
+  DriftMonitor(const Model& model, const Invariants& initial, Conservation conserved, double threshold,
+               const RunSettings& settings);
+
   /// The invariants of `state` and their drifts.
   DriftSample observe(const SystemState& state);
+  /// The same from the run's variables (settings.formulation; the run's bodies are first … of x):
+  /// diagnostics::invariants on the variables, without converting the state (a study's samples).
+  DriftSample observe(const SystemCoordinates& x, size_t first);
 
   /// The warning, once: set by the first observe() at which a conserved energy or angular momentum
   /// drifts by more than the threshold, and returned by the first call after that; nullopt otherwise.
@@ -48,6 +56,7 @@ class DriftMonitor {
   }
 
  private:
+  DriftSample judge(const Invariants& at, double t);
   const Model& model_;
   Invariants initial_;
   double energy_scale_ = 0.0;
@@ -59,6 +68,7 @@ class DriftMonitor {
   bool warned_ = false;
   std::optional<std::string> pending_;
   std::optional<std::string> first_warning_;
+  SystemState scratch_;  // the bodies' states, for potentials, when observing variables
 };
 
 }  // namespace tumble

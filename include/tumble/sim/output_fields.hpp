@@ -18,6 +18,7 @@
 #include "tumble/dynamics/particle.hpp"
 #include "tumble/dynamics/state.hpp"
 #include "tumble/forces/model.hpp"
+#include "tumble/integrate/system_coordinates.hpp"
 #include "tumble/sim/drift_monitor.hpp"
 
 namespace tumble {
@@ -63,6 +64,25 @@ void field_of_row(const BodyField& field, const Model& model, const SystemState&
 /// The field and the component that a CSV column name stands for, e.g. "w2" → angular_velocity_principal,
 /// 1; nullopt for a name no field has.
 std::optional<std::pair<const BodyField*, int>> find_column(std::string_view column);
+
+/// One column of a field (component k) for a body, read from its variables in the run's formulation:
+/// what events watch at every step and studies take extrema of at every sample, so it must not cost a
+/// conversion of the whole state. ω in principal axes (w1, w2, w3) is the mixed and body formulations'
+/// own ω, the centre of mass (com_x, …) their o: read as they are (not rotated to the world and back:
+/// within rounding of the CSV's column, which is computed from the world state); any other column from
+/// the body's state alone, as the CSV computes it.
+class VariableColumn {
+ public:
+  VariableColumn(const BodyField& field, int component);
+  /// The value for `body`, row i of x.
+  double operator()(const RigidBody& body, const BodyColumns& x, size_t i, Formulation formulation) const;
+
+ private:
+  enum class Read { omega_b, com, state };
+  Read read_;
+  const BodyField* field_;
+  int k_;
+};
 
 /// Every diagnostics field (energies, momenta, drifts), in the order they are written.
 std::span<const SystemField> system_fields();

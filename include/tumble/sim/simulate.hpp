@@ -28,6 +28,10 @@ void validate(const RunSettings& settings);
 
 /// Called with every sample (the initial state first); return false to stop the run early (Ctrl-C).
 using SampleSink = std::function<bool(const SystemState&)>;
+/// The same with the formulation's variables themselves, unconverted: the run's bodies are rows first …
+/// of x (0 for a run alone, its row in the batch for a lane). For observers that read a few numbers
+/// per sample (a study's extrema and drifts), where converting the whole state would cost more.
+using VariablesSink = std::function<bool(const SystemCoordinates& x, size_t first)>;
 
 /// A condition watched during a run: the moment g(state) crosses zero (a flip, an impact, an
 /// attitude reached). Located within a step to 4 ulp of the time (the Illinois variant of regula falsi,
@@ -82,7 +86,8 @@ struct Lane {
   const Model* model = nullptr;  ///< the run's own model: its bodies (the stacked ones' values) and forces
   std::string label;             ///< names the run in errors, e.g. "run 17"
   std::vector<Event> events;
-  SampleSink on_sample;  ///< the run's own state at every sample; return false when it needs no more
+  SampleSink on_sample;        ///< the run's own state at every sample; return false when it needs no more
+  VariablesSink on_variables;  ///< its variables at every sample (after on_sample)
   std::function<void(const EventHit&)> on_event;
 };
 
@@ -90,6 +95,8 @@ struct Lane {
 struct RunHooks {
   /// Called with every sample (the initial state first); return false to stop the run early.
   SampleSink on_sample;
+  /// The same samples as the formulation's variables (after on_sample), first = 0.
+  VariablesSink on_variables;
   /// Conditions to watch.
   std::vector<Event> events;
   /// Called for every event crossing, in time order.
