@@ -274,11 +274,8 @@ VariableColumn::VariableColumn(const BodyField& field, int component)
       field_(&field),
       k_(component) {}
 
-double VariableColumn::operator()(const RigidBody& body, const BodyColumns& x, size_t i,
-                                  Formulation F) const {
+double VariableColumn::converted(const RigidBody& body, const BodyColumns& x, size_t i, Formulation F) const {
   const auto k = static_cast<size_t>(k_);
-  if (read_ == Read::com) return x[BodyColumns::o + k][i];
-  if (read_ == Read::omega_b && F != Formulation::world) return x[BodyColumns::omega + k][i];
   const Coordinates<double> c = x.load(i);
   if (read_ == Read::omega_b) return rotate_inverse<double>(c.q, c.omega)(k_);  // ^bω = Rᵀ ω
   double out[4];

@@ -75,10 +75,16 @@ class VariableColumn {
  public:
   VariableColumn(const BodyField& field, int component);
   /// The value for `body`, row i of x.
-  double operator()(const RigidBody& body, const BodyColumns& x, size_t i, Formulation formulation) const;
+  double operator()(const RigidBody& body, const BodyColumns& x, size_t i, Formulation formulation) const {
+    const auto k = static_cast<size_t>(k_);
+    if (read_ == Read::com) return x[BodyColumns::o + k][i];
+    if (read_ == Read::omega_b && formulation != Formulation::world) return x[BodyColumns::omega + k][i];
+    return converted(body, x, i, formulation);
+  }
 
  private:
   enum class Read { omega_b, com, state };
+  double converted(const RigidBody& body, const BodyColumns& x, size_t i, Formulation formulation) const;
   Read read_;
   const BodyField* field_;
   int k_;
