@@ -266,7 +266,7 @@ class CsvWriter final : public TrajectoryWriter {
 
   void commit(bool) override {
     if (info_.geometry && trajectory_.staged().kind() == io::OutputKind::staged) {
-      facts_.emplace(run_facts_path(trajectory_.path()), io::run_facts(info_, names_, warnings_).dump(1),
+      facts_.emplace(run_facts_path(trajectory_.path()), io::run_facts(info_, names_, warnings_),
                      "run facts");
     }
     // Every file is complete before any gets its final name, and they get them together.

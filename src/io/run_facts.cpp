@@ -2,6 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <charconv>
+#include <cmath>
+#include <unordered_map>
+
 #include "tumble/error.hpp"
 
 namespace tumble::io {
@@ -9,53 +13,161 @@ namespace {
 
 using nlohmann::json;
 
-json vec(const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); }
-
 Vec3 to_vec(const json& j) {
   return Vec3(j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>());
 }
 
+/// JSON text appended to a string: numbers shortest round trip, strings escaped by nlohmann (invalid
+/// UTF-8 replaced, never thrown on).
+class JsonText {
+ public:
+  std::string out;
+  JsonText& raw(std::string_view s) {
+    out += s;
+    return *this;
+  }
+  JsonText& number(double x) {
+    if (!std::isfinite(x)) return raw("null");  // JSON has no NaN (nlohmann wrote null too)
+    char buffer[32];
+    const auto end = std::to_chars(buffer, buffer + sizeof buffer, x).ptr;
+    out.append(buffer, end);
+    return *this;
+  }
+  JsonText& integer(long x) {
+    char buffer[24];
+    const auto end = std::to_chars(buffer, buffer + sizeof buffer, x).ptr;
+    out.append(buffer, end);
+    return *this;
+  }
+  JsonText& text(std::string_view s) {
+    return raw(json(s).dump(-1, ' ', false, json::error_handler_t::replace));
+  }
+  JsonText& vec(const Vec3& v) {
+    raw("[").number(v.x()).raw(",").number(v.y()).raw(",").number(v.z());
+    return raw("]");
+  }
+  JsonText& texts(const std::vector<std::string>& list) {
+    raw("[");
+    for (size_t i = 0; i < list.size(); ++i) (i ? raw(",") : *this).text(list[i]);
+    return raw("]");
+  }
+  JsonText& key(std::string_view k) { return raw("\"").raw(k).raw("\":"); }
+};
+
+/// The bodies' geometries with the equal ones (mass properties and mesh, bit for bit) once: `kinds`
+/// holds each distinct one, the result the kind of each body. Found by a hash of their bytes, then
+/// compared.
+std::vector<size_t> distinct_kinds(const std::vector<BodyGeometry>& bodies,
+                                   std::vector<const BodyGeometry*>& kinds) {
+  std::vector<size_t> kind(bodies.size());
+  std::unordered_multimap<std::uint64_t, size_t> seen;
+  const auto same = [](const BodyGeometry& a, const BodyGeometry& b) {
+    return a.mass == b.mass && a.com == b.com && a.U == b.U && a.Lambda == b.Lambda &&
+           a.mesh.vertices == b.mesh.vertices && a.mesh.triangles == b.mesh.triangles;
+  };
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    const BodyGeometry& g = bodies[i];
+    std::uint64_t h = 0xcbf29ce484222325ull;  // FNV-1a over the bytes
+    const auto add = [&h](const void* p, size_t n) {
+      for (size_t k = 0; k < n; ++k) h = (h ^ static_cast<const unsigned char*>(p)[k]) * 0x100000001b3ull;
+    };
+    add(&g.mass, sizeof g.mass);
+    add(g.com.data(), sizeof(double) * 3);
+    add(g.U.data(), sizeof(double) * 9);
+    add(g.Lambda.data(), sizeof(double) * 3);
+    add(g.mesh.vertices.data(), g.mesh.vertices.size() * sizeof(Vec3));
+    add(g.mesh.triangles.data(), g.mesh.triangles.size() * sizeof(g.mesh.triangles[0]));
+    const auto [first, last] = seen.equal_range(h);
+    auto it = first;
+    while (it != last && !same(*kinds[it->second], g)) ++it;
+    if (it != last) {
+      kind[i] = it->second;
+      continue;
+    }
+    kind[i] = kinds.size();
+    seen.emplace(h, kind[i]);
+    kinds.push_back(&g);
+  }
+  return kind;
+}
+
 }  // namespace
 
-json run_facts(const TrajectoryInfo& info, const std::vector<std::string>& names,
-               const std::vector<std::string>& warnings) {
-  json bodies = json::array();
-  if (info.geometry) {
-    for (const BodyGeometry& g : info.geometry->bodies) {
-      json vertices = json::array(), triangles = json::array();
-      for (const Vec3& v : g.mesh.vertices) vertices.insert(vertices.end(), {v.x(), v.y(), v.z()});
-      for (const auto& t : g.mesh.triangles) triangles.insert(triangles.end(), {t[0], t[1], t[2]});
-      json U = json::array();
-      for (int r = 0; r < 3; ++r) U.push_back(json::array({g.U(r, 0), g.U(r, 1), g.U(r, 2)}));
-      bodies.push_back({{"mass", g.mass},
-                        {"center_of_mass", vec(g.com)},
-                        {"principal_axes", U},
-                        {"principal_moments", vec(g.Lambda)},
-                        {"vertices", vertices},
-                        {"triangles", triangles}});
+std::string run_facts(const TrajectoryInfo& info, const std::vector<std::string>& names,
+                      const std::vector<std::string>& warnings) {
+  static const SceneGeometry none;
+  const SceneGeometry& g = info.geometry ? *info.geometry : none;
+  std::vector<const BodyGeometry*> kinds;
+  const std::vector<size_t> kind_of = distinct_kinds(g.bodies, kinds);
+  JsonText j;
+  j.raw("{\n").key("format").text("tumble-run").raw(",\n").key("version").integer(2).raw(",\n");
+  j.key("tumble_version").text(info.tumble_version).raw(",\n").key("scene_file").text(info.scene_path);
+  j.raw(",\n").key("scene").text(info.scene_text).raw(",\n");
+  j.key("integrator").text(info.settings.integrator).raw(",\n");
+  j.key("formulation").text(formulation_name(info.settings.formulation)).raw(",\n");
+  j.key("timestep").number(info.settings.timestep).raw(",\n").key("duration").number(info.settings.duration);
+  j.raw(",\n").key("output_interval").number(info.settings.output_interval).raw(",\n");
+  j.key("warnings").texts(warnings).raw(",\n").key("names").texts(names).raw(",\n");
+  j.key("kinds").raw("[");
+  for (size_t k = 0; k < kinds.size(); ++k) {
+    const BodyGeometry& b = *kinds[k];
+    j.raw(k ? ",\n" : "\n").raw("{").key("mass").number(b.mass).raw(",").key("center_of_mass").vec(b.com);
+    j.raw(",").key("principal_axes").raw("[");
+    for (int r = 0; r < 3; ++r) (r ? j.raw(",") : j).vec(b.U.row(r).transpose());
+    j.raw("],").key("principal_moments").vec(b.Lambda).raw(",").key("vertices").raw("[");
+    for (size_t v = 0; v < b.mesh.vertices.size(); ++v) {
+      const Vec3& x = b.mesh.vertices[v];
+      (v ? j.raw(",") : j).number(x.x()).raw(",").number(x.y()).raw(",").number(x.z());
     }
-  }
-  json springs = json::array();
-  if (info.geometry) {
-    for (const SpringGeometry& s : info.geometry->springs) {
-      springs.push_back({{"a", s.a}, {"b", s.b}, {"point_a", vec(s.point_a)}, {"point_b", vec(s.point_b)}});
+    j.raw("],").key("triangles").raw("[");
+    for (size_t t = 0; t < b.mesh.triangles.size(); ++t) {
+      const auto& tri = b.mesh.triangles[t];
+      (t ? j.raw(",") : j).integer(tri[0]).raw(",").integer(tri[1]).raw(",").integer(tri[2]);
     }
+    j.raw("]}");
   }
-  return {{"format", "tumble-run"},
-          {"version", 1},
-          {"tumble_version", info.tumble_version},
-          {"scene_file", info.scene_path},
-          {"scene", info.scene_text},
-          {"integrator", info.settings.integrator},
-          {"formulation", formulation_name(info.settings.formulation)},
-          {"timestep", info.settings.timestep},
-          {"duration", info.settings.duration},
-          {"output_interval", info.settings.output_interval},
-          {"warnings", warnings},
-          {"names", names},
-          {"bodies", bodies},
-          {"springs", springs}};
+  // The kind of each body, run-length coded: [kind, count] for consecutive bodies of one kind.
+  j.raw("],\n").key("body_kinds").raw("[");
+  for (size_t i = 0, runs = 0; i < kind_of.size(); ++runs) {
+    size_t n = 1;
+    while (i + n < kind_of.size() && kind_of[i + n] == kind_of[i]) ++n;
+    (runs ? j.raw(",") : j)
+        .raw("[")
+        .integer(static_cast<long>(kind_of[i]))
+        .raw(",")
+        .integer(static_cast<long>(n))
+        .raw("]");
+    i += n;
+  }
+  j.raw("],\n").key("springs").raw("[");
+  for (size_t k = 0; k < g.springs.size(); ++k) {
+    const SpringGeometry& s = g.springs[k];
+    (k ? j.raw(",\n") : j.raw("\n")).raw("{").key("a").integer(s.a).raw(",").key("b").integer(s.b);
+    j.raw(",").key("point_a").vec(s.point_a).raw(",").key("point_b").vec(s.point_b).raw("}");
+  }
+  j.raw("]\n}\n");
+  return std::move(j.out);
 }
+
+namespace {
+
+/// A mesh from its arrays in a run file: triples, every index a vertex.
+TriangleMesh read_mesh(const json& vertices, const json& triangles) {
+  const auto v = vertices.get<std::vector<double>>();
+  const auto t = triangles.get<std::vector<std::uint32_t>>();
+  if (v.size() % 3 != 0 || t.size() % 3 != 0) throw InvalidArgument("a mesh's arrays are not triples");
+  TriangleMesh m;
+  for (size_t i = 0; i < v.size(); i += 3) m.vertices.emplace_back(v[i], v[i + 1], v[i + 2]);
+  for (size_t i = 0; i < t.size(); i += 3) {
+    for (size_t k = 0; k < 3; ++k) {
+      if (t[i + k] >= m.vertices.size()) throw InvalidArgument("a triangle names a vertex that is not there");
+    }
+    m.triangles.push_back({t[i], t[i + 1], t[i + 2]});
+  }
+  return m;
+}
+
+}  // namespace
 
 void read_run_facts(const json& j, const std::string& file, Report& r) {
   try {
@@ -70,22 +182,26 @@ void read_run_facts(const json& j, const std::string& file, Report& r) {
     r.warnings = j.at("warnings").get<std::vector<std::string>>();
     r.names = j.at("names").get<std::vector<std::string>>();
     r.geometry = {};
-    for (const json& b : j.at("bodies")) {
-      BodyGeometry& g = r.geometry.bodies.emplace_back();
+    const long version = j.at("version").get<long>();
+    if (version != 1 && version != 2)
+      throw InvalidArgument(fmt::format("format version {} is unknown", version));
+    const auto read_body = [](const json& b, BodyGeometry& g) {
       g.mass = b.at("mass").get<double>();
       g.com = to_vec(b.at("center_of_mass"));
       for (int row = 0; row < 3; ++row) g.U.row(row) = to_vec(b.at("principal_axes").at(row)).transpose();
       g.Lambda = to_vec(b.at("principal_moments"));
-      const auto v = b.at("vertices").get<std::vector<double>>();
-      const auto t = b.at("triangles").get<std::vector<std::uint32_t>>();
-      if (v.size() % 3 != 0 || t.size() % 3 != 0) throw InvalidArgument("a mesh's arrays are not triples");
-      for (size_t i = 0; i < v.size(); i += 3) g.mesh.vertices.emplace_back(v[i], v[i + 1], v[i + 2]);
-      for (size_t i = 0; i < t.size(); i += 3) {
-        for (size_t k = 0; k < 3; ++k) {
-          if (t[i + k] >= g.mesh.vertices.size())
-            throw InvalidArgument("a triangle names a vertex that is not there");
-        }
-        g.mesh.triangles.push_back({t[i], t[i + 1], t[i + 2]});
+      g.mesh = read_mesh(b.at("vertices"), b.at("triangles"));
+    };
+    if (version == 1) {  // each body with its own geometry
+      for (const json& b : j.at("bodies")) read_body(b, r.geometry.bodies.emplace_back());
+    } else {  // the distinct kinds, and each body's kind run-length coded
+      std::vector<BodyGeometry> kinds;
+      for (const json& b : j.at("kinds")) read_body(b, kinds.emplace_back());
+      for (const json& run : j.at("body_kinds")) {
+        const auto k = run.at(0).get<size_t>(), n = run.at(1).get<size_t>();
+        if (k >= kinds.size()) throw InvalidArgument("a body names a kind that is not there");
+        if (n > r.names.size() - r.geometry.bodies.size()) throw InvalidArgument("more bodies than names");
+        r.geometry.bodies.insert(r.geometry.bodies.end(), n, kinds[k]);
       }
     }
     for (const json& s : j.at("springs")) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "../support/run.hpp"
@@ -111,6 +112,63 @@ TEST(Report, TheCsvAndHdf5FilesGiveTheReportTheRunRecorded) {
   std::vector<std::string> differ;  // paths only: the arrays are long
   for (const auto& op : nlohmann::json::diff(a, b)) differ.push_back(op.at("path").get<std::string>());
   EXPECT_TRUE(differ.empty()) << ::testing::PrintToString(differ);
+}
+
+// The run file holds each distinct body geometry once ("kinds") and each body's kind: 40 identical
+// boxes and 2 others are 3 kinds, read back per body as the scene made them; a run file of format 1
+// (every body with its own geometry) is still read.
+TEST(Report, TheRunFileHoldsEachDistinctGeometryOnce) {
+  const test::TempDir dir("report_kinds");
+  std::string scene = "[simulation]\nduration = 0.01\ntimestep = 1e-3\n";
+  for (int i = 0; i < 42; ++i) {
+    const double size = i == 7 ? 0.3 : i == 30 ? 0.5 : 0.2;
+    scene += fmt::format(
+        "[[bodies]]\nname = \"box{}\"\nshape = {{ type = \"box\", size = [{}, 0.1, 0.05] }}\n"
+        "density = 1000.0\nposition = [{}.0, 0.0, 0.0]\n",
+        i, size, i);
+  }
+  dir.write("boxes.toml", scene);
+  const auto run =
+      test::run_tumble("run " + (dir / "boxes.toml").string() + " -o " + (dir / "b.csv").string() + " -q");
+  ASSERT_EQ(run.status, 0) << run.output;
+  const nlohmann::json facts = nlohmann::json::parse(test::read_text(dir / "b.run.json"));
+  EXPECT_EQ(facts.at("version"), 2);
+  EXPECT_EQ(facts.at("kinds").size(), 3u);
+  EXPECT_EQ(facts.at("body_kinds"), nlohmann::json::parse("[[0,7],[1,1],[0,22],[2,1],[0,11]]"));
+  const Report r = read_report(dir / "b.csv");
+  const Scene s = load_scene(dir / "boxes.toml");
+  ASSERT_EQ(r.geometry.bodies.size(), 42u);
+  for (size_t i = 0; i < 42; ++i) {
+    EXPECT_EQ(r.geometry.bodies[i].mass, s.model.bodies[i].mass()) << i;
+    EXPECT_EQ(r.geometry.bodies[i].Lambda, s.model.bodies[i].Lambda()) << i;
+    EXPECT_EQ(r.geometry.bodies[i].mesh.vertices, s.body_info[i].display.vertices) << i;
+  }
+  // Format 1: the kinds written out per body.
+  nlohmann::json old = facts;
+  old["version"] = 1;
+  old["bodies"] = nlohmann::json::array();
+  for (const auto& run_of_kind : facts.at("body_kinds")) {
+    for (int n = 0; n < run_of_kind.at(1).get<int>(); ++n)
+      old["bodies"].push_back(facts.at("kinds").at(run_of_kind.at(0).get<size_t>()));
+  }
+  old.erase("kinds");
+  old.erase("body_kinds");
+  dir.write("b.run.json", old.dump(1));
+  const Report from_old = read_report(dir / "b.csv");
+  ASSERT_EQ(from_old.geometry.bodies.size(), 42u);
+  for (size_t i = 0; i < 42; ++i)
+    EXPECT_EQ(from_old.geometry.bodies[i].mesh.vertices, r.geometry.bodies[i].mesh.vertices);
+  // A body naming a kind that is not there is refused with the file's name.
+  nlohmann::json bad = facts;
+  bad["body_kinds"][0][0] = 9;
+  dir.write("b.run.json", bad.dump());
+  try {
+    (void)read_report(dir / "b.csv");
+    FAIL() << "a missing kind was accepted";
+  } catch (const InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("a body names a kind that is not there"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(Report, TheHtmlHoldsTheJsonTheViewerDecodes) {
