@@ -2,7 +2,8 @@
 //   trajectory:  t,body, then the columns of each chosen output field (output_fields.hpp; by default
 //                px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz: the pose of the body's reference frame in world,
 //                the velocity of its origin and ω, world) — one row per body and particle per sample.
-//                %.17g: every double reads back bit for bit.
+//                numbers in their shortest round-trip text (number_text.hpp): every double reads
+//                back bit for bit.
 //   diagnostics: t and the columns of every SystemField (kinetic_energy, …, angular_momentum_drift) —
 //                one row per sample. A field is empty where the quantity is undefined (no potential,
 //                or zero at t = 0), never "nan".
@@ -18,6 +19,7 @@
 #include <fstream>
 #include <optional>
 
+#include "number_text.hpp"
 #include "run_facts.hpp"
 #include "staged_file.hpp"
 #include "tumble/error.hpp"
@@ -130,7 +132,7 @@ class CsvFile {
           "checkpointed run wrote, or it was cut; the run cannot be resumed",
           what_, source.string(), lines, wanted, kept.samples));
     }
-    const std::string t = fmt::format("{:.17g},", kept.last_t);
+    const std::string t = std::string(io::NumberText(kept.last_t)) + ",";
     if (last.compare(0, t.size(), t) != 0) {
       throw InvalidArgument(fmt::format(
           "the {} {} has another time at its sample {} than the checkpoint ({} s): it is not the file the "
@@ -218,7 +220,7 @@ class CsvWriter final : public TrajectoryWriter {
   }
 
   void event(std::string_view name, size_t row, double t) override {
-    if (events_) events_->write(fmt::format("{:.17g},{},{}\n", t, name, names_[row]));
+    if (events_) events_->write(fmt::format("{},{},{}\n", io::NumberText(t).view(), name, names_[row]));
   }
 
   void sync() override {
@@ -229,15 +231,20 @@ class CsvWriter final : public TrajectoryWriter {
 
   void write(const Model& model, const SystemState& state, const DriftSample& d) override {
     buffer_.clear();
-    auto out = std::back_inserter(buffer_);
     double values[4];
+    const io::NumberText t(state.t);
     for (size_t r = 0; r < names_.size(); ++r) {
-      fmt::format_to(out, "{:.17g},{}", state.t, names_[r]);
+      buffer_.append(t.view());
+      buffer_.push_back(',');
+      buffer_.append(names_[r]);
       for (const BodyField* f : fields_) {
         field_of_row(*f, model, state, r, values);
-        for (int k = 0; k < f->width; ++k) fmt::format_to(out, ",{:.17g}", values[k]);
+        for (int k = 0; k < f->width; ++k) {
+          buffer_.push_back(',');
+          io::append_number(buffer_, values[k]);
+        }
       }
-      fmt::format_to(out, "\n");
+      buffer_.push_back('\n');
     }
     trajectory_.write(std::string_view(buffer_.data(), buffer_.size()));
 
@@ -246,18 +253,15 @@ class CsvWriter final : public TrajectoryWriter {
       return;
     }
     buffer_.clear();
-    fmt::format_to(out, "{:.17g}", state.t);
+    buffer_.append(t.view());
     for (const SystemField& f : system_fields()) {
       const bool defined = f.of_sample(d, values);
       for (int k = 0; k < f.width; ++k) {
-        if (defined) {
-          fmt::format_to(out, ",{:.17g}", values[k]);
-        } else {
-          fmt::format_to(out, ",");
-        }
+        buffer_.push_back(',');
+        if (defined) io::append_number(buffer_, values[k]);  // empty where undefined, never "nan"
       }
     }
-    fmt::format_to(out, "\n");
+    buffer_.push_back('\n');
     diagnostics_->write(std::string_view(buffer_.data(), buffer_.size()));
     ++samples_;
   }

@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "hdf5_util.hpp"
+#include "number_text.hpp"
 #include "staged_file.hpp"
 #include "tumble/error.hpp"
 #include "tumble/io/ensemble.hpp"
@@ -14,7 +15,7 @@
 namespace tumble {
 namespace {
 
-std::string number(double x) { return std::isfinite(x) ? fmt::format("{:.17g}", x) : std::string(); }
+std::string number(double x) { return std::isfinite(x) ? std::string(io::NumberText(x)) : std::string(); }
 
 void write_text(io::StagedFile& file, const std::string& text, const std::filesystem::path& path) {
   std::ofstream out(file.temporary(), std::ios::binary);

@@ -1,9 +1,12 @@
 #include "run_facts.hpp"
 
+#include "number_text.hpp"
+
 #include <fmt/format.h>
 
 #include <charconv>
 #include <cmath>
+#include <string_view>
 #include <unordered_map>
 
 #include "tumble/error.hpp"
@@ -28,10 +31,7 @@ class JsonText {
   }
   JsonText& number(double x) {
     if (!std::isfinite(x)) return raw("null");  // JSON has no NaN (nlohmann wrote null too)
-    char buffer[32];
-    const auto end = std::to_chars(buffer, buffer + sizeof buffer, x).ptr;
-    out.append(buffer, end);
-    return *this;
+    return raw(NumberText(x));
   }
   JsonText& integer(long x) {
     char buffer[24];
@@ -67,9 +67,11 @@ std::vector<size_t> distinct_kinds(const std::vector<BodyGeometry>& bodies,
   };
   for (size_t i = 0; i < bodies.size(); ++i) {
     const BodyGeometry& g = bodies[i];
-    std::uint64_t h = 0xcbf29ce484222325ull;  // FNV-1a over the bytes
+    // A hash of the bytes (std::hash of string_views: a few bytes per cycle), combined.
+    std::uint64_t h = 0;
     const auto add = [&h](const void* p, size_t n) {
-      for (size_t k = 0; k < n; ++k) h = (h ^ static_cast<const unsigned char*>(p)[k]) * 0x100000001b3ull;
+      const std::string_view bytes(static_cast<const char*>(p), n);
+      h = h * 0x9e3779b97f4a7c15ull + std::hash<std::string_view>{}(bytes);
     };
     add(&g.mass, sizeof g.mass);
     add(g.com.data(), sizeof(double) * 3);
