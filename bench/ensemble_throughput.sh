@@ -39,6 +39,7 @@ seconds() {  # wall time of a command, in s
   echo "$end - $start" | bc
 }
 min_median() { tr ' ' '\n' | grep . | sort -g | awk '{a[NR]=$1} END {print a[1], a[int((NR+1)/2)]}'; }
+calc() { awk "BEGIN {printf \"%.6g\", $1}"; }  # arithmetic on numbers like 6.04e+05 (bc reads no exponents)
 
 declare -A t
 engine_rates="" mujoco_rates=""
@@ -59,27 +60,27 @@ read -r th2_min th2_med < <(echo "${t[th2]}" | min_median)
 read -r eng_min eng_med < <(echo "$engine_rates" | min_median)
 read -r mj_min mj_med < <(echo "$mujoco_rates" | min_median)
 plate_steps=$((4000 * 5000))
-plate_rate=$(echo "$plate_steps / $plate_med" | bc -l)
+plate_rate=$(calc "$plate_steps / $plate_med")
 echo "# machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(nproc) cores; $(date -u +%F); $tumble"
 echo "# $repeats interleaved repetitions, medians (min in brackets); one thread unless said"
 printf "%-44s %14s %14s\n" "what" "median" "min"
 printf "%-44s %14.3f %14.3f\n" "plate study: 4000 runs, s" "$plate_med" "$plate_min"
-printf "%-44s %14.4g %14.4g\n" "plate study: body-steps/s" "$plate_rate" "$(echo "$plate_steps / $plate_min" | bc -l)"
+printf "%-44s %14.4g %14.4g\n" "plate study: body-steps/s" "$plate_rate" "$(calc "$plate_steps / $plate_min")"
 printf "%-44s %14.4g %14.4g\n" "engine rk4, 10^4 boxes, body-steps/s" "$eng_med" "$eng_min"
 printf "%-44s %14.4g %14.4g\n" "MuJoCo 2.2.2 RK4, 10^4 boxes, body-steps/s" "$mj_med" "$mj_min"
-printf "%-44s %14.1f\n" "plate study / MuJoCo RK4" "$(echo "$plate_rate / $mj_med" | bc -l)"
-printf "%-44s %13.1f%%\n" "plate study / engine" "$(echo "100 * $plate_rate / $eng_med" | bc -l)"
-printf "%-44s %14.0f %14.0f\n" "T-handle study, 10^4 runs: runs/s" "$(echo "10000 / $th1_med" | bc -l)" "$(echo "10000 / $th1_min" | bc -l)"
-printf "%-44s %14.0f %14.0f\n" "  the same on 2 threads: runs/s" "$(echo "10000 / $th2_med" | bc -l)" "$(echo "10000 / $th2_min" | bc -l)"
-printf "%-44s %14.2f\n" "  2 threads / 1 thread" "$(echo "$th1_med / $th2_med" | bc -l)"
+printf "%-44s %14.1f\n" "plate study / MuJoCo RK4" "$(calc "$plate_rate / $mj_med")"
+printf "%-44s %13.1f%%\n" "plate study / engine" "$(calc "100 * $plate_rate / $eng_med")"
+printf "%-44s %14.0f %14.0f\n" "T-handle study, 10^4 runs: runs/s" "$(calc "10000 / $th1_med")" "$(calc "10000 / $th1_min")"
+printf "%-44s %14.0f %14.0f\n" "  the same on 2 threads: runs/s" "$(calc "10000 / $th2_med")" "$(calc "10000 / $th2_min")"
+printf "%-44s %14.2f\n" "  2 threads / 1 thread" "$(calc "$th1_med / $th2_med")"
 if [ -n "$csv" ]; then
   {
     echo "quantity,median,min"
     echo "plate_seconds,$plate_med,$plate_min"
-    echo "plate_body_steps_per_s,$plate_rate,$(echo "$plate_steps / $plate_min" | bc -l)"
+    echo "plate_body_steps_per_s,$plate_rate,$(calc "$plate_steps / $plate_min")"
     echo "engine_rk4_body_steps_per_s,$eng_med,$eng_min"
     echo "mujoco_rk4_body_steps_per_s,$mj_med,$mj_min"
-    echo "t_handle_runs_per_s_1_thread,$(echo "10000 / $th1_med" | bc -l),$(echo "10000 / $th1_min" | bc -l)"
-    echo "t_handle_runs_per_s_2_threads,$(echo "10000 / $th2_med" | bc -l),$(echo "10000 / $th2_min" | bc -l)"
+    echo "t_handle_runs_per_s_1_thread,$(calc "10000 / $th1_med"),$(calc "10000 / $th1_min")"
+    echo "t_handle_runs_per_s_2_threads,$(calc "10000 / $th2_med"),$(calc "10000 / $th2_min")"
   } > "$csv"
 fi
