@@ -223,7 +223,7 @@ Lap time_stages(const std::filesystem::path& scene_path, const std::filesystem::
   const TrajectoryInfo info{
       std::move(scene.text), scene_path.string(), "bench", settings, {}, false, nullptr};
   const auto writer = make_csv_writer(out, diagnostics_path(out), scene.model, info);
-  DriftMonitor monitor(scene.model, scene.initial, scene.conserved, scene.drift_threshold, settings);
+  DriftMonitor monitor(scene.model, scene.initial, scene.conserved, settings.drift_threshold, settings);
   simulate(scene.model, scene.initial, settings, [&](const SystemState& state) {
     series[stage::prepare] = lap.lap();
     series[stage::setup] = total.lap();

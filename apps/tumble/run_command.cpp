@@ -16,6 +16,7 @@
 #include "progress.hpp"
 #include "run_plan_report.hpp"
 #include "scene_summary.hpp"
+#include "setting_options.hpp"
 #include "tumble/integrate/integrator.hpp"
 #include "tumble/io/checkpoint.hpp"
 #include "tumble/io/geometry.hpp"
@@ -34,16 +35,8 @@ struct RunOptions {
   std::string output;
   std::string format;
   std::string diagnostics;
-  std::optional<std::string> integrator;
-  std::optional<std::string> formulation;
-  std::optional<double> timestep;
-  std::optional<double> duration;
-  std::optional<double> output_interval;
-  std::optional<double> rtol;
-  std::optional<int> threads;
+  SettingOptions settings;  // --timestep, --integrator, … (sim/run_settings.hpp)
   std::vector<std::string> fields;
-  std::optional<double> atol;
-  std::optional<double> drift_threshold;
   bool quiet = false;
   bool progress = false;
   bool strict = false;
@@ -110,14 +103,7 @@ void refuse_inputs_as_outputs(const std::vector<NamedOutput>& outputs, const Sce
 /// The file's settings with the command line's on top.
 RunSettings settings_for(const Scene& scene, const RunOptions& o) {
   RunSettings s = scene.settings;
-  if (o.integrator) s.integrator = *o.integrator;
-  if (o.formulation) s.formulation = parse_formulation(*o.formulation);
-  if (o.timestep) s.timestep = *o.timestep;
-  if (o.duration) s.duration = *o.duration;
-  if (o.output_interval) s.output_interval = *o.output_interval;
-  if (o.rtol) s.tolerances.relative = *o.rtol;
-  if (o.atol) s.tolerances.absolute = *o.atol;
-  if (o.threads) s.threads = *o.threads;
+  o.settings.apply(s);
   validate(s);  // names the bad value and how to fix it
   return s;
 }
@@ -161,7 +147,6 @@ int execute(Job& j) {
                            ? std::string()
                            : std::filesystem::absolute(diagnostics).lexically_normal().string();
     base.fields = j.fields;
-    base.drift_threshold = j.threshold;
     base.strict = j.strict;
     base.writer_pid = static_cast<long>(::getpid());
   }
@@ -362,13 +347,7 @@ int run(const RunOptions& o) {
   body_fields(o.fields);  // an unknown field is named before the scene is read
   Scene scene = load_scene(o.scene);
   const RunSettings settings = settings_for(scene, o);
-  const double threshold = o.drift_threshold.value_or(scene.drift_threshold);
-  if (!(std::isfinite(threshold) && threshold >= 0)) {
-    throw InvalidArgument(
-        fmt::format("--drift-threshold {} is invalid: give a number >= 0 (0 turns the "
-                    "warning off)",
-                    threshold));
-  }
+  const double threshold = settings.drift_threshold;
   print_scene_warnings(scene);
   if (!o.quiet && scene.text.find("[ensemble") != std::string::npos) {
     fmt::print(stderr,
@@ -511,7 +490,7 @@ int resume(const ResumeOptions& o) {
   j.settings = c.settings;
   if (o.threads) j.settings.threads = *o.threads;  // results do not depend on it, bit for bit
   validate(j.settings);
-  j.threshold = c.drift_threshold;
+  j.threshold = c.settings.drift_threshold;
   j.out = c.output;
   j.diagnostics = c.diagnostics;
   j.fields = c.fields;
@@ -598,18 +577,7 @@ Runner add_run_command(CLI::App& app) {
   cmd->add_option("--diagnostics", o->diagnostics,
                   "CSV file for energy, momenta and drifts (default: OUTPUT with .diagnostics.csv; none "
                   "when OUTPUT is -, a device or a FIFO)");
-  cmd->add_option("--integrator", o->integrator,
-                  fmt::format("time integrator, one of: {}", fmt::join(integrator_names(), ", ")));
-  cmd->add_option("--formulation", o->formulation,
-                  "frame of the integrated velocities: world, mixed or body");
-  cmd->add_option("--timestep", o->timestep, "step h (s); for adaptive integrators the first trial step");
-  cmd->add_option("--duration", o->duration, "simulated time (s)");
-  cmd->add_option("--output-interval", o->output_interval, "time between samples (s); 0 = every step");
-  cmd->add_option("--rtol", o->rtol, "relative tolerance of adaptive integrators");
-  cmd->add_option("--atol", o->atol, "absolute tolerance of adaptive integrators");
-  cmd->add_option("--threads", o->threads,
-                  "threads for fixed-step integrators (default 1; 0 = one per core); worth it from a few "
-                  "thousand bodies; results are bit-identical for any count");
+  o->settings.add_to(*cmd);
   std::string fields_help =
       "per-body output fields, comma-separated, in the order wanted (default: the scene's [output] "
       "fields, else position,orientation,velocity,angular_velocity). Each field is a group of CSV columns "
@@ -620,9 +588,6 @@ Runner add_run_command(CLI::App& app) {
                                f.frame, f.meaning);
   }
   cmd->add_option("--fields,--columns", o->fields, fields_help)->delimiter(',');
-  cmd->add_option("--drift-threshold", o->drift_threshold,
-                  "warn when a conserved energy or angular momentum drifts by more than this, relative "
-                  "to t = 0 (0 = never)");
   cmd->add_flag("--strict", o->strict,
                 "exit with status 3 (after writing every file) if a conserved quantity drifted past the "
                 "drift threshold; without it such a run warns and exits 0");

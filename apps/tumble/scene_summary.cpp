@@ -66,8 +66,8 @@ void print_scene_summary(std::FILE* out, const Scene& scene) {
   fmt::print(out, "               angular momentum {} kg*m^2/s (world, about the origin)\n",
              vec(inv.angular_momentum));
   fmt::print(out, "  conserved    {}{}\n", conserved_list(scene.conserved),
-             scene.drift_threshold > 0
-                 ? fmt::format(" (warns past a relative drift of {:g})", scene.drift_threshold)
+             scene.settings.drift_threshold > 0
+                 ? fmt::format(" (warns past a relative drift of {:g})", scene.settings.drift_threshold)
                  : std::string(" (drift warning off)"));
 }
 

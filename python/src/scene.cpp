@@ -10,6 +10,8 @@
 #include <limits>
 #include <optional>
 
+#include <fmt/format.h>
+
 #include "bindings.hpp"
 #include "tumble/error.hpp"
 #include "tumble/forces/forces.hpp"
@@ -18,6 +20,7 @@
 #include "tumble/sim/event_specs.hpp"
 #include "tumble/sim/output_fields.hpp"
 #include "tumble/sim/run_plan.hpp"
+#include "tumble/sim/run_settings.hpp"
 
 namespace py = pybind11;
 
@@ -138,10 +141,36 @@ std::shared_ptr<const ForceModel> python_force(py::function f) {
       "a Python force function");
 }
 
-py::dict simulate(const Scene& scene_in, std::optional<std::string> integrator,
-                  std::optional<std::string> formulation, std::optional<double> timestep,
-                  std::optional<double> duration, std::optional<double> output_interval,
-                  std::optional<double> rtol, std::optional<double> atol, std::optional<int> threads,
+/// The scene's settings with those given as keywords on top (sim/run_settings.hpp: the keys of
+/// [simulation], and threads), validated; None leaves a setting as the scene has it.
+RunSettings settings_with(const Scene& scene, const py::dict& given) {
+  RunSettings s = scene.settings;
+  for (const auto& [key, value] : given) {
+    const std::string k = py::str(key);
+    const RunSetting* setting = find_run_setting(k);
+    if (setting == nullptr || k.starts_with("-")) {
+      std::vector<std::string_view> keys;
+      for (const RunSetting& r : run_settings()) keys.push_back(r.key);
+      throw InvalidArgument(
+          fmt::format("simulate() has no setting '{}'; the settings are: {}", k, fmt::join(keys, ", ")));
+    }
+    if (value.is_none()) continue;
+    const std::string given_as = k + "=";
+    if (py::isinstance<py::str>(value)) {
+      set_run_setting(s, *setting, value.cast<std::string>(), given_as);
+    } else if (py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value)) {
+      set_run_setting(s, *setting, value.cast<double>(), given_as);
+    } else {
+      throw InvalidArgument(fmt::format("{} takes a {}, not {}", given_as,
+                                        setting->kind == RunSetting::Kind::name ? "name" : "number",
+                                        py::repr(value).cast<std::string>()));
+    }
+  }
+  validate(s);
+  return s;
+}
+
+py::dict simulate(const Scene& scene_in, const py::dict& settings,
                   std::optional<std::vector<std::string>> field_names, std::optional<py::function> force,
                   const std::vector<EventSpec>& event_specs, const std::vector<py::tuple>& python_events) {
   // A Python force joins a copy of the model (the force list is shared, the bodies copied); what it
@@ -153,17 +182,8 @@ py::dict simulate(const Scene& scene_in, std::optional<std::string> integrator,
     with_force->conserved = Conservation{false, false, false};
   }
   const Scene& scene = with_force ? *with_force : scene_in;
-  RunSettings s = scene.settings;
-  if (integrator) s.integrator = *integrator;
-  if (formulation) s.formulation = parse_formulation(*formulation);
-  if (timestep) s.timestep = *timestep;
-  if (duration) s.duration = *duration;
-  if (output_interval) s.output_interval = *output_interval;
-  if (rtol) s.tolerances.relative = *rtol;
-  if (atol) s.tolerances.absolute = *atol;
-  if (threads) s.threads = *threads;
+  RunSettings s = settings_with(scene, settings);
   if (force) s.threads = 1;
-  validate(s);
   const std::vector<const BodyField*> fields =
       body_fields(field_names ? *field_names : scene.output_fields);  // names checked here
   const Model& model = scene.model;
@@ -186,7 +206,7 @@ py::dict simulate(const Scene& scene_in, std::optional<std::string> integrator,
   const auto system = system_fields();
   std::vector<Series> diagnostics(system.size());
   for (size_t f = 0; f < system.size(); ++f) diagnostics[f].shape = {system[f].width};
-  DriftMonitor monitor(model, scene.initial, scene.conserved, scene.drift_threshold, s);
+  DriftMonitor monitor(model, scene.initial, scene.conserved, s.drift_threshold, s);
 
   // Events: the scene's, those given as specs, then those written in Python; each crossing is kept as
   // (name, t, row), the row -1 for a Python event.
@@ -329,10 +349,21 @@ void bind_scene(py::module_& m) {
         "for anything wrong in it, OSError if it cannot be read.");
   m.def("parse_scene", &parse_scene, py::arg("text"), py::arg("path") = "scene.toml",
         "A scene from TOML text; `path` names it in messages and anchors relative mesh paths.");
-  m.def("_simulate", &simulate, py::arg("scene"), py::arg("integrator"), py::arg("formulation"),
-        py::arg("timestep"), py::arg("duration"), py::arg("output_interval"), py::arg("rtol"),
-        py::arg("atol"), py::arg("threads"), py::arg("fields"), py::arg("force"), py::arg("event_specs"),
-        py::arg("python_events"));
+  m.def("_simulate", &simulate, py::arg("scene"), py::arg("settings"), py::arg("fields"), py::arg("force"),
+        py::arg("event_specs"), py::arg("python_events"));
+  m.def(
+      "_run_settings",
+      [] {
+        py::list out;
+        for (const RunSetting& s : run_settings()) {
+          out.append(py::dict(py::arg("key") = std::string(s.key), py::arg("flag") = std::string(s.flag),
+                              py::arg("unit") = std::string(s.unit), py::arg("help") = std::string(s.help),
+                              py::arg("in_scene") = s.in_scene));
+        }
+        return out;
+      },
+      "The run settings (sim/run_settings.hpp): key, command-line flag, unit, help, whether a scene's "
+      "[simulation] has it.");
   py::class_<EventSpec>(m, "EventSpec", "An event checked against a scene (tumble.Event makes them).")
       .def_readonly("name", &EventSpec::name)
       .def_readonly("row", &EventSpec::row, "the body or particle watched: its index in the trajectory");

@@ -60,11 +60,12 @@ def simulate(scene: Scene | str | _os.PathLike, integrator: str | None = None, f
              timestep: float | None = None, duration: float | None = None, output_interval: float | None = None,
              rtol: float | None = None, atol: float | None = None, threads: int | None = None,
              fields: Sequence[str] | None = None, force: Callable | None = None,
-             events: Sequence[Event | dict] | None = None) -> Trajectory:
+             events: Sequence[Event | dict] | None = None, drift_threshold: float | None = None) -> Trajectory:
     """Run a scene and return its Trajectory. Arguments left None take the scene's [simulation]
     values (as `tumble run` options do): integrator (e.g. "rk4", "splitting", "dopri45", "exact"),
     formulation ("world", "mixed", "body"), timestep and duration and output_interval (s; 0 = every
-    step), rtol/atol for adaptive integrators, threads, and fields (a list of output field names;
+    step), rtol/atol for adaptive integrators, threads, drift_threshold (the relative drift of a
+    conserved quantity past which the run's diagnostics warn; 0 = never), and fields (a list of output field names;
     default the scene's [output] fields, else position, orientation, velocity, angular_velocity and
     omega in the reference and principal axes).
 
@@ -100,8 +101,12 @@ def simulate(scene: Scene | str | _os.PathLike, integrator: str | None = None, f
     if fields is None and not scene.output_fields:
         fields = ["position", "orientation", "velocity", "angular_velocity", "angular_velocity_reference",
                   "angular_velocity_principal"]
-    raw = _tumble._simulate(scene, integrator, formulation, timestep, duration, output_interval, rtol, atol,
-                            threads, None if fields is None else list(fields), force, specs, python_events)
+    # The settings by their keys (sim/run_settings.hpp, as `tumble run --KEY` and [simulation] name them).
+    settings = dict(integrator=integrator, formulation=formulation, timestep=timestep, duration=duration,
+                    output_interval=output_interval, rtol=rtol, atol=atol, threads=threads,
+                    drift_threshold=drift_threshold)
+    raw = _tumble._simulate(scene, settings, None if fields is None else list(fields), force, specs,
+                            python_events)
     trajectory = Trajectory._from_run(raw)
     if not trajectory.complete:
         raise Interrupted(trajectory)

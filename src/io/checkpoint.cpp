@@ -238,7 +238,7 @@ void write_checkpoint(const std::filesystem::path& path, const Checkpoint& c) {
   o.str(c.diagnostics);
   o.u64(c.fields.size());
   for (const std::string& f : c.fields) o.str(f);
-  o.f64(c.drift_threshold);
+  o.f64(r.drift_threshold);
   o.u64(c.strict ? 1 : 0);
   o.i64(c.writer_pid);
   o.opt(c.largest_energy_drift);
@@ -334,7 +334,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& path) {
   c.diagnostics = in.str();
   c.fields.resize(in.count(8));
   for (std::string& f : c.fields) f = in.str();
-  c.drift_threshold = in.f64();
+  r.drift_threshold = in.f64();
   c.strict = in.flag();
   c.writer_pid = in.i64(1, kMaxLong);
   c.largest_energy_drift = in.opt();

@@ -7,40 +7,49 @@
 #include "tumble/integrate/integrator.hpp"
 #include "tumble/mass/input_file.hpp"
 #include "tumble/sim/output_fields.hpp"
+#include "tumble/sim/run_settings.hpp"
 
 namespace tumble {
 namespace scene {
 namespace {
 
+/// [simulation]: every setting of sim/run_settings.hpp that a scene may give, checked as the table says.
 void read_simulation(const TableReader& root, Scene& scene) {
-  const auto sim = root.table("simulation", "[simulation]",
-                              {"duration", "timestep", "integrator", "formulation", "output_interval", "rtol",
-                               "atol", "drift_threshold"});
+  static const std::vector<std::string_view> keys = [] {
+    std::vector<std::string_view> k;
+    for (const RunSetting& s : run_settings()) {
+      if (s.in_scene) k.push_back(s.key);
+    }
+    return k;
+  }();
+  const auto sim = root.table("simulation", "[simulation]", Keys(keys));
   if (!sim) root.fail_here("missing [simulation]: give at least duration = T (s)");
   RunSettings& s = scene.settings;
-  s.duration = sim->required_number("duration", "s", Domain::non_negative);
-  s.timestep = sim->number("timestep", 1e-3, "s", Domain::positive);
-  s.output_interval = sim->number("output_interval", 0.01, "s", Domain::non_negative);
-  s.tolerances.relative = sim->number("rtol", s.tolerances.relative, "", Domain::positive);
-  s.tolerances.absolute = sim->number("atol", s.tolerances.absolute, "", Domain::positive);
-  scene.drift_threshold = sim->number("drift_threshold", scene.drift_threshold, "", Domain::non_negative);
-  if (const auto name = sim->string("integrator")) {
-    const auto names = integrator_names();
-    if (std::find(names.begin(), names.end(), *name) == names.end()) {
-      const auto close = closest(std::string(*name), names);
-      sim->fail_at("integrator", fmt::format("unknown integrator \"{}\"; {}choose one of: {}", *name,
-                                             close ? fmt::format("did you mean \"{}\"? ", *close) : "",
-                                             fmt::join(names, ", ")));
+  for (const RunSetting& setting : run_settings()) {
+    if (!setting.in_scene) continue;
+    const std::string key(setting.key);
+    if (setting.kind == RunSetting::Kind::name) {
+      const auto name = sim->string(key);
+      if (!name) continue;
+      const auto choices = setting.choices();
+      if (std::find(choices.begin(), choices.end(), *name) == choices.end()) {
+        const auto close = closest(std::string(*name), choices);
+        sim->fail_at(key, fmt::format("unknown {} \"{}\"; {}choose one of: {}", key, *name,
+                                      close ? fmt::format("did you mean \"{}\"? ", *close) : "",
+                                      fmt::join(choices, ", ")));
+      }
+      setting.set(s, std::string(*name));
+      continue;
     }
-    s.integrator = *name;
-  }
-  if (const auto f = sim->string("formulation")) {
-    try {
-      s.formulation = parse_formulation(std::string(*f));
-    } catch (const InvalidArgument&) {
-      sim->fail_at("formulation",
-                   fmt::format("formulation must be \"world\", \"mixed\" or \"body\", found \"{}\"", *f));
-    }
+    const Domain domain = setting.range == RunSetting::Range::positive       ? Domain::positive
+                          : setting.range == RunSetting::Range::non_negative ? Domain::non_negative
+                                                                             : Domain::finite;
+    const std::string unit(setting.unit);
+    const double value =
+        setting.scene_default == "required"
+            ? sim->required_number(key, unit.c_str(), domain)
+            : sim->number(key, std::stod(std::string(setting.scene_default)), unit.c_str(), domain);
+    setting.set(s, value);
   }
 }
 

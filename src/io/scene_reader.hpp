@@ -13,6 +13,7 @@
 
 #include <initializer_list>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -38,8 +39,19 @@ std::optional<std::string> closest(const std::string& word, const std::vector<st
 /// What a number may be.
 enum class Domain { finite, positive, non_negative };
 
-/// The keys a table may hold, in the order a message lists them.
-using Keys = std::initializer_list<std::string_view>;
+/// The keys a table may hold, in the order a message lists them: a braced list where the call is
+/// ({"name", "mass"}), or a span of them (the [simulation] keys of sim/run_settings.hpp). It refers to
+/// the list, which must outlive the call.
+class Keys {
+ public:
+  Keys(std::initializer_list<std::string_view> keys) : keys_(keys.begin(), keys.size()) {}
+  explicit Keys(std::span<const std::string_view> keys) : keys_(keys) {}
+  auto begin() const { return keys_.begin(); }
+  auto end() const { return keys_.end(); }
+
+ private:
+  std::span<const std::string_view> keys_;
+};
 
 /// What a table is called in messages: "[simulation]", "[[bodies]] #3", "body 'handle' shape (box)".
 /// Kept as pieces — the enclosing table's Context, text, a number, a name from the file — that are

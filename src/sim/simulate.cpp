@@ -126,6 +126,9 @@ void validate(const RunSettings& s) {
           fmt::format("output interval {} s is too small for duration {} s: {:.3g} samples, more than 2^53; "
                       "give a larger output interval (0 = every step)",
                       s.output_interval, s.duration, s.duration / dt_out));
+  require(std::isfinite(s.drift_threshold) && s.drift_threshold >= 0,
+          fmt::format("drift threshold {} is invalid: give a number >= 0 (0 turns the warning off)",
+                      s.drift_threshold));
   require(s.threads >= 0 && s.threads <= 4096,
           fmt::format("threads = {} is invalid: give a count from 1 to 4096, or 0 for one per core",
                       s.threads));

@@ -158,8 +158,8 @@ const std::vector<Case>& catalogue() {
                                131)}},
        "{t} check s.toml",
        1,
-       "tumble: error: s.toml:3:15: [simulation]: formulation must be \"world\", \"mixed\" or \"body\", "
-       "found \"inertial\""},
+       "tumble: error: s.toml:3:15: [simulation]: unknown formulation \"inertial\"; choose one of: world, "
+       "mixed, body"},
       {"scene: negative rtol",
        {{"s.toml", std::string("[simulation]\nduration = 1\nrtol = -1\n[[bodies]]\nname = \"a\"\nshape = { "
                                "type = \"box\", size = [1, 2, 3] }\ndensity = 1000\n",
@@ -948,7 +948,7 @@ const std::vector<Case>& catalogue() {
                                109)}},
        "{t} run s.toml --drift-threshold -1",
        1,
-       "tumble: error: --drift-threshold -1 is invalid: give a number >= 0 (0 turns the warning off)"},
+       "tumble: error: drift threshold -1 is invalid: give a number >= 0 (0 turns the warning off)"},
       {"cli: unknown format",
        {{"s.toml", std::string("[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = "
                                "\"box\", size = [1, 2, 3] }\ndensity = 1000\n",

@@ -53,9 +53,9 @@ TEST(Examples, EveryExampleRunsAndConservesWhatItShould) {
     EXPECT_TRUE(r.scene.conserved.energy);
     // ... and stays below the drift at which `tumble run` would warn (1e-6, the default): the
     // examples are meant to be run as they are. The measured drifts are 1e-15 to 5e-9 (the symmetric top).
-    EXPECT_LT(r.max_energy_drift, r.scene.drift_threshold);
+    EXPECT_LT(r.max_energy_drift, r.scene.settings.drift_threshold);
     if (r.scene.conserved.angular_momentum) {
-      EXPECT_LT(r.max_angular_momentum_drift, r.scene.drift_threshold);
+      EXPECT_LT(r.max_angular_momentum_drift, r.scene.settings.drift_threshold);
     }
   }
 }

@@ -274,7 +274,7 @@ TEST(RunCli, BadInputGetsOneReadableLine) {
                "tumble: error: unknown integrator 'rk5'; choose one of: ");
   expect_error("run " + scene + " --formulation sideways",
                "unknown formulation 'sideways'; choose world, mixed or body");
-  expect_error("run " + scene + " --drift-threshold -1", "--drift-threshold -1 is invalid");
+  expect_error("run " + scene + " --drift-threshold -1", "drift threshold -1 is invalid");
   expect_error("run " + scene + " --threads -2",
                "threads = -2 is invalid: give a count from 1 to 4096, or 0");
   expect_error("run " + example("t_handle.toml") + " -o " + dir.path().string(),

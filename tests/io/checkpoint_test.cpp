@@ -28,7 +28,7 @@ Checkpoint sample_checkpoint() {
   c.settings.threads = 4;
   c.output = "/x/o.csv";
   c.fields = {"position", "kinetic_energy"};
-  c.drift_threshold = 1e-6;
+  c.settings.drift_threshold = 1e-6;
   c.strict = true;
   c.writer_pid = 4242;
   c.largest_energy_drift = 2.5e-15;

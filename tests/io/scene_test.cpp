@@ -43,7 +43,7 @@ density = 1000
   EXPECT_EQ(s.settings.output_interval, 0.01);
   EXPECT_EQ(s.settings.integrator, "rk4");
   EXPECT_EQ(s.settings.formulation, Formulation::mixed);
-  EXPECT_EQ(s.drift_threshold, 1e-6);
+  EXPECT_EQ(s.settings.drift_threshold, 1e-6);
   EXPECT_TRUE(s.model.forces.empty());  // no [world]: no gravity
   EXPECT_EQ(s.initial.bodies[0].o, Vec3::Zero());
   EXPECT_EQ(s.initial.bodies[0].v, Vec3::Zero());
@@ -373,7 +373,7 @@ velocity = [0, 0, 1]
   EXPECT_EQ(s.settings.output_interval, 0.0);
   EXPECT_EQ(s.settings.tolerances.relative, 1e-8);
   EXPECT_EQ(s.settings.tolerances.absolute, 1e-11);
-  EXPECT_EQ(s.drift_threshold, 0.0);
+  EXPECT_EQ(s.settings.drift_threshold, 0.0);
   ASSERT_EQ(s.model.particles.size(), 1u);
   EXPECT_EQ(s.model.particles[0].mass, 0.5);
   EXPECT_EQ(s.initial.particles[0].x, Vec3(1, 2, 3));

@@ -58,6 +58,20 @@ def test_a_python_event_sees_every_body_and_can_stop_the_run():
     assert traj.events[0].body is None and set(calls) == {(1, 3)}
 
 
+def test_settings_are_the_tables_and_a_wrong_kind_is_named():
+    # The keywords are the settings of sim/run_settings.hpp (tumble run's options, [simulation]'s keys).
+    keys = {s["key"] for s in tumble._tumble._run_settings()}
+    assert {"duration", "timestep", "integrator", "formulation", "output_interval", "rtol", "atol",
+            "drift_threshold", "threads"} == keys
+    scene = tumble.make_scene(bodies=[racket()], duration=0.1, timestep=0.01)
+    traj = tumble.simulate(scene, duration=0.2, drift_threshold=0.0)
+    assert traj.t[-1] == 0.2
+    with pytest.raises(ValueError, match="timestep= takes a number, not a name"):
+        tumble.simulate(scene, timestep="fast")
+    with pytest.raises(ValueError, match="unknown integrator 'rk5'"):
+        tumble.simulate(scene, integrator="rk5")
+
+
 def test_event_mistakes_raise_the_scene_files_message():
     scene = tumble.make_scene(bodies=[racket()], duration=1.0)
     with pytest.raises(ValueError, match=r"^events\[0\]: event 'e': no body or particle named \"rocket\"; did you mean \"racket\"\?"):

@@ -48,7 +48,6 @@ struct Checkpoint {
   std::string output;             ///< trajectory, absolute
   std::string diagnostics;        ///< absolute; empty: none
   std::vector<std::string> fields;
-  double drift_threshold = 0.0;
   bool strict = false;
   long writer_pid = 0;  ///< the process whose staged temporaries hold the outputs until committed
   std::optional<double> largest_energy_drift, largest_angular_momentum_drift;

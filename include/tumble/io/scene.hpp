@@ -45,8 +45,6 @@ struct Scene {
   std::vector<SceneBodyInfo> body_info;  ///< parallel to model.bodies
   /// Which invariants the scene's forces conserve (decided from the force models present).
   Conservation conserved;
-  /// Relative drift of a conserved quantity beyond which a run warns ([simulation] drift_threshold).
-  double drift_threshold = 1e-6;
   /// Per-body output fields ([output] fields; sim/output_fields.hpp); empty: the defaults.
   std::vector<std::string> output_fields;
   /// [[events]]: conditions watched during a run (make_events() turns them into RunHooks::events).

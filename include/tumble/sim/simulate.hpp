@@ -20,10 +20,13 @@ struct RunSettings {
   Tolerances tolerances;  ///< for adaptive integrators (dopri45)
   int threads = 1;        ///< threads for fixed-step integrators; 0: one per hardware thread.
                           ///< Results are bit-identical for any count.
+  /// Relative drift of a conserved energy or angular momentum past which a run warns (0: never).
+  double drift_threshold = 1e-6;
 };
 
-/// Throws InvalidArgument unless duration ≥ 0, timestep > 0, output_interval ≥ 0, all finite, threads in
-/// 0 … 4096, and the integrator and formulation exist.
+/// Throws InvalidArgument unless duration ≥ 0, timestep > 0, output_interval ≥ 0, drift_threshold ≥ 0,
+/// all finite, threads in 0 … 4096, and the integrator and formulation exist (sim/run_settings.hpp
+/// describes each setting).
 void validate(const RunSettings& settings);
 
 /// Called with every sample (the initial state first); return false to stop the run early (Ctrl-C).

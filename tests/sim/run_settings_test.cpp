@@ -1,0 +1,107 @@
+// The table of run settings (sim/run_settings.hpp) is what the scene reader, the command line, Python,
+// checkpoints and the docs use: each of them is checked against it here, so that a setting added to
+// the table and forgotten in one of them fails a test.
+#include <gtest/gtest.h>
+
+#include <fmt/format.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "../support/scene_files.hpp"
+#include "tumble/error.hpp"
+#include "tumble/io/checkpoint.hpp"
+#include "tumble/io/scene.hpp"
+#include "tumble/sim/run_settings.hpp"
+
+namespace tumble {
+namespace {
+
+std::string text_of(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// A value of the setting other than its default, of the right kind.
+SettingValue other_value(const RunSetting& s) {
+  if (s.kind == RunSetting::Kind::name)
+    return s.key == "integrator" ? std::string("splitting") : std::string("body");
+  if (s.kind == RunSetting::Kind::count) return 2.0;
+  return s.key == "duration" ? 3.5 : 0.25;
+}
+
+TEST(RunSettings, EveryKeyIsReadFromAScene) {
+  std::string simulation = "[simulation]\n";
+  for (const RunSetting& s : run_settings()) {
+    if (!s.in_scene) continue;
+    const SettingValue v = other_value(s);
+    simulation += std::holds_alternative<std::string>(v)
+                      ? fmt::format("{} = \"{}\"\n", s.key, std::get<std::string>(v))
+                      : fmt::format("{} = {}\n", s.key, std::get<double>(v));
+  }
+  const Scene scene =
+      parse_scene(simulation + "[[bodies]]\nname = \"b\"\nmass = 1.0\ninertia = [1.0, 2.0, 2.5]\n", "s.toml");
+  for (const RunSetting& s : run_settings()) {
+    if (s.in_scene) {
+      EXPECT_EQ(s.get(scene.settings), other_value(s)) << s.key;
+    }
+  }
+}
+
+TEST(RunSettings, EveryOneIsSetByKindAndTheWrongKindIsNamed) {
+  RunSettings r;
+  for (const RunSetting& s : run_settings()) {
+    set_run_setting(r, s, other_value(s), s.flag);
+    EXPECT_EQ(s.get(r), other_value(s)) << s.key;
+    EXPECT_EQ(find_run_setting(s.key), &s);
+    EXPECT_EQ(find_run_setting(s.flag), &s);
+  }
+  EXPECT_NO_THROW(validate(r));
+  try {
+    set_run_setting(r, *find_run_setting("timestep"), std::string("fast"), "--timestep");
+    FAIL() << "a name was taken for a number";
+  } catch (const InvalidArgument& e) {
+    EXPECT_STREQ(e.what(), "--timestep takes a number, not a name");
+  }
+  try {
+    set_run_setting(r, *find_run_setting("threads"), 1.5, "threads=");
+    FAIL() << "1.5 threads were taken";
+  } catch (const InvalidArgument& e) {
+    EXPECT_STREQ(e.what(), "threads= 1.5 is invalid: give a whole number");
+  }
+}
+
+TEST(RunSettings, ACheckpointKeepsEverySetting) {
+  const test::TempDir dir("run_settings_checkpoint");
+  Checkpoint c;
+  c.tumble_version = "test";
+  c.scene_path = "s.toml";
+  c.scene_absolute = (dir / "s.toml").string();
+  c.output = (dir / "o.csv").string();
+  c.writer_pid = 1;
+  c.point.samples = 1;
+  for (const RunSetting& s : run_settings()) set_run_setting(c.settings, s, other_value(s), s.flag);
+  write_checkpoint(dir / "c.ckpt", c);
+  const Checkpoint back = read_checkpoint(dir / "c.ckpt");
+  for (const RunSetting& s : run_settings()) EXPECT_EQ(s.get(back.settings), other_value(s)) << s.key;
+}
+
+// docs/scene-format.md's [simulation] table has a row per scene setting with its unit and default, and
+// says which command-line options override them.
+TEST(RunSettings, TheDocsListEverySettingWithItsUnitAndDefault) {
+  const std::string docs = text_of(std::filesystem::path(TUMBLE_SOURCE_DIR) / "docs" / "scene-format.md");
+  for (const RunSetting& s : run_settings()) {
+    if (s.in_scene) {
+      const std::string row = fmt::format(
+          "| `{}` |{}| {} |", s.key, s.unit.empty() ? std::string(" ") : fmt::format(" {} ", s.unit),
+          s.scene_default == "required" ? std::string("required") : fmt::format("`{}`", s.scene_default));
+      EXPECT_NE(docs.find(row), std::string::npos) << "docs/scene-format.md has no row starting " << row;
+    }
+    EXPECT_NE(docs.find(fmt::format("`{}`", s.flag)), std::string::npos) << s.flag;
+  }
+}
+
+}  // namespace
+}  // namespace tumble
