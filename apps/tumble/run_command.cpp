@@ -23,6 +23,7 @@
 #include "tumble/io/report.hpp"
 #include "tumble/io/scene.hpp"
 #include "tumble/io/trajectory_writer.hpp"
+#include "tumble/sim/run.hpp"
 
 namespace tumble::cli {
 namespace {
@@ -61,7 +62,6 @@ struct Job {
   Scene scene;
   std::string scene_arg;  // the scene as named on the command line
   RunSettings settings;
-  double threshold = 0.0;
   bool hdf5 = false;
   std::filesystem::path out, diagnostics;
   std::filesystem::path report;  // --report: the HTML report to write after the run (empty: none)
@@ -118,6 +118,114 @@ struct DriftExtremes {
     keep(energy, d.energy_drift);
     keep(angular_momentum, d.angular_momentum_drift);
   }
+};
+
+/// Writes every sample and crossing to the trajectory files.
+class TrajectoryObserver final : public RunObserver {
+ public:
+  TrajectoryObserver(TrajectoryWriter& writer, const Scene& scene) : writer_(writer), scene_(scene) {}
+  void on_sample(const SystemState& state, const DriftSample& d) override {
+    writer_.write(scene_.model, state, d);
+  }
+  void on_event(const EventHit& hit) override {
+    writer_.event(hit.name, scene_.events[hit.index].row, hit.state.t);
+  }
+
+ private:
+  TrajectoryWriter& writer_;
+  const Scene& scene_;
+};
+
+/// Keeps the report's samples (every stride-th) and its crossings.
+class ReportObserver final : public RunObserver {
+ public:
+  ReportObserver(Report& report, ReportRecorder& recorder, const Scene& scene)
+      : report_(report), recorder_(recorder), scene_(scene) {}
+  void on_sample(const SystemState& state, const DriftSample& d) override {
+    recorder_.sample(scene_.model, state, d);
+  }
+  void on_event(const EventHit& hit) override {
+    report_.events.push_back({hit.name, hit.state.t, static_cast<long>(scene_.events[hit.index].row)});
+  }
+
+ private:
+  Report& report_;
+  ReportRecorder& recorder_;
+  const Scene& scene_;
+};
+
+/// The terminal's view of a run: the progress bar, the drift warning when it comes, and what the
+/// closing summary says (the largest drifts, the time reached, each event's crossings).
+class ConsoleObserver final : public RunObserver {
+ public:
+  ConsoleObserver(DriftMonitor& monitor, Progress& progress, DriftExtremes& extremes, size_t events, double t)
+      : monitor_(monitor), progress_(progress), extremes_(extremes), crossings_(events, {0, 0.0}), t_(t) {}
+  void on_sample(const SystemState& state, const DriftSample& d) override {
+    extremes_.add(d);
+    t_ = state.t;
+    if (auto warning = monitor_.take_warning()) progress_.message("tumble: warning: " + *warning);
+    progress_.update(state.t);
+  }
+  void on_event(const EventHit& hit) override {
+    auto& [n, first] = crossings_[hit.index];
+    if (n++ == 0) first = hit.state.t;
+  }
+  double t_reached() const { return t_; }
+  /// Per event: the number of crossings and the time of the first.
+  const std::vector<std::pair<long, double>>& crossings() const { return crossings_; }
+
+ private:
+  DriftMonitor& monitor_;
+  Progress& progress_;
+  DriftExtremes& extremes_;
+  std::vector<std::pair<long, double>> crossings_;
+  double t_;
+};
+
+/// Writes a checkpoint at a run point every `every` seconds of wall-clock time, with what the drift
+/// report said there; save() writes one at once (an interrupted run's last).
+class CheckpointObserver final : public RunObserver {
+ public:
+  using Clock = std::chrono::steady_clock;
+  CheckpointObserver(std::filesystem::path file, const Checkpoint& base, double every,
+                     TrajectoryWriter& writer, const DriftMonitor& monitor, const DriftExtremes& extremes)
+      : file_(std::move(file)),
+        base_(base),
+        every_(every),
+        writer_(writer),
+        monitor_(monitor),
+        extremes_(extremes),
+        next_(Clock::now() + interval()) {}
+  void on_run_point(const RunPoint& p) override {
+    extremes_at_point_ = extremes_;
+    warning_at_point_ = monitor_.warning();
+    if (Clock::now() < next_) return;
+    writer_.sync();  // the rows the checkpoint counts are in the file before it names them
+    save(p);
+    next_ = Clock::now() + interval();
+  }
+  void save(const RunPoint& p) const {
+    Checkpoint c = base_;
+    c.largest_energy_drift = extremes_at_point_.energy;
+    c.largest_angular_momentum_drift = extremes_at_point_.angular_momentum;
+    c.drift_warning = warning_at_point_.value_or("");
+    c.point = p;
+    write_checkpoint(file_, c);
+  }
+
+ private:
+  Clock::duration interval() const {
+    return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(every_));
+  }
+  std::filesystem::path file_;
+  const Checkpoint& base_;
+  double every_;
+  TrajectoryWriter& writer_;
+  const DriftMonitor& monitor_;
+  const DriftExtremes& extremes_;
+  DriftExtremes extremes_at_point_;
+  std::optional<std::string> warning_at_point_;
+  Clock::time_point next_;
 };
 
 /// Runs a job: writes the outputs (continuing them for a resumed run) and, with a checkpoint file, a
@@ -178,7 +286,8 @@ int execute(Job& j) {
       hdf5 ? make_hdf5_writer(out, scene.model, info)
            : make_csv_writer(out, diagnostics, scene.model, info, continuation);
 
-  DriftMonitor monitor(scene.model, scene.initial, scene.conserved, j.threshold, settings);
+  Run run(scene.model, scene.initial, settings, scene.conserved);
+  DriftMonitor& monitor = run.monitor();
   DriftExtremes extremes;
   if (j.resumed) {
     extremes.energy = j.resumed->largest_energy_drift;
@@ -190,61 +299,27 @@ int execute(Job& j) {
                                  : ProgressMode::automatic,
                     scene.initial.t, scene.initial.t + settings.duration);
   const InterruptGuard interrupt;
-  bool interrupted = false;
-  double t_reached = j.resumed ? j.resumed->point.t_last_sample : scene.initial.t;
-  RunHooks hooks;
-  hooks.on_sample = [&](const SystemState& state) {
-    const DriftSample d = monitor.observe(state);
-    writer->write(scene.model, state, d);
-    if (recorder) recorder->sample(scene.model, state, d);
-    extremes.add(d);
-    t_reached = state.t;
-    if (auto warning = monitor.take_warning()) progress.message("tumble: warning: " + *warning);
-    progress.update(state.t);
-    interrupted = interrupt.requested();
-    return !interrupted;  // stop at this sample: everything written so far stays valid
-  };
-  // Events: each crossing is stored by the writer and counted for the summary.
-  hooks.events = make_events(scene.model, scene.events);
-  std::vector<std::pair<long, double>> crossings(scene.events.size(), {0, 0.0});  // count, first time
-  hooks.on_event = [&](const EventHit& hit) {
-    writer->event(hit.name, scene.events[hit.index].row, hit.state.t);
-    if (report)
-      report->events.push_back({hit.name, hit.state.t, static_cast<long>(scene.events[hit.index].row)});
-    auto& [n, first] = crossings[hit.index];
-    if (n++ == 0) first = hit.state.t;
-  };
-  // Asked every step: Ctrl-C needs no wait for a sample.
-  hooks.stop_requested = [&] { return interrupt.requested(); };
+  // What watches the run, in the order it is told: the files, the report, the terminal.
+  TrajectoryObserver trajectory(*writer, scene);
+  std::optional<ReportObserver> reporting;
+  if (report) reporting.emplace(*report, *recorder, scene);
+  ConsoleObserver console(monitor, progress, extremes, scene.events.size(),
+                          j.resumed ? j.resumed->point.t_last_sample : scene.initial.t);
+  run.watch(make_events(scene.model, scene.events)).attach(trajectory);
+  if (reporting) run.attach(*reporting);
+  run.attach(console).stop_when([&] { return interrupt.requested(); });  // asked every step and sample
   // Checkpoints: the run point (the last sample on the grid) with what the drift report said there.
   RunPoint point;
-  DriftExtremes extremes_at_point;
-  std::optional<std::string> warning_at_point;
-  using Clock = std::chrono::steady_clock;
-  Clock::time_point next_checkpoint = Clock::now() + std::chrono::duration_cast<Clock::duration>(
-                                                         std::chrono::duration<double>(j.checkpoint_every));
-  auto save = [&](const RunPoint& p) {
-    Checkpoint c = base;
-    c.largest_energy_drift = extremes_at_point.energy;
-    c.largest_angular_momentum_drift = extremes_at_point.angular_momentum;
-    c.drift_warning = warning_at_point.value_or("");
-    c.point = p;
-    write_checkpoint(j.checkpoint, c);
-  };
+  std::optional<CheckpointObserver> checkpoints;
   if (!j.checkpoint.empty()) {
-    hooks.run_point = &point;
-    hooks.on_run_point = [&](const RunPoint& p) {
-      extremes_at_point = extremes;
-      warning_at_point = monitor.warning();
-      if (Clock::now() < next_checkpoint) return;
-      writer->sync();  // the rows the checkpoint counts are in the file before it names them
-      save(p);
-      next_checkpoint = Clock::now() + std::chrono::duration_cast<Clock::duration>(
-                                           std::chrono::duration<double>(j.checkpoint_every));
-    };
+    checkpoints.emplace(j.checkpoint, base, j.checkpoint_every, *writer, monitor, extremes);
+    run.keep_run_points(point).attach(*checkpoints);
   }
-  if (j.resumed) hooks.resume_from = &j.resumed->point;
-  simulate(scene.model, scene.initial, settings, hooks);
+  if (j.resumed) run.resume_from(j.resumed->point);
+  run.run();
+  const bool interrupted = run.stopped();
+  const double t_reached = console.t_reached();
+  const auto& crossings = console.crossings();
   progress.finish();
   const double wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
@@ -259,7 +334,8 @@ int execute(Job& j) {
   bool checkpointed = false;
   if (!j.checkpoint.empty()) {
     if (interrupted && point.samples > 0) {
-      save(point);  // the outputs are under their final names now, cut back to point.samples on resume
+      checkpoints->save(
+          point);  // the outputs are under their final names now, cut back to point.samples on resume
       checkpointed = true;
     } else if (!interrupted) {
       std::error_code ec;
@@ -347,7 +423,6 @@ int run(const RunOptions& o) {
   body_fields(o.fields);  // an unknown field is named before the scene is read
   Scene scene = load_scene(o.scene);
   const RunSettings settings = settings_for(scene, o);
-  const double threshold = settings.drift_threshold;
   print_scene_warnings(scene);
   if (!o.quiet && scene.text.find("[ensemble") != std::string::npos) {
     fmt::print(stderr,
@@ -451,7 +526,6 @@ int run(const RunOptions& o) {
   }
   j.scene_arg = o.scene;
   j.settings = settings;
-  j.threshold = threshold;
   j.hdf5 = hdf5;
   j.out = out;
   j.diagnostics = diagnostics;
@@ -490,7 +564,6 @@ int resume(const ResumeOptions& o) {
   j.settings = c.settings;
   if (o.threads) j.settings.threads = *o.threads;  // results do not depend on it, bit for bit
   validate(j.settings);
-  j.threshold = c.settings.drift_threshold;
   j.out = c.output;
   j.diagnostics = c.diagnostics;
   j.fields = c.fields;

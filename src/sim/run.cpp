@@ -1,0 +1,66 @@
+#include "tumble/sim/run.hpp"
+
+namespace tumble {
+
+Run::Run(const Model& model, SystemState initial, const RunSettings& settings, Conservation conserved)
+    : model_(model),
+      initial_(std::move(initial)),
+      settings_((validate(settings), settings)),
+      monitor_(model, initial_, conserved, settings.drift_threshold, settings) {}
+
+Run& Run::watch(std::vector<Event> events) {
+  events_.insert(events_.end(), std::make_move_iterator(events.begin()),
+                 std::make_move_iterator(events.end()));
+  return *this;
+}
+
+Run& Run::attach(RunObserver& observer) {
+  observers_.push_back(&observer);
+  return *this;
+}
+
+Run& Run::stop_when(std::function<bool()> asked) {
+  stop_ = std::move(asked);
+  return *this;
+}
+
+Run& Run::keep_run_points(RunPoint& point) {
+  point_ = &point;
+  return *this;
+}
+
+Run& Run::resume_from(const RunPoint& point) {
+  resume_ = &point;
+  return *this;
+}
+
+SystemState Run::run() {
+  RunHooks hooks;
+  hooks.events = events_;
+  hooks.stats = &stats_;
+  hooks.on_sample = [this](const SystemState& state) {
+    const DriftSample d = monitor_.observe(state);
+    for (RunObserver* o : observers_) o->on_sample(state, d);
+    stopped_ = stopped_ || (stop_ && stop_());
+    return !stopped_;  // stop at this sample: everything handed over so far stays valid
+  };
+  hooks.on_event = [this](const EventHit& hit) {
+    for (RunObserver* o : observers_) o->on_event(hit);
+  };
+  if (stop_) {
+    hooks.stop_requested = [this] {
+      stopped_ = stopped_ || stop_();
+      return stopped_;
+    };
+  }
+  if (point_) {
+    hooks.run_point = point_;
+    hooks.on_run_point = [this](const RunPoint& p) {
+      for (RunObserver* o : observers_) o->on_run_point(p);
+    };
+  }
+  hooks.resume_from = resume_;
+  return simulate(model_, initial_, settings_, hooks);
+}
+
+}  // namespace tumble
