@@ -19,6 +19,7 @@
 #include "tumble/io/scene.hpp"
 #include "tumble/sim/event_specs.hpp"
 #include "tumble/sim/output_fields.hpp"
+#include "tumble/sim/run.hpp"
 #include "tumble/sim/run_plan.hpp"
 #include "tumble/sim/run_settings.hpp"
 
@@ -141,6 +142,50 @@ std::shared_ptr<const ForceModel> python_force(py::function f) {
       "a Python force function");
 }
 
+/// A run's samples and crossings as they arrive, into the vectors the arrays are made of.
+struct Recorded {
+  const Model& model;
+  const std::vector<const BodyField*>& fields;
+  std::span<const SystemField> system;
+  const std::vector<EventSpec>& specs;
+  std::vector<double>& t;
+  std::vector<Series>& body;
+  std::vector<Series>& diagnostics;
+  std::vector<std::string>& event_names;
+  std::vector<double>& event_t;
+  std::vector<long>& event_rows;
+
+  void sample(const SystemState& state, const DriftSample& d) {
+    t.push_back(state.t);
+    for (size_t f = 0; f < fields.size(); ++f) {
+      std::vector<double>& v = body[f].values;
+      const auto w = static_cast<size_t>(fields[f]->width);
+      for (size_t i = 0; i < model.bodies.size(); ++i) {
+        v.resize(v.size() + w);
+        fields[f]->of_body(model.bodies[i], state.bodies[i], v.data() + v.size() - w);
+      }
+      for (const ParticleState& p : state.particles) {
+        v.resize(v.size() + w);
+        fields[f]->of_particle(p, v.data() + v.size() - w);
+      }
+    }
+    for (size_t f = 0; f < system.size(); ++f) {
+      std::vector<double>& v = diagnostics[f].values;
+      const auto w = static_cast<size_t>(system[f].width);
+      v.resize(v.size() + w, std::numeric_limits<double>::quiet_NaN());  // NaN: undefined here
+      if (!system[f].of_sample(d, v.data() + v.size() - w)) {
+        std::fill(v.end() - static_cast<std::ptrdiff_t>(w), v.end(),
+                  std::numeric_limits<double>::quiet_NaN());
+      }
+    }
+  }
+  void crossing(const EventHit& hit) {
+    event_names.push_back(hit.name);
+    event_t.push_back(hit.state.t);
+    event_rows.push_back(hit.index < specs.size() ? static_cast<long>(specs[hit.index].row) : -1L);
+  }
+};
+
 /// The scene's settings with those given as keywords on top (sim/run_settings.hpp: the keys of
 /// [simulation], and threads), validated; None leaves a setting as the scene has it.
 RunSettings settings_with(const Scene& scene, const py::dict& given) {
@@ -206,31 +251,36 @@ py::dict simulate(const Scene& scene_in, const py::dict& settings,
   const auto system = system_fields();
   std::vector<Series> diagnostics(system.size());
   for (size_t f = 0; f < system.size(); ++f) diagnostics[f].shape = {system[f].width};
-  DriftMonitor monitor(model, scene.initial, scene.conserved, s.drift_threshold, s);
-
   // Events: the scene's, those given as specs, then those written in Python; each crossing is kept as
   // (name, t, row), the row -1 for a Python event.
   std::vector<EventSpec> specs = scene.events;
   specs.insert(specs.end(), event_specs.begin(), event_specs.end());
-  RunHooks hooks;
-  hooks.events = make_events(model, specs);
-  for (const py::tuple& e : python_events) hooks.events.push_back(python_event(e));
+  std::vector<Event> events = make_events(model, specs);
+  for (const py::tuple& e : python_events) events.push_back(python_event(e));
   std::vector<std::string> event_names;
   std::vector<double> event_t;
   std::vector<long> event_rows;
-  hooks.on_event = [&](const EventHit& hit) {
-    event_names.push_back(hit.name);
-    event_t.push_back(hit.state.t);
-    event_rows.push_back(hit.index < specs.size() ? static_cast<long>(specs[hit.index].row) : -1L);
+  // What the run hands over, kept as the arrays of the output-field tables.
+  class Arrays final : public RunObserver {
+   public:
+    Arrays(Recorded& r) : r_(r) {}
+    void on_sample(const SystemState& state, const DriftSample& d) override { r_.sample(state, d); }
+    void on_event(const EventHit& hit) override { r_.crossing(hit); }
+
+   private:
+    Recorded& r_;
   };
+  Recorded recorded{model, fields, system, specs, t, body, diagnostics, event_names, event_t, event_rows};
+  Arrays arrays_observer(recorded);
   // Ctrl-C: Python's handler only sets a flag while the run holds no GIL; it is looked at every 50 ms
   // (taking the GIL for that moment), and the run then stops with the samples so far, which the caller
   // gets with the KeyboardInterrupt (python/tumble/trajectory.py).
   bool interrupted = false;
   auto next_check = std::chrono::steady_clock::now();
-  hooks.stop_requested = [&] {
+  Run run(model, scene.initial, s, scene.conserved);
+  run.watch(std::move(events)).attach(arrays_observer).stop_when([&] {
     const auto now = std::chrono::steady_clock::now();
-    if (now < next_check) return false;
+    if (now < next_check) return interrupted;
     next_check = now + std::chrono::milliseconds(50);
     py::gil_scoped_acquire python;
     if (PyErr_CheckSignals() != 0) {
@@ -242,36 +292,10 @@ py::dict simulate(const Scene& scene_in, const py::dict& settings,
       }
     }
     return interrupted;
-  };
+  });
   {
     py::gil_scoped_release free_python;  // the run touches no Python object but the callbacks, which take it
-    hooks.on_sample = [&](const SystemState& state) {
-      t.push_back(state.t);
-      for (size_t f = 0; f < fields.size(); ++f) {
-        std::vector<double>& v = body[f].values;
-        const auto w = static_cast<size_t>(fields[f]->width);
-        for (size_t i = 0; i < model.bodies.size(); ++i) {
-          v.resize(v.size() + w);
-          fields[f]->of_body(model.bodies[i], state.bodies[i], v.data() + v.size() - w);
-        }
-        for (const ParticleState& p : state.particles) {
-          v.resize(v.size() + w);
-          fields[f]->of_particle(p, v.data() + v.size() - w);
-        }
-      }
-      const DriftSample d = monitor.observe(state);
-      for (size_t f = 0; f < system.size(); ++f) {
-        std::vector<double>& v = diagnostics[f].values;
-        const auto w = static_cast<size_t>(system[f].width);
-        v.resize(v.size() + w, std::numeric_limits<double>::quiet_NaN());  // NaN: undefined here
-        if (!system[f].of_sample(d, v.data() + v.size() - w)) {
-          std::fill(v.end() - static_cast<std::ptrdiff_t>(w), v.end(),
-                    std::numeric_limits<double>::quiet_NaN());
-        }
-      }
-      return true;
-    };
-    simulate(model, scene.initial, s, hooks);
+    run.run();
   }
   py::dict out, arrays, units, frames, diag;
   Series times{std::move(t), {}};
@@ -298,7 +322,7 @@ py::dict simulate(const Scene& scene_in, const py::dict& settings,
   out["integrator"] = s.integrator;
   out["formulation"] = formulation_name(s.formulation);
   out["timestep"] = s.timestep;
-  if (auto w = monitor.warning()) out["warning"] = *w;
+  if (auto w = run.monitor().warning()) out["warning"] = *w;
   out["event_names"] = event_names;
   out["event_t"] = event_t;
   out["event_rows"] = event_rows;
