@@ -31,6 +31,9 @@
 namespace tumble {
 namespace {
 
+/// A sample's rows go to the file in pieces of about this size.
+constexpr size_t kFlushBytes = 1 << 20;
+
 /// What a continued file keeps of the file now under its final name (CsvContinuation).
 struct Kept {
   long samples;
@@ -60,7 +63,7 @@ class CsvFile {
     }
     if (kept) {
       copy_kept(header, *kept);
-    } else {
+    } else if (!header.empty()) {  // a file that is not a table (run.json) writes its own first line
       write(header + "\n");
     }
   }
@@ -245,6 +248,10 @@ class CsvWriter final : public TrajectoryWriter {
         }
       }
       buffer_.push_back('\n');
+      if (buffer_.size() > kFlushBytes) {  // a sample of 10⁵ bodies would hold 25 MB at once
+        trajectory_.write(std::string_view(buffer_.data(), buffer_.size()));
+        buffer_.clear();
+      }
     }
     trajectory_.write(std::string_view(buffer_.data(), buffer_.size()));
 
@@ -270,8 +277,8 @@ class CsvWriter final : public TrajectoryWriter {
 
   void commit(bool) override {
     if (info_.geometry && trajectory_.staged().kind() == io::OutputKind::staged) {
-      facts_.emplace(run_facts_path(trajectory_.path()), io::run_facts(info_, names_, warnings_),
-                     "run facts");
+      facts_.emplace(run_facts_path(trajectory_.path()), std::string(), "run facts");
+      io::run_facts(info_, names_, warnings_, [this](std::string_view text) { facts_->write(text); });
     }
     // Every file is complete before any gets its final name, and they get them together.
     std::vector<io::StagedFile*> staged;

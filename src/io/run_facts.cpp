@@ -24,10 +24,16 @@ Vec3 to_vec(const json& j) {
 /// UTF-8 replaced, never thrown on).
 class JsonText {
  public:
+  explicit JsonText(const std::function<void(std::string_view)>& write) : write_(write) {}
   std::string out;
   JsonText& raw(std::string_view s) {
     out += s;
+    if (out.size() > (1u << 20)) flush();  // 10⁵ bodies' facts would be 20 MB held at once
     return *this;
+  }
+  void flush() {
+    write_(out);
+    out.clear();
   }
   JsonText& number(double x) {
     if (!std::isfinite(x)) return raw("null");  // JSON has no NaN (nlohmann wrote null too)
@@ -52,6 +58,9 @@ class JsonText {
     return raw("]");
   }
   JsonText& key(std::string_view k) { return raw("\"").raw(k).raw("\":"); }
+
+ private:
+  const std::function<void(std::string_view)>& write_;
 };
 
 /// The bodies' geometries with the equal ones (mass properties and mesh, bit for bit) once: `kinds`
@@ -95,13 +104,13 @@ std::vector<size_t> distinct_kinds(const std::vector<BodyGeometry>& bodies,
 
 }  // namespace
 
-std::string run_facts(const TrajectoryInfo& info, const std::vector<std::string>& names,
-                      const std::vector<std::string>& warnings) {
+void run_facts(const TrajectoryInfo& info, const std::vector<std::string>& names,
+               const std::vector<std::string>& warnings, const std::function<void(std::string_view)>& write) {
   static const SceneGeometry none;
   const SceneGeometry& g = info.geometry ? *info.geometry : none;
   std::vector<const BodyGeometry*> kinds;
   const std::vector<size_t> kind_of = distinct_kinds(g.bodies, kinds);
-  JsonText j;
+  JsonText j(write);
   j.raw("{\n").key("format").text("tumble-run").raw(",\n").key("version").integer(2).raw(",\n");
   j.key("tumble_version").text(info.tumble_version).raw(",\n").key("scene_file").text(info.scene_path);
   j.raw(",\n").key("scene").text(info.scene_text).raw(",\n");
@@ -148,7 +157,7 @@ std::string run_facts(const TrajectoryInfo& info, const std::vector<std::string>
     j.raw(",").key("point_a").vec(s.point_a).raw(",").key("point_b").vec(s.point_b).raw("}");
   }
   j.raw("]\n}\n");
-  return std::move(j.out);
+  j.flush();
 }
 
 namespace {

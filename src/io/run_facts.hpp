@@ -5,17 +5,20 @@
 // the same bytes (only `tumble run --report` shows it). Private to tumble_io.
 #include <nlohmann/json.hpp>
 
+#include <functional>
+#include <string_view>
+
 #include "tumble/io/report.hpp"
 #include "tumble/io/trajectory_writer.hpp"
 
 namespace tumble::io {
 
-/// The run.json text. Format version 2: the distinct display meshes once, in "meshes", each body naming
+/// The run.json text, handed to `write` in pieces of about a megabyte. Format version 2: the distinct display meshes once, in "meshes", each body naming
 /// its own by index ("mesh", −1 for none: a report draws the box of its principal moments), so 10⁵
 /// identical boxes hold one mesh; written straight to text, numbers shortest round trip (std::to_chars),
 /// with no document tree (which cost a quarter of a 10⁵-body run and most of its memory).
-std::string run_facts(const TrajectoryInfo& info, const std::vector<std::string>& names,
-                      const std::vector<std::string>& warnings);
+void run_facts(const TrajectoryInfo& info, const std::vector<std::string>& names,
+               const std::vector<std::string>& warnings, const std::function<void(std::string_view)>& write);
 
 /// Fills the facts, names and geometry of `report` from a run.json (format version 1, each body with its
 /// mesh, or 2); InvalidArgument naming `file` and what is missing or malformed.
