@@ -60,7 +60,7 @@ SystemState Run::run() {
     };
   }
   hooks.resume_from = resume_;
-  return simulate(model_, initial_, settings_, hooks);
+  return simulate(model_, std::move(initial_), settings_, hooks);  // run() runs once: no copy of the start
 }
 
 }  // namespace tumble

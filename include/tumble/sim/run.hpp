@@ -46,7 +46,7 @@ class Run {
 
   /// The drift monitor, e.g. to restore a resumed run's warning before run().
   DriftMonitor& monitor() { return monitor_; }
-  /// Runs to the end, or until stop_when said so: the final state.
+  /// Runs to the end, or until stop_when said so: the final state. Once per Run.
   SystemState run();
   /// Whether stop_when ended the run.
   bool stopped() const { return stopped_; }
