@@ -166,6 +166,7 @@ struct RunInBatch {
   SystemCoordinates at_hi;            ///< the variables where a crossing was located
   std::unique_ptr<Integrator> probe;  ///< steps inside a step to locate crossings (never the run's own)
   std::vector<Hit> hits;
+  size_t next_hit = 0;  ///< the first of hits not reported yet
 };
 
 /// The runs of a simulate call: the system alone, or its lanes (checked against the system).
@@ -208,6 +209,194 @@ std::vector<RunInBatch> runs_of(const Model& model, const RunHooks& hooks, const
   }
   return runs;
 }
+
+}  // namespace
+
+namespace {
+
+/// A fixed-step integrator's way through a run: steps of h, the last before a sample shortened (or
+/// lengthened by rounding) to land on it, the clock on the grid t_last_sample + n·h; the full steps
+/// between two samples handed over together when nothing needs the states between them.
+class FixedSteps {
+ public:
+  FixedSteps(const Model& model, Formulation F, const RunSettings& settings, SystemCoordinates& x, double t0,
+             double t_end, const RunPoint* from, bool batch, bool events)
+      : model_(model),
+        F_(F),
+        settings_(settings),
+        x_(x),
+        h_(settings.timestep),
+        tiny_(1e-9 * settings.timestep),
+        t_end_(t_end),
+        t_last_sample_(t0),
+        integrator_(make_integrator(settings.integrator)),
+        batch_(batch),
+        events_(events) {
+    integrator_->set_threads(settings.threads);
+    chunks_ = !events && integrator_->fuses_steps(model);
+    if (from) {
+      integrator_->load_state(model, F, from->integrator);
+      step_ = from->stats.steps;
+      t_last_sample_ = from->t_last_sample;
+      steps_since_sample_ = from->steps_since_sample;
+    }
+  }
+
+  bool finished() const { return !(x_.t < t_end_ - tiny_); }
+  const SystemCoordinates& end() const { return x_; }
+  double t_start() const { return t_start_; }
+  double t_end() const { return x_.t; }
+  /// The last step's length: the h it was taken with.
+  double step_length() const { return step_h_; }
+  IntegratorStats stats() const {
+    return {step_, 0,
+            integrator_->evaluations_counted().value_or(step_ * integrator_->evaluations_per_step())};
+  }
+
+  /// Full steps that end before the sample time need nothing between them: they go together
+  /// (Integrator::steps, bit for bit the same), so fused integrators keep each block of bodies in cache
+  /// across them; at most kChunk, so that Ctrl-C is still answered promptly. The number taken: none
+  /// when fewer than two would be.
+  long chunk(double t_sample) {
+    if (!chunks_) return 0;
+    long count = 0;
+    for (double t = x_.t; count < kChunk && t_sample - t > h_ + tiny_ && t + h_ < t_sample - tiny_; t += h_)
+      ++count;
+    if (count <= 1) return 0;
+    t_start_ = x_.t;
+    integrator_->steps(model_, F_, x_, h_, count);
+    step_ += count;
+    steps_since_sample_ += count;
+    x_.t = t_last_sample_ + static_cast<double>(steps_since_sample_) * h_;  // the clock on its grid
+    return count;
+  }
+
+  void step(double t_sample) {
+    // The step that reaches the sample time (or comes within `tiny` of it, by the rounding of the
+    // accumulated time) is the remaining interval: x.t + (t_sample − x.t) is t_sample exactly when
+    // x.t ≥ t_sample / 2 (Sterbenz), so the state is computed at the sample time itself.
+    const double remaining = t_sample - x_.t;
+    step_h_ = remaining <= h_ + tiny_ ? remaining : h_;
+    if (events_) x_prev_ = x_;  // reuses the storage
+    t_start_ = x_.t;
+    integrator_->step(model_, F_, x_, step_h_);
+    ++step_;
+    // The clock on the grid t_sample_prev + n h (one rounding), not a running sum whose roundings add
+    // up (1e-12 s per 1e3 steps): the remaining interval before a sample, and the times integrators
+    // that keep a flow across steps evaluate it at, stay exact.
+    ++steps_since_sample_;
+    x_.t = x_.t >= t_sample - tiny_ ? t_sample
+                                    : t_last_sample_ + static_cast<double>(steps_since_sample_) * h_;
+  }
+
+  /// The variables of `run` at τ into the last step: one step of τ from its start by a second integrator
+  /// of the method, the run's own (the run's integrator itself is never handed a state it did not
+  /// produce, so locating a crossing does not change the run: splitting keeps its flows, exact its anchor).
+  void in_step(RunInBatch& run, double tau, SystemCoordinates& y) {
+    if (batch_) {
+      copy_bodies(x_prev_, run.first, run.n, y);
+    } else {
+      y = x_prev_;
+    }
+    if (!run.probe) {
+      run.probe = make_integrator(settings_.integrator);
+      run.probe->set_threads(batch_ ? 1 : settings_.threads);
+    }
+    run.probe->step(*run.model, F_, y, tau);
+  }
+
+  /// A sample at t, which is the step's end (a fixed step lands on the grid).
+  const SystemCoordinates& sample(double) const { return x_; }
+  void sampled(double t, double) {
+    t_last_sample_ = t;
+    steps_since_sample_ = 0;
+  }
+
+  void keep(RunPoint& p) const {
+    p.x = x_;
+    p.t_last_sample = t_last_sample_;
+    p.steps_since_sample = steps_since_sample_;
+    p.finished = finished();
+    p.stats = stats();
+    p.integrator = integrator_->save_state();
+  }
+
+  SystemState final_state(const SystemState&, Formulation) const { return to_state(F_, x_); }
+
+ private:
+  const Model& model_;
+  Formulation F_;
+  const RunSettings& settings_;
+  SystemCoordinates& x_;
+  double h_, tiny_;  ///< a step shorter than tiny is rounding of the sample grid, not a real step
+  double t_end_, t_last_sample_, t_start_ = 0.0, step_h_ = 0.0;
+  long step_ = 0, steps_since_sample_ = 0;
+  std::unique_ptr<Integrator> integrator_;
+  SystemCoordinates x_prev_;
+  bool batch_, events_, chunks_ = false;
+};
+
+/// An adaptive integrator's way through a run: its own accepted steps, each end clipped to t_end;
+/// samples and states inside a step from its dense output.
+class AdaptiveSteps {
+ public:
+  AdaptiveSteps(const Model& model, Formulation F, const RunSettings& settings, const SystemCoordinates& x,
+                double t_end, const RunPoint* from)
+      : integrator_(make_adaptive_integrator(settings.integrator, settings.tolerances)),
+        t_end_(t_end),
+        finished_(t_end <= x.t),
+        x_b_(x) {
+    integrator_->start(model, F, x,
+                       std::min(settings.timestep, std::max(settings.duration, settings.timestep)));
+    if (from) {
+      integrator_->load_state(from->integrator);
+      finished_ = from->finished;  // a point after the final sample: x is that sample's state
+      resumed_at_end_ = finished_;
+    }
+  }
+
+  bool finished() const { return finished_; }
+  const SystemCoordinates& end() const { return x_b_; }
+  double t_start() const { return t_a_; }
+  double t_end() const { return t_b_; }
+  double step_length() const { return t_b_ - t_a_; }
+  IntegratorStats stats() const { return integrator_->stats(); }
+  long chunk(double) { return 0; }
+
+  void step(double) {
+    t_a_ = integrator_->current_time();
+    integrator_->step();
+    t_b_ = std::min(integrator_->current_time(), t_end_);
+    x_b_ = integrator_->interpolate(t_b_);
+  }
+  void in_step(RunInBatch&, double tau, SystemCoordinates& y) const {
+    y = integrator_->interpolate(t_a_ + tau);
+  }
+  const SystemCoordinates& sample(double t) {
+    x_ = integrator_->interpolate(t);
+    return x_;
+  }
+  void sampled(double t, double t_end) { finished_ = t >= t_end; }
+
+  /// A run point after a step that held samples: its end, where the next step starts.
+  void keep(RunPoint& p) const {
+    p.x = x_b_;
+    p.steps_since_sample = 0;
+    p.finished = finished_;
+    p.stats = integrator_->stats();
+    p.integrator = integrator_->save_state();
+  }
+
+  SystemState final_state(const SystemState& last_sample, Formulation F) const {
+    return resumed_at_end_ ? to_state(F, x_b_) : last_sample;
+  }
+
+ private:
+  std::unique_ptr<AdaptiveIntegrator> integrator_;
+  double t_end_, t_a_ = 0.0, t_b_ = 0.0;
+  bool finished_, resumed_at_end_ = false;
+  SystemCoordinates x_b_, x_;
+};
 
 }  // namespace
 
@@ -329,6 +518,18 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
     any_events = any_events || !run.events->empty();
   }
   if (from) runs[0].g_prev = from->event_values;
+  // A run point, where nothing of a step is pending (after a step that held samples, or the start).
+  const auto keep = [&](const auto& stepper) {
+    if (!hooks.run_point) return;
+    RunPoint& p = *hooks.run_point;
+    p.t0 = t0;
+    p.next_sample = k_out;
+    p.t_last_sample = std::min(t0 + static_cast<double>(k_out - 1) * dt_out, t_end);
+    p.samples = samples;
+    p.event_values = runs[0].g_prev;
+    stepper.keep(p);
+    if (hooks.on_run_point) hooks.on_run_point(p);
+  };
   // The crossings of `run`'s events in the step [t_start, t_start + step_h] that ended in x_end, located
   // and put in time order in run.hits; g_prev becomes the values at the step's end.
   const auto find_hits = [&](RunInBatch& run, const SystemCoordinates& x_end, double t_start, double step_h,
@@ -369,194 +570,67 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
     return true;
   };
 
-  if (is_adaptive(settings.integrator)) {
-    RunInBatch& run = runs[0];  // an adaptive integrator steps one run (runs_of refuses batches)
-    const auto integrator = make_adaptive_integrator(settings.integrator, settings.tolerances);
-    integrator->start(model, F, x, std::min(h, std::max(settings.duration, h)));
-    bool finished = t_end <= t0;
-    if (from) {
-      integrator->load_state(from->integrator);
-      finished = from->finished;
-      // A point after the final sample: x is that sample's state (the step's end is clipped to t_end).
-      if (finished) return to_state(F, x);
-    }
-    // A run point after a step that held samples: nothing of the step is pending then.
-    auto keep = [&](const SystemCoordinates& at) {
-      if (!hooks.run_point) return;
-      RunPoint& p = *hooks.run_point;
-      p.t0 = t0;
-      p.x = at;
-      p.next_sample = k_out;
-      p.t_last_sample = std::min(t0 + static_cast<double>(k_out - 1) * dt_out, t_end);
-      p.steps_since_sample = 0;
-      p.samples = samples;
-      p.finished = finished;
-      p.stats = integrator->stats();
-      p.event_values = run.g_prev;
-      p.integrator = integrator->save_state();
-      if (hooks.on_run_point) hooks.on_run_point(p);
-    };
-    if (!from) keep(x);
-    while (!finished) {
-      const double t_a = integrator->current_time();
-      integrator->step();
-      const double t_b = std::min(integrator->current_time(), t_end);
-      const SystemCoordinates x_b = integrator->interpolate(t_b);
-      check(x_b, integrator->stats().steps, t_b - t_a);
-      if (stats) *stats = integrator->stats();
-      run.hits.clear();
-      if (any_events) {
-        find_hits(run, x_b, t_a, t_b - t_a,
-                  [&](double tau, SystemCoordinates& y) { y = integrator->interpolate(t_a + tau); });
-      }
-      // Samples and crossings inside this step, in time order.
-      size_t next_hit = 0;
-      bool sampled = false;
-      while (true) {
-        const double t_sample = std::min(t0 + static_cast<double>(k_out) * dt_out, t_end);
-        const bool hit_first = next_hit < run.hits.size() &&
-                               t_a + run.hits[next_hit].tau <= std::min(t_sample, t_b);
-        if (hit_first) {
-          if (report(run, run.hits[next_hit++])) return state;
-          continue;
-        }
-        if (t_sample > t_b) break;
-        x = integrator->interpolate(t_sample);
-        ++k_out;
-        finished = t_sample >= t_end;
-        sampled = true;
-        if (!emit(x, nullptr)) return state;
-        if (finished) break;
-      }
-      if (sampled) keep(x_b);
-      if (!finished && stop_requested && stop_requested()) {
-        emit(x_b, nullptr);
-        return state;
-      }
-    }
-    return state;
-  }
-
-  const auto integrator = make_integrator(settings.integrator);
-  integrator->set_threads(settings.threads);
-  long step = 0;
-  // A step shorter than this fraction of h is rounding of the sample grid, not a real step.
-  const double tiny = 1e-9 * h;
-  SystemCoordinates x_prev;
-  const bool chunks = !any_events && integrator->fuses_steps(model);
-  double t_last_sample = t0;
-  long steps_since_sample = 0;
-  if (from) {
-    integrator->load_state(model, F, from->integrator);
-    step = from->stats.steps;
-    t_last_sample = from->t_last_sample;
-    steps_since_sample = from->steps_since_sample;
-  }
-  // A run point right after a sample on the grid: nothing of the step is pending then.
-  auto keep = [&] {
-    if (!hooks.run_point) return;
-    RunPoint& p = *hooks.run_point;
-    p.t0 = t0;
-    p.x = x;
-    p.next_sample = k_out;
-    p.t_last_sample = t_last_sample;
-    p.steps_since_sample = steps_since_sample;
-    p.samples = samples;
-    p.finished = !(x.t < t_end - tiny);
-    p.stats = {step, 0,
-               integrator->evaluations_counted().value_or(step * integrator->evaluations_per_step())};
-    p.event_values = runs[0].g_prev;
-    p.integrator = integrator->save_state();
-    if (hooks.on_run_point) hooks.on_run_point(p);
-  };
-  if (!from) keep();
-  // Steps inside a step, to locate a crossing: a run's own integrator of the same method, from the
-  // step's start (the run's integrator itself is never handed a state it did not produce, so locating
-  // a crossing does not change the run — splitting keeps its flows, exact its anchor).
-  const auto probe_of = [&](RunInBatch& run) -> Integrator& {
-    if (!run.probe) {
-      run.probe = make_integrator(settings.integrator);
-      run.probe->set_threads(batch ? 1 : settings.threads);
-    }
-    return *run.probe;
-  };
-  while (x.t < t_end - tiny) {
-    const double t_sample = std::min(t0 + static_cast<double>(k_out) * dt_out, t_end);
-    if (chunks) {
-      // Full steps that end before the sample time need nothing between them: hand them over together
-      // (Integrator::steps, bit for bit the same), so fused integrators keep each block of bodies in
-      // cache across them. The chunk is bounded so that Ctrl-C is still answered promptly.
-      long count = 0;
-      for (double t = x.t; count < kChunk && t_sample - t > h + tiny && t + h < t_sample - tiny; t += h) {
-        ++count;
-      }
-      if (count > 1) {
-        const double t_start = x.t;
-        integrator->steps(model, F, x, h, count);
-        step += count;
-        steps_since_sample += count;
-        x.t = t_last_sample + static_cast<double>(steps_since_sample) * h;  // the clock on its grid
-        if (stats) {
-          *stats = {step, 0,
-                    integrator->evaluations_counted().value_or(step * integrator->evaluations_per_step())};
-        }
-        check(x, step, h, count, t_start);
+  const auto loop = [&](auto& stepper) -> SystemState {
+    // The one time loop: a step, the crossings inside it, then the samples it reached, in time order;
+    // run points after a step that held samples; a stop request answered after every step.
+    const auto finish = [&] { return batch ? to_state(F, stepper.end()) : state; };
+    if (!from) keep(stepper);
+    while (!stepper.finished()) {
+      const double t_sample = std::min(t0 + static_cast<double>(k_out) * dt_out, t_end);
+      if (const long n = stepper.chunk(t_sample); n > 0) {  // full steps between samples, taken together
+        check(stepper.end(), stepper.stats().steps, settings.timestep, n, stepper.t_start());
+        if (stats) *stats = stepper.stats();
         if (stop_requested && stop_requested()) {
-          emit(x, nullptr);
-          return to_state(F, x);
+          emit(stepper.end(), nullptr);
+          return to_state(F, stepper.end());
         }
         continue;
       }
-    }
-    // The step that reaches the sample time (or comes within `tiny` of it, by the rounding of the
-    // accumulated time) is the remaining interval: x.t + (t_sample − x.t) is t_sample exactly when
-    // x.t ≥ t_sample / 2 (Sterbenz), so the state is computed at the sample time itself.
-    const double remaining = t_sample - x.t;
-    const double step_h = remaining <= h + tiny ? remaining : h;
-    if (any_events) x_prev = x;  // reuses the storage
-    integrator->step(model, F, x, step_h);
-    ++step;
-    if (stats) {
-      *stats = {step, 0,
-                integrator->evaluations_counted().value_or(step * integrator->evaluations_per_step())};
-    }
-    // The clock on the grid t_sample_prev + n h (one rounding), not a running sum whose roundings add
-    // up (1e-12 s per 1e3 steps): the remaining interval before a sample, and the times integrators
-    // that keep a flow across steps evaluate it at, stay exact.
-    ++steps_since_sample;
-    x.t = x.t >= t_sample - tiny ? t_sample : t_last_sample + static_cast<double>(steps_since_sample) * h;
-    check(x, step, step_h);
-    if (any_events) {
+      stepper.step(t_sample);
+      const double t_a = stepper.t_start(), t_b = stepper.t_end();
+      check(stepper.end(), stepper.stats().steps, stepper.step_length());
+      if (stats) *stats = stepper.stats();
       for (RunInBatch& run : runs) {
+        run.hits.clear();
+        run.next_hit = 0;
         if (run.done || run.events->empty()) continue;
-        find_hits(run, x, x_prev.t, step_h, [&](double tau, SystemCoordinates& y) {
-          if (batch) {
-            copy_bodies(x_prev, run.first, run.n, y);
-          } else {
-            y = x_prev;
+        find_hits(run, stepper.end(), t_a, stepper.step_length(),
+                  [&](double tau, SystemCoordinates& y) { stepper.in_step(run, tau, y); });
+      }
+      bool sampled = false, ended_on_sample = false;
+      while (true) {
+        const double t_next = std::min(t0 + static_cast<double>(k_out) * dt_out, t_end);
+        const double limit = std::min(t_next, t_b);
+        for (RunInBatch& run : runs) {
+          // A crossing at τ into the step is at t_a + τ, which rounding may put past t_b: at most t_b.
+          while (!run.done && run.next_hit < run.hits.size() &&
+                 std::min(t_a + run.hits[run.next_hit].tau, t_b) <= limit) {
+            if (report(run, run.hits[run.next_hit++])) return finish();
           }
-          probe_of(run).step(*run.model, F, y, tau);
-        });
-        for (const Hit& hit : run.hits) {
-          if (report(run, hit)) return batch ? to_state(F, x) : state;
-          if (run.done) break;
         }
-      }
-    }
-    const bool stop = stop_requested && stop_requested();
-    if (x.t == t_sample || stop) {
-      const bool on_grid = x.t == t_sample;
-      if (on_grid) {
+        if (t_next > t_b) break;
+        const SystemCoordinates& at = stepper.sample(t_next);
         ++k_out;
-        t_last_sample = t_sample;
-        steps_since_sample = 0;
+        sampled = true;
+        ended_on_sample = t_next == t_b;
+        stepper.sampled(t_next, t_end);
+        if (!emit(at, nullptr)) return finish();
+        if (stepper.finished()) break;
       }
-      const bool go_on = emit(x, nullptr);
-      if (on_grid) keep();
-      if (!go_on || stop) return batch ? to_state(F, x) : state;
+      if (sampled) keep(stepper);
+      if (!stepper.finished() && stop_requested && stop_requested()) {
+        if (!ended_on_sample) emit(stepper.end(), nullptr);  // the state reached, off the grid
+        return finish();
+      }
     }
+    return stepper.final_state(state, F);
+  };
+  if (is_adaptive(settings.integrator)) {
+    AdaptiveSteps stepper(model, F, settings, x, t_end, from);
+    return loop(stepper);
   }
-  return to_state(F, x);
+  FixedSteps stepper(model, F, settings, x, t0, t_end, from, batch, any_events);
+  return loop(stepper);
 }
 
 }  // namespace tumble
