@@ -5,6 +5,7 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -215,9 +216,42 @@ RunSettings settings_with(const Scene& scene, const py::dict& given) {
   return s;
 }
 
+/// One lane per body of a scene whose bodies move independently, each watching the events given on
+/// every body (every_body[k], body = "*") and those given on it: each body locates its own crossings.
+std::vector<Lane> lanes_per_body(const Model& model, std::vector<Model>& lane_models,
+                                 const std::vector<EventSpec>& specs, const std::vector<bool>& every_body,
+                                 const std::function<void(size_t body, const EventHit&)>& record) {
+  const bool independent = model.particles.empty() &&
+                           std::all_of(model.forces.begin(), model.forces.end(),
+                                       [](const auto& f) { return f->acts_alike_on_every_body(); });
+  if (!independent) {
+    throw InvalidArgument(
+        "an event on every body (body = \"*\") needs bodies that move independently: no particles, and only "
+        "forces that act alike on every body (gravity, central gravity, damping or drag of all bodies)");
+  }
+  lane_models.resize(model.bodies.size());
+  std::vector<Lane> lanes(model.bodies.size());
+  for (size_t i = 0; i < model.bodies.size(); ++i) {
+    lane_models[i].bodies = {model.bodies[i]};
+    lane_models[i].forces = model.forces;
+    Lane& lane = lanes[i];
+    lane.model = &lane_models[i];
+    lane.label = fmt::format("body '{}'", model.bodies[i].name());
+    for (size_t k = 0; k < specs.size(); ++k) {
+      if (!every_body[k] && specs[k].row != i) continue;
+      EventSpec e = specs[k];
+      e.row = 0;  // the lane's one body
+      lane.events.push_back(make_event(lane_models[i], e));
+    }
+    lane.on_event = [record, i](const EventHit& hit) { record(i, hit); };  // a copy: the argument is a temporary
+  }
+  return lanes;
+}
+
 py::dict simulate(const Scene& scene_in, const py::dict& settings,
                   std::optional<std::vector<std::string>> field_names, std::optional<py::function> force,
-                  const std::vector<EventSpec>& event_specs, const std::vector<py::tuple>& python_events) {
+                  const std::vector<EventSpec>& event_specs, const std::vector<py::tuple>& python_events,
+                  const std::vector<bool>& every_body) {
   // A Python force joins a copy of the model (the force list is shared, the bodies copied); what it
   // conserves is unknown, so no drift is judged, and it runs on one thread (one interpreter).
   std::optional<Scene> with_force;
@@ -278,7 +312,24 @@ py::dict simulate(const Scene& scene_in, const py::dict& settings,
   bool interrupted = false;
   auto next_check = std::chrono::steady_clock::now();
   Run run(model, scene.initial, s, scene.conserved);
-  run.watch(std::move(events)).attach(arrays_observer).stop_when([&] {
+  std::vector<bool> every(specs.size(), false);  // the scene's own events first: on their bodies
+  std::copy(every_body.begin(), every_body.end(),
+            every.end() - static_cast<std::ptrdiff_t>(every_body.size()));
+  std::vector<Model> lane_models;
+  if (std::find(every.begin(), every.end(), true) != every.end()) {
+    if (!python_events.empty() || force) {
+      throw InvalidArgument(
+          "an event on every body (body = \"*\") cannot be watched with events or forces written in Python");
+    }
+    run.as_lanes(lanes_per_body(model, lane_models, specs, every, [&](size_t row, const EventHit& hit) {
+      event_names.push_back(hit.name);
+      event_t.push_back(hit.state.t);
+      event_rows.push_back(static_cast<long>(row));
+    }));
+  } else {
+    run.watch(std::move(events));
+  }
+  run.attach(arrays_observer).stop_when([&] {
     const auto now = std::chrono::steady_clock::now();
     if (now < next_check) return interrupted;
     next_check = now + std::chrono::milliseconds(50);
@@ -374,7 +425,7 @@ void bind_scene(py::module_& m) {
   m.def("parse_scene", &parse_scene, py::arg("text"), py::arg("path") = "scene.toml",
         "A scene from TOML text; `path` names it in messages and anchors relative mesh paths.");
   m.def("_simulate", &simulate, py::arg("scene"), py::arg("settings"), py::arg("fields"), py::arg("force"),
-        py::arg("event_specs"), py::arg("python_events"));
+        py::arg("event_specs"), py::arg("python_events"), py::arg("every_body"));
   m.def(
       "_run_settings",
       [] {

@@ -81,7 +81,7 @@ def simulate(scene: Scene | str | _os.PathLike, integrator: str | None = None, f
     KeyboardInterrupt) whose .trajectory holds the samples computed so far."""
     if isinstance(scene, (str, bytes)) or hasattr(scene, "__fspath__"):
         scene = load_scene(scene)
-    specs, python_events = [], []
+    specs, python_events, every = [], [], []
     for e in events or ():
         if isinstance(e, dict):
             e = Event(**e)
@@ -95,7 +95,11 @@ def simulate(scene: Scene | str | _os.PathLike, integrator: str | None = None, f
                 raise ValueError(f"event '{e.name}': direction {e.direction!r}: choose 'both', 'rising' or 'falling'")
             python_events.append((e.name, e.g, direction, bool(e.stop)))
         else:
-            specs.append(e.to_dict())
+            table = e.to_dict()
+            every.append(table.get("body") == "*")
+            if every[-1]:
+                table["body"] = (scene.bodies or ["*"])[0]  # checked as an event on the first body
+            specs.append(table)
     if specs:
         specs = _event_specs(scene, specs)
     if fields is None and not scene.output_fields:
@@ -106,7 +110,7 @@ def simulate(scene: Scene | str | _os.PathLike, integrator: str | None = None, f
                     output_interval=output_interval, rtol=rtol, atol=atol, threads=threads,
                     drift_threshold=drift_threshold)
     raw = _tumble._simulate(scene, settings, None if fields is None else list(fields), force, specs,
-                            python_events)
+                            python_events, every)
     trajectory = Trajectory._from_run(raw)
     if not trajectory.complete:
         raise Interrupted(trajectory)

@@ -222,7 +222,12 @@ class Event:
     Or a function of the whole state, g(t, position, orientation, velocity, omega) -> float, given the
     world arrays (N, 3) / (N, 4) of every body (centre of mass, w-first quaternion of the principal
     frame, centre-of-mass velocity, angular velocity): the event is a sign change of g. Such an event is
-    for simulate(events=[...]) only (it has no TOML form) and is evaluated in Python a few times per step."""
+    for simulate(events=[...]) only (it has no TOML form) and is evaluated in Python a few times per step.
+
+    body="*": the event on every body of a scene whose bodies move independently (tumble.bodies(...);
+    forces that act alike on every body: gravity, central gravity, damping of all bodies), each body's
+    crossings its own (Trajectory.events' rows), for simulate(events=[...]) only. Each body then is a
+    lane of the batched engine that locates its own crossings, so N bodies cost N, not N²."""
     name: str
     body: str | None = None
     column: str | None = None
@@ -241,8 +246,10 @@ class Event:
         return _table(self, skip=("g",))
 
 
-_SIMULATION_KEYS = ("duration", "timestep", "integrator", "formulation", "output_interval", "rtol", "atol",
-                    "drift_threshold")
+from . import _tumble  # noqa: E402
+
+# The [simulation] keys: those of the table of run settings (include/tumble/sim/run_settings.hpp).
+_SIMULATION_KEYS = tuple(s["key"] for s in _tumble._run_settings() if s["in_scene"])
 
 
 def scene_dict(bodies=(), particles=(), forces=(), events=(), fields=None, **simulation) -> dict:

@@ -34,6 +34,11 @@ Run& Run::resume_from(const RunPoint& point) {
   return *this;
 }
 
+Run& Run::as_lanes(std::vector<Lane> lanes) {
+  lanes_ = std::move(lanes);
+  return *this;
+}
+
 SystemState Run::run() {
   RunHooks hooks;
   hooks.events = events_;
@@ -44,9 +49,11 @@ SystemState Run::run() {
     stopped_ = stopped_ || (stop_ && stop_());
     return !stopped_;  // stop at this sample: everything handed over so far stays valid
   };
-  hooks.on_event = [this](const EventHit& hit) {
-    for (RunObserver* o : observers_) o->on_event(hit);
-  };
+  if (lanes_.empty()) {  // lanes report their own crossings
+    hooks.on_event = [this](const EventHit& hit) {
+      for (RunObserver* o : observers_) o->on_event(hit);
+    };
+  }
   if (stop_) {
     hooks.stop_requested = [this] {
       stopped_ = stopped_ || stop_();
@@ -60,6 +67,7 @@ SystemState Run::run() {
     };
   }
   hooks.resume_from = resume_;
+  hooks.lanes = std::move(lanes_);
   return simulate(model_, std::move(initial_), settings_, hooks);  // run() runs once: no copy of the start
 }
 

@@ -72,6 +72,29 @@ def test_settings_are_the_tables_and_a_wrong_kind_is_named():
         tumble.simulate(scene, integrator="rk5")
 
 
+def test_an_event_on_every_body_gives_each_its_own_crossings_as_if_alone():
+    # 40 boxes spun near the intermediate axis at different rates, as tumble.bodies arrays: each body is
+    # a lane that locates its own flips, so its crossings are those of the body simulated alone, bit for
+    # bit (the engine steps a body alike in any company).
+    n = 40
+    rng = np.random.default_rng(3)
+    omega = np.column_stack([rng.uniform(0.01, 0.1, n), rng.uniform(5, 15, n), np.zeros(n)])
+    moments = np.array([0.025, 0.05, 0.065])
+    scene = tumble.bodies(np.full(n, 6.0), moments, omega=omega, omega_frame="principal", gravity=[0, 0, -9.81],
+                          duration=3.0, timestep=1e-3, output_interval=0.1, integrator="rk4")
+    traj = tumble.simulate(scene, events=[Event("flip", body="*", column="w2")])
+    assert {e.body for e in traj.events} == {f"body_{i}" for i in range(n)}, "every body flips within 3 s"
+    for i in (0, 17, 39):
+        alone = tumble.bodies([6.0], moments, omega=omega[i:i + 1], omega_frame="principal", gravity=[0, 0, -9.81],
+                              duration=3.0, timestep=1e-3, output_interval=0.1, integrator="rk4")
+        one = tumble.simulate(alone, events=[Event("flip", body="body_0", column="w2")])
+        assert list(traj.event_times("flip", f"body_{i}")) == list(one.event_times("flip"))
+    # Bodies that do not move independently cannot be lanes: the message says why.
+    coupled = tumble.make_scene(bodies=[racket()], forces=[Torque("racket", torque=[0, 0, 1e-3])], duration=0.1)
+    with pytest.raises(ValueError, match="needs bodies that move independently"):
+        tumble.simulate(coupled, events=[Event("flip", body="*", column="w2")])
+
+
 def test_event_mistakes_raise_the_scene_files_message():
     scene = tumble.make_scene(bodies=[racket()], duration=1.0)
     with pytest.raises(ValueError, match=r"^events\[0\]: event 'e': no body or particle named \"rocket\"; did you mean \"racket\"\?"):

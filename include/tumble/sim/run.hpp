@@ -43,6 +43,9 @@ class Run {
   Run& keep_run_points(RunPoint& point);
   /// Continues the run from `point`, taken by a run of the same model, start, settings and events.
   Run& resume_from(const RunPoint& point);
+  /// Steps the system as these independent runs (RunHooks::lanes), each watching its own events (then
+  /// watch() gives none); the observers still see the whole system's samples.
+  Run& as_lanes(std::vector<Lane> lanes);
 
   /// The drift monitor, e.g. to restore a resumed run's warning before run().
   DriftMonitor& monitor() { return monitor_; }
@@ -62,6 +65,7 @@ class Run {
   std::function<bool()> stop_;
   RunPoint* point_ = nullptr;
   const RunPoint* resume_ = nullptr;
+  std::vector<Lane> lanes_;
   IntegratorStats stats_;
   bool stopped_ = false;
 };
