@@ -243,7 +243,9 @@ std::vector<Lane> lanes_per_body(const Model& model, std::vector<Model>& lane_mo
       e.row = 0;  // the lane's one body
       lane.events.push_back(make_event(lane_models[i], e));
     }
-    lane.on_event = [record, i](const EventHit& hit) { record(i, hit); };  // a copy: the argument is a temporary
+    lane.on_event = [record, i](const EventHit& hit) {
+      record(i, hit);
+    };  // a copy: the argument is a temporary
   }
   return lanes;
 }
