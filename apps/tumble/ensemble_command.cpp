@@ -16,6 +16,7 @@
 #include "tumble/io/ensemble.hpp"
 #include "tumble/io/trajectory_writer.hpp"
 #include "tumble/sim/drift_monitor.hpp"
+#include "tumble/study/runs.hpp"
 
 namespace tumble::cli {
 namespace {
@@ -66,7 +67,7 @@ std::filesystem::path write_trajectory(const EnsembleStudy& study, long i, const
   file.replace_extension(fmt::format(".run-{}{}", i, hdf5 ? ".h5" : ".csv"));
   std::unique_ptr<TrajectoryWriter> writer;
   std::optional<DriftMonitor> monitor;
-  study.run(i, [&](const Scene& s, const SystemState& state) {
+  run_alone(study, i, [&](const Scene& s, const SystemState& state) {
     if (!writer) {
       TrajectoryInfo info{s.text,
                           s.path.string(),

@@ -6,6 +6,7 @@
 
 #include "bindings.hpp"
 #include "tumble/io/ensemble.hpp"
+#include "tumble/study/runs.hpp"
 
 namespace py = pybind11;
 

@@ -12,6 +12,7 @@
 #include "../support/closed_forms.hpp"
 #include "../support/scene_files.hpp"
 #include "tumble/io/ensemble.hpp"
+#include "tumble/study/runs.hpp"
 
 namespace tumble {
 namespace {
@@ -199,14 +200,14 @@ final = ["orientation"]
   }
 }
 
-/// Every value of the rows of run_batch equals that of each run simulated alone (run(i)), bit for bit
+/// Every value of the rows of run_batch equals that of each run simulated alone (run_alone), bit for bit
 /// (NaN where NaN).
 void expect_batch_equals_runs_alone(const EnsembleStudy& s) {
   const std::vector<long> runs = every_run(s);
-  const std::vector<EnsembleRow> batch = s.run_batch(runs);
+  const std::vector<EnsembleRow> batch = run_batch(s, runs);
   ASSERT_EQ(batch.size(), runs.size());
   for (size_t k = 0; k < runs.size(); ++k) {
-    const EnsembleRow alone = s.run(runs[k]);
+    const EnsembleRow alone = run_alone(s, runs[k]);
     ASSERT_EQ(batch[k].run, runs[k]);
     ASSERT_EQ(batch[k].values.size(), alone.values.size());
     for (size_t c = 0; c < alone.values.size(); ++c) {
@@ -303,7 +304,7 @@ final = ["com_position"]
     return static_cast<size_t>(k - c.begin()) - 1;
   };
   int stopped = 0;
-  for (const EnsembleRow& r : s.run_batch(every_run(s))) {
+  for (const EnsembleRow& r : run_batch(s, every_run(s))) {
     const double v = r.values[0], t = (v + std::sqrt(v * v + 2 * 9.81)) / 9.81;
     if (t > 8.0) continue;  // still falling at the end
     // RK4 integrates the parabola exactly; the crossing is located to 4 ulp of t.
@@ -359,7 +360,7 @@ distribution = "list"
 values = [1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1e6, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0]
 )");
   try {
-    (void)s.run_batch(every_run(s));
+    (void)run_batch(s, every_run(s));
     FAIL() << "the blow-up went unnoticed";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("body 'racket' of run 7 became non-finite"), std::string::npos)

@@ -20,7 +20,7 @@
 # Exit status: 0 clean, 1 violations found (or a self-test case failed), 2 usage error.
 set -euo pipefail
 
-LAYERS=(math mass dynamics forces integrate sim io)
+LAYERS=(math mass dynamics forces integrate sim io study)
 
 declare -A LAYER_INDEX=()
 for i in "${!LAYERS[@]}"; do LAYER_INDEX[${LAYERS[i]}]=$i; done

@@ -3,7 +3,8 @@
 // table says how many runs, a base seed, and a distribution for any numeric value of the scene by its
 // path ("bodies.handle.angular_velocity[1]"); [ensemble.outputs] what each run reports. Run i is the
 // scene with the values drawn for i, read by the scene reader itself (every check and message is the
-// file's), simulated on its own, and summarised into one row of a table.
+// file's), simulated (study/runs.hpp: alone, or with the runs that share its structure as one batch),
+// and summarised into one row of a table.
 //
 // The draws of run i depend only on (seed, i, the variation's index): Philox4x64 (Random123, a
 // counter-based generator: Salmon et al., SC'11) keyed by the seed and counting (i, variation, draw),
@@ -82,14 +83,10 @@ class EnsembleStudy {
   /// The scene of run i: the file with run i's values, read by the scene reader. SceneError names the
   /// run and the values when they make the scene invalid (e.g. a negative mass).
   Scene scene_of_run(long i) const;
-  /// Runs run i alone: its row. `trajectory`, if given, receives every sample (for the chosen runs'
-  /// files).
-  EnsembleRow run(long i, const std::function<void(const Scene&, const SystemState&)>& trajectory = {}) const;
-  /// The rows of several runs, in their order: runs whose draws leave the structure alone (they change
-  /// bodies' values and events only) are stepped together as lanes of one system (sim/simulate.hpp,
-  /// Lane), many per SIMD pack; the others one group per structure (one run alone when none share it,
-  /// or for an adaptive integrator). Each row equals run(i)'s, bit for bit.
-  std::vector<EnsembleRow> run_batch(std::span<const long> runs) const;
+  /// The draw columns (indices after "run") of variations that change a run's structure: anything but
+  /// the values of a body or of an event. Runs with equal such draws share settings, forces and bodies'
+  /// count (study/runs.hpp steps them together).
+  const std::vector<size_t>& structural_columns() const;
 
  private:
   struct Impl;
@@ -121,13 +118,6 @@ std::vector<ColumnSummary> summarize(const std::vector<std::string>& columns,
 
 /// 0, 1, …, runs − 1: every run of the study.
 std::vector<long> every_run(const EnsembleStudy& study);
-
-/// Runs `runs` (indices) of the study on `threads` threads (0: one per core); each finished row goes to
-/// `done` (called under a lock, in any order); `stop()` is asked between runs (Ctrl-C). Returns the rows
-/// in the order of `runs`, those not run (stopped) left out.
-std::vector<EnsembleRow> run_ensemble(const EnsembleStudy& study, const std::vector<long>& runs, int threads,
-                                      const std::function<void(const EnsembleRow&)>& done,
-                                      const std::function<bool()>& stop = {});
 
 }  // namespace tumble
 
