@@ -54,9 +54,10 @@ int main(int argc, char** argv) {
   buffer << in.rdbuf();
   const std::string text = buffer.str();
   size_t tables = 0;
-  for (size_t at = text.find("[[bodies]]"); at != std::string::npos; at = text.find("[[bodies]]", at + 1)) ++tables;
-  std::printf("# %s: %zu bytes, %zu [[bodies]] tables; best of %d, parse and free the tree\n", argv[1], text.size(),
-              tables, repeats);
+  for (size_t at = text.find("[[bodies]]"); at != std::string::npos; at = text.find("[[bodies]]", at + 1))
+    ++tables;
+  std::printf("# %s: %zu bytes, %zu [[bodies]] tables; best of %d, parse and free the tree\n", argv[1],
+              text.size(), tables, repeats);
   const auto per = [&](double s) { return tables ? 1e6 * s / static_cast<double>(tables) : 0.0; };
 
   const std::string name = argv[1];
@@ -76,8 +77,11 @@ int main(int argc, char** argv) {
   // Do their errors say where? A value missing after '=', on line 3, column 12.
   const std::string bad = "[simulation]\nduration = 1\ntimestep = \n";
   std::printf("\nthe error for a value missing on line 3:\n");
-  std::printf("  toml++:  %s\n", error_of(bad, [](const std::string& t) { parse_tomlpp(t, "s.toml"); }).c_str());
-  std::printf("  toml11:  %s\n", error_of(bad, [](const std::string& t) { parse_toml11(t, "s.toml"); }).c_str());
-  std::printf("  cpptoml: %s\n", error_of(bad, [](const std::string& t) { parse_cpptoml(t, "s.toml"); }).c_str());
+  std::printf("  toml++:  %s\n",
+              error_of(bad, [](const std::string& t) { parse_tomlpp(t, "s.toml"); }).c_str());
+  std::printf("  toml11:  %s\n",
+              error_of(bad, [](const std::string& t) { parse_toml11(t, "s.toml"); }).c_str());
+  std::printf("  cpptoml: %s\n",
+              error_of(bad, [](const std::string& t) { parse_cpptoml(t, "s.toml"); }).c_str());
   return 0;
 }
