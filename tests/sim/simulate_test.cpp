@@ -3,13 +3,18 @@
 // chunk is still reported with the body and the interval of time.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <string>
 #include <vector>
 
+#include "../support/allocation_counter.hpp"
 #include "../support/random.hpp"
 #include "tumble/error.hpp"
 #include "tumble/forces/forces.hpp"
+#include "tumble/sim/event_specs.hpp"
+#include "tumble/sim/run.hpp"
 #include "tumble/sim/simulate.hpp"
 
 namespace tumble {
@@ -107,6 +112,71 @@ TEST(Simulate, ABlowUpInsideAChunkNamesTheBodyAndTheInterval) {
         << what;
     EXPECT_NE(what.find("integrator euler"), std::string::npos) << what;
   }
+}
+
+}  // namespace
+}  // namespace tumble
+
+namespace tumble {
+namespace {
+
+/// Heap allocations of a batch of 16 lanes (each its own model and an event watched every step) run by
+/// a Run with an observer, for `duration`.
+long allocations_of_a_batch(double duration, std::vector<double>& largest_w2) {
+  constexpr size_t kRuns = 16;
+  std::vector<Model> models(kRuns);
+  Model batch;
+  SystemState initial;
+  for (size_t r = 0; r < kRuns; ++r) {
+    models[r].add_body(
+        RigidBody::from_principal_moments(1.0 + 0.1 * static_cast<double>(r), Vec3(1, 2, 2.5), "b"));
+    models[r].add_force<UniformGravity>(Vec3(0, 0, -9.81));
+    batch.bodies.push_back(models[r].bodies[0]);
+    initial.bodies.push_back(
+        {Vec3(0, 0, 100), Quat::Identity(), Vec3::Zero(), Vec3(0.1, 5.0 + 0.1 * static_cast<double>(r), 0)});
+  }
+  batch.add_force<UniformGravity>(Vec3(0, 0, -9.81));
+  std::vector<Lane> lanes(kRuns);
+  largest_w2.assign(kRuns, 0.0);
+  for (size_t r = 0; r < kRuns; ++r) {
+    lanes[r].model = &models[r];
+    lanes[r].label = "run";
+    EventSpec below;  // the centre of mass below z = -1 km: watched at every step, never crossed
+    below.name = "deep";
+    below.field = find_column("com_z")->first;
+    below.component = 2;
+    below.value = -1000.0;
+    lanes[r].events.push_back(make_event(models[r], below));
+    lanes[r].on_variables = [&largest_w2, r](const SystemCoordinates& x, size_t first) {
+      largest_w2[r] = std::max(largest_w2[r], x.bodies[BodyColumns::omega + 1][first]);
+      return true;
+    };
+  }
+  struct Energy final : RunObserver {
+    double largest = 0;
+    void on_sample(const SystemState&, const DriftSample& d) override {
+      largest = std::max(largest, std::abs(d.energy_drift.value_or(0.0)));
+    }
+  } energy;
+  RunSettings s;
+  s.duration = duration;
+  s.timestep = 1e-3;
+  s.output_interval = 0.01;
+  Run run(batch, initial, s, Conservation{});
+  run.as_lanes(std::move(lanes)).attach(energy);
+  const test::CountAllocations count;
+  run.run();
+  return count.count();
+}
+
+// Stepping allocates nothing, observers, lanes and events attached: a run twice as long makes the same
+// allocations (those of setting it up), not more.
+TEST(Simulate, StepsAllocateNothingWithLanesEventsAndObservers) {
+  std::vector<double> w2_short, w2_long;
+  const long short_run = allocations_of_a_batch(1.0, w2_short);
+  const long long_run = allocations_of_a_batch(2.0, w2_long);
+  EXPECT_EQ(long_run, short_run);
+  for (double w : w2_long) EXPECT_GT(w, 4.9);  // the observer saw every lane's samples
 }
 
 }  // namespace
