@@ -36,7 +36,11 @@ namespace {
 class RowReducer {
  public:
   RowReducer(const EnsembleOutputs& outputs, const Scene& s, long run, std::vector<double> draws)
-      : o_(outputs), s_(s), F_(s.settings.formulation), n_(s.model.bodies.size()) {
+      : o_(outputs),
+        s_(s),
+        F_(s.settings.formulation),
+        n_(s.model.bodies.size()),
+        t_end_(s.initial.t + s.settings.duration) {
     row_.run = run;
     row_.values = std::move(draws);
     if (o_.drift) {
@@ -56,6 +60,7 @@ class RowReducer {
   RowReducer(RowReducer&&) = default;
 
   void on_event(const EventHit& hit) {
+    stopping_ = s_.events[hit.index].stop;  // its state comes next, as the run's last sample
     Tally& t = tallies_[hit.index];
     if (t.count++ == 0) t.first = hit.state.t;
     t.last = hit.state.t;
@@ -81,8 +86,12 @@ class RowReducer {
         take((n_ + p) * E + k, v[extrema_[k].component]);
       }
     }
-    copy_bodies(x, first, n_, last_);
-    last_.particles = x.particles;
+    // The last sample's variables, for the final values: the sample at the end time, or the state of a
+    // stopping event (copied only then, not at every sample).
+    if (x.t >= t_end_ || stopping_ || last_.bodies.size() == 0) {
+      copy_bodies(x, first, n_, last_);
+      last_.particles = x.particles;
+    }
     return true;
   }
 
@@ -144,6 +153,8 @@ class RowReducer {
   std::vector<double> lo_, hi_;
   std::vector<Tally> tallies_;
   double energy_drift_ = kNaN, momentum_drift_ = kNaN;
+  double t_end_;
+  bool stopping_ = false;   // the last crossing ends the run: its state is the last sample
   SystemCoordinates last_;  // the variables at the last sample
 };
 
