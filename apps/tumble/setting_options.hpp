@@ -20,6 +20,7 @@ class SettingOptions {
 
  private:
   std::map<std::string_view, std::optional<double>> numbers_;  // by key; stable addresses for CLI11
+  std::map<std::string_view, std::optional<long>> counts_;
   std::map<std::string_view, std::optional<std::string>> names_;
 };
 

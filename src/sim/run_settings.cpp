@@ -35,7 +35,7 @@ const RunSetting kSettings[] = {
      [](RunSettings& s, const Value& v) { s.integrator = text(v); },
      integrator_names},
     {"formulation", "--formulation", K::name, R::finite, "", "\"mixed\"", true,
-     "frame of the integrated velocities: world, mixed or body",
+     "frame of the integrated velocities (tutorial §VII)",
      [](const RunSettings& s) -> Value { return formulation_name(s.formulation); },
      [](RunSettings& s, const Value& v) { s.formulation = parse_formulation(text(v)); },
      formulations},
