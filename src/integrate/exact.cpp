@@ -6,7 +6,7 @@
 //   o(t) = o₀ + v₀ τ + ½ g τ²,  v(t) = v₀ + g τ,  τ = t − t₀.
 // Every state is evaluated from the anchor (t₀ and the state there), so a sample at 100 s carries the
 // rounding of one evaluation, not of 10⁵ steps: the timestep only sets where a run may stop. A state
-// that is not the one this integrator produced last (an event's bisection restarting inside a step, a
+// that is not the one this integrator produced last (an event located by restarting inside a step, a
 // user changing the state) becomes the new anchor.
 #include <fmt/format.h>
 

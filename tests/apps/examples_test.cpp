@@ -88,7 +88,7 @@ TEST(Examples, THandleFlipsAtTheClosedFormInterval) {
 }
 
 // The scene's own [[events]] flip: located inside the step, ω₂ = 0 at (k + ½)·T (ω₂ starts at its
-// extreme). Located by bisection on the run's RK4 states, the times carry only RK4's phase error:
+// extreme). Located on the run's RK4 states, the times carry only RK4's phase error:
 // 3e-12 s at the first flip, 9e-11 s by the fourth (ω h = 0.02, phase error growing with t); 1e-8 s
 // leaves a factor 100 for other machines' rounding.
 TEST(Examples, THandleEventsCatchEveryFlipAtTheClosedFormTime) {

@@ -158,7 +158,7 @@ TEST(Exact, RefusesATorqueAndNamesTheForceAndTheAlternative) {
 }
 
 TEST(Exact, AStateChangedBetweenStepsBecomesTheNewStart) {
-  // A user (or an event's bisection) hands the integrator a state it did not produce: the motion
+  // A user (or an event located inside a step) hands the integrator a state it did not produce: the motion
   // continues from that state, exactly as a fresh integrator would.
   Model model;
   model.add_body(RigidBody::from_principal_moments(1.0, Vec3(1.0, 2.0, 3.0), "body"));

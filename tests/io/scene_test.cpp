@@ -493,7 +493,7 @@ std::vector<EventHit> crossings(const Scene& s) {
 
 // A box spun near its intermediate axis: ω₂ (column w2) changes sign at (k + ½)·2K/λ, the exact
 // Euler–Poinsot flip interval (ω₂ starts at its extreme). The exact integrator's states are the closed
-// form to rounding and the crossing is bisected to 4 ulp of t, so the times agree to ~1e-12 s; 1e-9 s
+// form to rounding and the crossing is located to 4 ulp of t, so the times agree to ~1e-12 s; 1e-9 s
 // leaves room for the rounding of the elliptic functions near a zero of ω₂ (slope ~ |ω|²).
 TEST(SceneEvents, AColumnCrossingFindsEveryFlipAtTheExactSolutionsTimes) {
   const Scene s = parse_scene(R"([simulation]
@@ -527,7 +527,7 @@ column = "w2"
 // A body spinning steadily about its z axis at ω: its x axis makes the angle ωt with the world x axis
 // until t = π/ω, so 60° (rising) is reached at t = (π/3)/ω and, with stop = true, ends the run there.
 // RK4 at ωh = 0.02 rad: the steady spin about a principal axis is integrated with O((ωh)⁴) phase error per
-// unit time, ~1e-9 rad over the run; with bisection to 4 ulp the time is within ~1e-9 s.
+// unit time, ~1e-9 rad over the run; located to 4 ulp the time is within ~1e-9 s.
 TEST(SceneEvents, AnAngleCrossingStopsTheRunAtTheClosedFormTime) {
   const double omega = 2.0;
   const Scene s = parse_scene(fmt::format(R"([simulation]

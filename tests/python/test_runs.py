@@ -25,7 +25,7 @@ def racket(**extra):
 
 def test_events_find_every_flip_at_the_exact_solutions_times():
     # omega_2 changes sign at (k + 1/2) 2K/lambda. The exact integrator samples the closed form and the
-    # crossing is bisected to 4 ulp of t: 1e-9 s allows for the rounding of the elliptic functions.
+    # crossing is located to 4 ulp of t: 1e-9 s allows for the rounding of the elliptic functions.
     scene = tumble.make_scene(bodies=[racket()], duration=10.0, timestep=0.01, integrator="exact")
     traj = tumble.simulate(scene, events=[Event("flip", body="racket", column="w2")])
     T = tumble.euler_poinsot(tumble.box([0.1, 0.2, 0.3], mass=1.0).principal_moments, [0.01, 5.0, 0.0],
@@ -39,7 +39,7 @@ def test_events_find_every_flip_at_the_exact_solutions_times():
 def test_a_python_event_sees_every_body_and_can_stop_the_run():
     # A ball thrown up at 10 m/s from 2 m lands at t* = (v0 + sqrt(v0^2 + 2 g z0)) / g; the event is a
     # Python function of the whole state (centre-of-mass height of body 0), falling, stopping the run.
-    # RK4 integrates the parabola exactly (a cubic in t is within its order), so only the bisection's
+    # RK4 integrates the parabola exactly (a cubic in t is within its order), so only the event location's
     # 4 ulp and rounding remain.
     g, z0, v0 = 9.81, 2.0, 10.0
     scene = tumble.make_scene(bodies=[Body("ball", shape=Shape("sphere", radius=0.1), mass=1.0,

@@ -44,7 +44,7 @@ TEST(Events, ABallStopsWhenItLandsAtTheClosedFormTime) {
   const double t_star = (v0 + std::sqrt(v0 * v0 + 2 * g * z0)) / g;
   ASSERT_EQ(hits.size(), 1u);
   EXPECT_EQ(hits[0].name, "landing");
-  // RK4 integrates the parabola exactly; bisection resolves the time to 4 ulp of t ≈ 2.2 s.
+  // RK4 integrates the parabola exactly; regula falsi resolves the time to 4 ulp of t ≈ 2.2 s.
   EXPECT_NEAR(hits[0].state.t, t_star, 1e-14 * 4);
   EXPECT_LE(hits[0].state.bodies[0].o.z(), 0.0);
   EXPECT_GT(hits[0].state.bodies[0].o.z(), -1e-13);
@@ -70,7 +70,7 @@ TEST(Events, TheTHandleFlipsAreRecordedAtTheEllipticInterval) {
   const EulerPoinsot exact(Lambda, Quat::Identity(), w0);
   ASSERT_GE(flips.size(), 10u);
   for (size_t i = 1; i < flips.size(); ++i) {
-    // ω₂ ∝ sn: its zeros are 2K/λ apart; located to 4 ulp of t by bisection on exact steps.
+    // ω₂ ∝ sn: its zeros are 2K/λ apart; located to 4 ulp of t on exact steps.
     EXPECT_NEAR(flips[i] - flips[i - 1], exact.flip_interval(), 1e-13) << i;
   }
   // ω₂ starts positive, so the rising crossings are every second one, beginning with the second.
@@ -80,7 +80,7 @@ TEST(Events, TheTHandleFlipsAreRecordedAtTheEllipticInterval) {
 
 TEST(Events, AdaptiveRunsLocateEventsOnTheirDenseOutput) {
   // The same landing with dopri45: its continuous extension is exact for the parabola (degree 2 ≤ 4),
-  // so the landing time is again exact to the bisection's resolution.
+  // so the landing time is again exact to the location's resolution.
   const Model model = thrown_ball();
   RunSettings rs;
   rs.duration = 10.0;
