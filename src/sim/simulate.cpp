@@ -210,10 +210,6 @@ std::vector<RunInBatch> runs_of(const Model& model, const RunHooks& hooks, const
   return runs;
 }
 
-}  // namespace
-
-namespace {
-
 /// A fixed-step integrator's way through a run: steps of h, the last before a sample shortened (or
 /// lengthened by rounding) to land on it, the clock on the grid t_last_sample + n·h; the full steps
 /// between two samples handed over together when nothing needs the states between them.
@@ -426,7 +422,7 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
           "of events)");
     }
   }
-  // Which run a body belongs to, for messages about it: "run 17: body 'box'".
+  // A body named for messages, with its run in a batch: "body 'box' of run 17".
   const auto body_named = [&](const SystemCoordinates& y) -> std::string {
     if (!batch) return first_non_finite(model, y);
     const size_t i = first_non_finite_body(y);
