@@ -156,24 +156,42 @@ std::vector<double> EnsembleStudy::draws(long i) const {
   return out;
 }
 
-Scene EnsembleStudy::scene_of_run(long i) const {
-  toml::table root = impl_->root;
+namespace {
+
+/// Variation v's values among a run's draws (v.width of them, from `at`).
+std::vector<double> values_of(const Variation& v, const std::vector<double>& values, size_t at) {
+  return {values.begin() + static_cast<std::ptrdiff_t>(at),
+          values.begin() + static_cast<std::ptrdiff_t>(at) + v.width};
+}
+
+}  // namespace
+
+std::string EnsembleStudy::run_label(long i) const {
   const std::vector<double> values = draws(i);
   size_t at = 0;
   std::vector<std::string> said;
   for (const Variation& v : impl_->study.variations) {
-    const std::vector<double> x(values.begin() + static_cast<std::ptrdiff_t>(at),
-                                values.begin() + static_cast<std::ptrdiff_t>(at) + v.width);
+    const std::vector<double> x = values_of(v, values, at);
     at += static_cast<size_t>(v.width);
-    set_values(root, v.path, x);
     said.push_back(fmt::format("{} = {}", v.path,
                                x.size() == 1 ? fmt::format("{:.17g}", x[0])
                                              : fmt::format("[{:.17g}]", fmt::join(x, ", "))));
   }
+  return fmt::format("run {} ({})", i, fmt::join(said, ", "));
+}
+
+Scene EnsembleStudy::scene_of_run(long i) const {
+  toml::table root = impl_->root;
+  const std::vector<double> values = draws(i);
+  size_t at = 0;
+  for (const Variation& v : impl_->study.variations) {
+    set_values(root, v.path, values_of(v, values, at));
+    at += static_cast<size_t>(v.width);
+  }
   try {
     return scene::read_scene(root, impl_->text, impl_->path);
   } catch (const SceneError& e) {
-    throw SceneError(fmt::format("run {} ({}): {}", i, fmt::join(said, ", "), e.what()));
+    throw SceneError(fmt::format("{}: {}", run_label(i), e.what()));
   }
 }
 

@@ -186,11 +186,24 @@ EnsembleRow run_alone(const EnsembleOutputs& outputs, const Scene& s, long i, st
   return std::move(reducer).row();
 }
 
+/// f(), with run i and its draws named in an error of its run (a blow-up, an event that is not finite).
+template <class F>
+EnsembleRow naming_run(const EnsembleStudy& study, long i, const F& f) {
+  try {
+    return f();
+  } catch (const InvalidArgument& e) {
+    throw InvalidArgument(fmt::format("{}: {}", study.run_label(i), e.what()));
+  } catch (const Error& e) {
+    throw Error(fmt::format("{}: {}", study.run_label(i), e.what()));
+  }
+}
+
 }  // namespace
 
 EnsembleRow run_alone(const EnsembleStudy& study, long i,
                       const std::function<void(const Scene&, const SystemState&)>& trajectory) {
-  return run_alone(study.outputs(), study.scene_of_run(i), i, study.draws(i), trajectory);
+  const Scene s = study.scene_of_run(i);
+  return naming_run(study, i, [&] { return run_alone(study.outputs(), s, i, study.draws(i), trajectory); });
 }
 
 std::vector<EnsembleRow> run_batch(const EnsembleStudy& study, std::span<const long> runs) {
@@ -223,8 +236,11 @@ std::vector<EnsembleRow> run_batch(const EnsembleStudy& study, std::span<const l
     std::optional<Model> stacked;
     if (group.size() > 1 && !is_adaptive(first.settings.integrator)) stacked = stack_runs(models);
     if (!stacked) {  // each run alone
-      for (const size_t k : group)
-        rows[k] = run_alone(study.outputs(), scenes[k], runs[k], std::move(drawn[k]));
+      for (const size_t k : group) {
+        rows[k] = naming_run(study, runs[k], [&] {
+          return run_alone(study.outputs(), scenes[k], runs[k], std::move(drawn[k]));
+        });
+      }
       continue;
     }
     SystemState initial;
@@ -238,7 +254,7 @@ std::vector<EnsembleRow> run_batch(const EnsembleStudy& study, std::span<const l
       RowReducer& reducer = reducers.emplace_back(study.outputs(), s, runs[k], std::move(drawn[k]));
       Lane& lane = hooks.lanes.emplace_back();
       lane.model = &s.model;
-      lane.label = fmt::format("run {}", runs[k]);
+      lane.label = study.run_label(runs[k]);
       lane.events = make_events(s.model, s.events);
       lane.on_variables = [&reducer](const SystemCoordinates& x, size_t row) {
         return reducer.on_variables(x, row);

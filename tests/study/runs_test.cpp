@@ -210,7 +210,20 @@ values = [1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1e6, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 
     (void)run_batch(s, every_run(s));
     FAIL() << "the blow-up went unnoticed";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("body 'racket' of run 7 became non-finite"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find(
+                  "body 'racket' of run 7 (bodies.racket.angular_velocity[1] = 1000000) became non-finite"),
+              std::string::npos)
+        << e.what();
+  }
+  try {
+    (void)run_alone(s, 7);
+    FAIL() << "the blow-up of run 7 alone went unnoticed";
+  } catch (const Error& e) {
+    EXPECT_EQ(
+        std::string(e.what()).rfind("run 7 (bodies.racket.angular_velocity[1] = 1000000): the state of body "
+                                    "'racket' became non-finite",
+                                    0),
+        0u)
         << e.what();
   }
 }

@@ -80,6 +80,8 @@ class EnsembleStudy {
   const std::vector<std::string>& columns() const;
   /// The drawn values of run i (one per column after "run", up to the outputs).
   std::vector<double> draws(long i) const;
+  /// "run 17 (bodies.racket.mass = 0.31)": run i with its drawn values, as messages about it name it.
+  std::string run_label(long i) const;
   /// The scene of run i: the file with run i's values, read by the scene reader. SceneError names the
   /// run and the values when they make the scene invalid (e.g. a negative mass).
   Scene scene_of_run(long i) const;
