@@ -272,7 +272,7 @@ std::vector<EnsembleRow> run_ensemble(const EnsembleStudy& study, const std::vec
                                       const std::function<bool()>& stop) {
   const unsigned n = threads > 0 ? static_cast<unsigned>(threads)
                                  : std::max(1u, std::thread::hardware_concurrency());
-  // Batches of consecutive runs, stepped together (EnsembleStudy::run_batch): large enough to fill the
+  // Batches of consecutive runs, stepped together (run_batch): large enough to fill the
   // engine's packs and blocks many times over, small enough that every thread gets several (a row
   // does not depend on the batch it is in) and that Ctrl-C, asked between batches, is answered soon.
   const size_t batch = std::clamp<size_t>(runs.size() / (4 * n), 1, kBatchRuns);
