@@ -9,17 +9,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 n=${1:-100000}
 repeats=${2:-3}
-packages=(g++ libtomlplusplus-dev libtoml11-dev libcpptoml-dev)
-missing=()
-for p in "${packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  SUDO=""
-  [ "$(id -u)" -ne 0 ] && SUDO="sudo"
-  $SUDO apt-get update -qq
-  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
-fi
+bash scripts/apt-install-missing.sh --label toml_readers g++ libtomlplusplus-dev libtoml11-dev libcpptoml-dev
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 # toml++ compiled as tumble compiles it (src/io/CMakeLists.txt: floats through std::from_chars).

@@ -8,24 +8,15 @@ packages=(
   chromium
   python3 python3-numpy python3-h5py python3-dev python3-pybind11 python3-pytest python3-venv python3-pip python3-setuptools python3-tomli-w python3-matplotlib
 )
-missing=()
-for p in "${packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
 # The report viewer (viewer/) is built with node and npm: the machine's own where present (Debian's npm
 # package conflicts with a Node installed otherwise), Debian's nodejs and npm where node is missing.
 if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
-  missing+=(nodejs npm)
+  packages+=(nodejs npm)
 fi
-if [ ${#missing[@]} -eq 0 ]; then
-  echo "install-deps: all ${#packages[@]} Debian packages present"
-  exit 0
-fi
-SUDO=""
-[ "$(id -u)" -ne 0 ] && SUDO="sudo"
-echo "install-deps: installing ${missing[*]}"
-export DEBIAN_FRONTEND=noninteractive
-$SUDO apt-get update -qq
-$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+bash "$(dirname "$0")/apt-install-missing.sh" --label install-deps "${packages[@]}"
 # clang++ from the clang-14 package is named clang++-14; give CMake presets a plain clang++.
-command -v clang++ >/dev/null || $SUDO ln -sf /usr/bin/clang++-14 /usr/local/bin/clang++
+if ! command -v clang++ >/dev/null; then
+  SUDO=""
+  [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  $SUDO ln -sf /usr/bin/clang++-14 /usr/local/bin/clang++
+fi

@@ -19,18 +19,7 @@ packages=(
   libeigen3-dev libxsimd-dev libboost-dev libfmt-dev libassimp-dev libtomlplusplus-dev libhdf5-dev
   libmujoco-dev libbullet-dev libode-dev
 )
-missing=()
-for p in "${packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  SUDO=""
-  [ "$(id -u)" -ne 0 ] && SUDO="sudo"
-  echo "peers: installing ${missing[*]}"
-  export DEBIAN_FRONTEND=noninteractive
-  $SUDO apt-get update -qq
-  $SUDO apt-get install -y -qq "${missing[@]}"
-fi
+bash scripts/apt-install-missing.sh --label peers "${packages[@]}"
 
 build=build/peers
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DTUMBLE_BUILD_PEERS=ON \

@@ -8,16 +8,14 @@
 #include <numbers>
 #include <set>
 
+#include "../support/racket_study.hpp"
 #include "../support/scene_files.hpp"
 #include "tumble/io/ensemble.hpp"
 
 namespace tumble {
 namespace {
 
-// A box spun near its intermediate axis (no mesh: fast), with a flip event.
-EnsembleStudy study(const std::string& ensemble) {
-  return EnsembleStudy::parse(test::racket_scene(8.0) + ensemble, "study.toml");
-}
+EnsembleStudy study(const std::string& ensemble) { return test::racket_study(ensemble); }
 
 /// The draws of every run, column k.
 std::vector<double> column(const EnsembleStudy& s, size_t k) {

@@ -8,16 +8,14 @@
 #include <cmath>
 
 #include "../support/closed_forms.hpp"
+#include "../support/racket_study.hpp"
 #include "../support/scene_files.hpp"
 #include "tumble/study/runs.hpp"
 
 namespace tumble {
 namespace {
 
-// A box spun near its intermediate axis (no mesh: fast), with a flip event.
-EnsembleStudy study(const std::string& ensemble) {
-  return EnsembleStudy::parse(test::racket_scene(8.0) + ensemble, "study.toml");
-}
+EnsembleStudy study(const std::string& ensemble) { return test::racket_study(ensemble); }
 
 TEST(StudyRuns, TheTableIsTheSameForAnyNumberOfThreads) {
   const EnsembleStudy s = study(R"([ensemble]
