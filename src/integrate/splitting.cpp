@@ -483,7 +483,10 @@ class Strang {
       c.omega(static_cast<Eigen::Index>(k)).store_aligned(at(FlowColumns::omega + k, i));
   }
 
-  /// New flows for the bodies of the pack whose state is not what their last drift left.
+  /// New flows for the bodies of the pack whose state is not what their last drift left. A body whose
+  /// state is, bit for bit, the one its flow was set up from (with the same Λ) keeps that flow, started
+  /// again at τ = h: setting it up anew would give the same flow. This is how a crossing is located:
+  /// its probe steps the same start several times, by different lengths (sim/steppers.hpp).
   void set_up(Formulation F, const Coordinates<Pack>& c, const Vec3T<Pack>& Lambda,
               const decltype(Pack() < Pack())& kept, size_t i, size_t n) {
     alignas(64) double q[4][kWidth], w[3][kWidth], L[3][kWidth], keep[kWidth];
@@ -500,7 +503,14 @@ class Strang {
       const Vec3 omega_l(w[0][l], w[1][l], w[2][l]);
       const Vec3 w_b = F == Formulation::world ? Vec3(q_l.conjugate() * omega_l) : omega_l;
       FreeFlight& ff = flights_[i + l];
-      ff.flow.emplace(Vec3(L[0][l], L[1][l], L[2][l]), q_l, w_b);
+      const Vec3 Lambda_l(L[0][l], L[1][l], L[2][l]);
+      const auto same_bits = [](const auto& a, const auto& b) {  // == would take −0 for +0
+        return std::memcmp(a.data(), b.data(), sizeof(double) * 3) == 0;
+      };
+      if (ff.flow && same_bits(ff.w0, w_b) && same_bits(ff.flow->Lambda(), Lambda_l) &&
+          std::memcmp(ff.q0.coeffs().data(), q_l.coeffs().data(), sizeof(double) * 4) == 0)
+        continue;
+      ff.flow.emplace(Lambda_l, q_l, w_b);
       ff.q0 = q_l;
       ff.w0 = w_b;
       adopt(i + l);

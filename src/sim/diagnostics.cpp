@@ -5,15 +5,11 @@
 namespace tumble {
 
 void add_body_invariants(const RigidBody& b, const Coordinates<double>& x, Formulation F, Invariants& inv) {
-  const Vec3 omega_b = F == Formulation::world ? rotate_inverse<double>(x.q, x.omega) : x.omega;
-  const Vec3 v = F == Formulation::body ? rotate<double>(x.q, x.v) : x.v;
-  const Vec3 p = b.mass() * v;  // p = m v
-  // ½ m v·v + ½ ^bω·Λ^bω (the kinetic_energy of quantities.hpp, term by term)
-  inv.kinetic_energy += 0.5 * b.mass() * v.squaredNorm() +
-                        0.5 * omega_b.dot(b.Lambda().cwiseProduct(omega_b));
-  inv.linear_momentum += p;
-  inv.angular_momentum += x.o.cross(p) +
-                          rotate<double>(x.q, Vec3(b.Lambda().cwiseProduct(omega_b)));  // o × p + Iω
+  BodySums<double> sum;
+  add_body_sums<double>(b.mass(), b.Lambda(), x, F, sum);
+  inv.kinetic_energy += sum.kinetic_energy;
+  inv.linear_momentum += sum.linear_momentum;
+  inv.angular_momentum += sum.angular_momentum;
 }
 
 namespace {

@@ -282,6 +282,7 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
       if (!ready) to_state(F, y, state);
       go_on = on_sample(ready ? *ready : state);
     }
+    if (hooks.on_variables) go_on = hooks.on_variables(y, 0) && go_on;
     for (RunInBatch& run : runs) {
       if (run.done) continue;
       bool more = true;

@@ -14,8 +14,8 @@
 #include <optional>
 #include <thread>
 
+#include "lane_samples.hpp"
 #include "tumble/forces/stack.hpp"
-#include "tumble/sim/drift_monitor.hpp"
 #include "tumble/sim/event_specs.hpp"
 #include "tumble/sim/output_fields.hpp"
 
@@ -30,69 +30,36 @@ constexpr size_t kBatchRuns = 512;
 
 namespace {
 
-/// A run's row, gathered as the run goes from its samples (its variables, unconverted: VariableColumn,
-/// DriftMonitor::observe of variables) and crossings: the same code for a run simulated alone and for a
-/// lane of a batch, so their rows are the same numbers.
+/// A run's row, gathered as the run goes: its crossings, its last state (for the final values), and its
+/// samples' extrema and drifts from lane `lane` of a LaneSamples (which the caller feeds the samples). The same code for a run simulated alone and for a lane of a batch, so their rows are
+/// the same numbers.
 class RowReducer {
  public:
-  RowReducer(const EnsembleOutputs& outputs, const Scene& s, long run, std::vector<double> draws)
-      : o_(outputs),
-        s_(s),
-        F_(s.settings.formulation),
-        n_(s.model.bodies.size()),
-        t_end_(s.initial.t + s.settings.duration) {
+  RowReducer(const EnsembleOutputs& outputs, const Scene& s, long run, std::vector<double> draws,
+             const LaneSamples& samples, size_t lane)
+      : o_(outputs), s_(s), n_(s.model.bodies.size()), samples_(samples), lane_(lane) {
     row_.run = run;
     row_.values = std::move(draws);
-    if (o_.drift) {
-      SystemState scratch;
-      const Invariants at_start = invariants(s.model, F_, to_coordinates(F_, s.initial), 0, scratch);
-      monitor_.emplace(s.model, at_start, s.conserved, 0.0, s.settings);
-    }
-    for (const std::string& c : o_.extrema) {
-      const auto [field, k] = *find_column(c);
-      extrema_.emplace_back(*field, k);
-    }
-    const size_t rows = n_ + s.model.particles.size();
-    lo_.assign(rows * extrema_.size(), kNaN);
-    hi_.assign(rows * extrema_.size(), kNaN);
     tallies_.resize(s.events.size());
   }
   RowReducer(RowReducer&&) = default;
 
+  /// Whether a stopping crossing has ended the run (its state is the run's last).
+  bool stopped() const { return stopped_; }
+
   void on_event(const EventHit& hit) {
-    stopping_ = s_.events[hit.index].stop;  // its state comes next, as the run's last sample
     Tally& t = tallies_[hit.index];
     if (t.count++ == 0) t.first = hit.state.t;
     t.last = hit.state.t;
+    if (s_.events[hit.index].stop) {
+      stopped_ = true;
+      last_ = hit.state;
+    }
   }
 
-  /// A sample: the run's bodies are rows first … first + n − 1 of x.
-  bool on_variables(const SystemCoordinates& x, size_t first) {
-    if (monitor_) {
-      const DriftSample d = monitor_->observe(x, first);
-      if (d.energy_drift) energy_drift_ = larger(energy_drift_, std::abs(*d.energy_drift));
-      if (d.angular_momentum_drift)
-        momentum_drift_ = larger(momentum_drift_, std::abs(*d.angular_momentum_drift));
-    }
-    const size_t E = extrema_.size();
-    for (size_t r = 0; r < n_; ++r) {
-      for (size_t k = 0; k < E; ++k)
-        take(r * E + k, extrema_[k].column(s_.model.bodies[r], x.bodies, first + r, F_));
-    }
-    for (size_t p = 0; p < x.particles.size(); ++p) {  // a run alone may have particles
-      for (size_t k = 0; k < E; ++k) {
-        double v[4];
-        extrema_[k].field->of_particle(x.particles[p], v);
-        take((n_ + p) * E + k, v[extrema_[k].component]);
-      }
-    }
-    // The last sample's variables, for the final values: the sample at the end time, or the state of a
-    // stopping event (copied only then, not at every sample).
-    if (x.t >= t_end_ || stopping_ || last_.bodies.size() == 0) {
-      copy_bodies(x, first, n_, last_);
-      last_.particles = x.particles;
-    }
-    return true;
+  /// The state the run ended in (what simulate returned; a lane's bodies of it), unless it stopped.
+  void end(SystemState last) {
+    if (!stopped_) last_ = std::move(last);
   }
 
   EnsembleRow row() && {
@@ -104,58 +71,37 @@ class RowReducer {
         v.push_back(t.count > 1 ? (t.last - t.first) / static_cast<double>(t.count - 1) : kNaN);
       }
     }
-    for (size_t i = 0; i < lo_.size(); ++i) {
-      v.push_back(lo_[i]);
-      v.push_back(hi_[i]);
-    }
+    samples_.append_extrema(lane_, v);
     const std::vector<const BodyField*> finals = o_.final_fields.empty() ? std::vector<const BodyField*>{}
                                                                          : body_fields(o_.final_fields);
-    const SystemState last = to_state(F_, last_);
     for (size_t r = 0; r < n_ + s_.model.particles.size(); ++r) {
       for (const BodyField* f : finals) {
         double x[4];
-        field_of_row(*f, s_.model, last, r, x);
+        field_of_row(*f, s_.model, last_, r, x);
         v.insert(v.end(), x, x + f->width);
       }
     }
     if (o_.drift) {
-      v.push_back(energy_drift_);
-      v.push_back(momentum_drift_);
+      v.push_back(samples_.energy_drift_max(lane_));
+      v.push_back(samples_.angular_momentum_drift_max(lane_));
     }
     return std::move(row_);
   }
 
  private:
-  static double larger(double current, double x) { return std::isnan(current) || x > current ? x : current; }
-  void take(size_t at, double v) {
-    double& l = lo_[at];
-    double& h = hi_[at];
-    l = std::isnan(l) || v < l ? v : l;
-    h = larger(h, v);
-  }
   struct Tally {
     long count = 0;
     double first = kNaN, last = kNaN;
   };
-  struct Extremum {
-    Extremum(const BodyField& f, int k) : field(&f), component(k), column(f, k) {}
-    const BodyField* field;
-    int component;
-    VariableColumn column;
-  };
   const EnsembleOutputs& o_;
   const Scene& s_;
-  Formulation F_;
   size_t n_;
-  std::optional<DriftMonitor> monitor_;
+  const LaneSamples& samples_;
+  size_t lane_;
   EnsembleRow row_;
-  std::vector<Extremum> extrema_;  // per (row, column): min and max
-  std::vector<double> lo_, hi_;
   std::vector<Tally> tallies_;
-  double energy_drift_ = kNaN, momentum_drift_ = kNaN;
-  double t_end_;
-  bool stopping_ = false;   // the last crossing ends the run: its state is the last sample
-  SystemCoordinates last_;  // the variables at the last sample
+  bool stopped_ = false;
+  SystemState last_;
 };
 
 /// The settings a run of a study is simulated with: the runs are spread over the threads, not the
@@ -169,7 +115,9 @@ RunSettings study_settings(const Scene& s) {
 /// Run i of a study simulated alone, from its scene: its row.
 EnsembleRow run_alone(const EnsembleOutputs& outputs, const Scene& s, long i, std::vector<double> draws,
                       const std::function<void(const Scene&, const SystemState&)>& trajectory = {}) {
-  RowReducer reducer(outputs, s, i, std::move(draws));
+  LaneSamples samples(outputs, s.settings.formulation, 1, s.model.bodies.size(), s.model.particles.size());
+  samples.add(0, s);
+  RowReducer reducer(outputs, s, i, std::move(draws), samples, 0);
   RunHooks hooks;
   hooks.events = make_events(s.model, s.events);
   hooks.on_event = [&](const EventHit& hit) { reducer.on_event(hit); };
@@ -179,10 +127,11 @@ EnsembleRow run_alone(const EnsembleOutputs& outputs, const Scene& s, long i, st
       return true;
     };
   }
-  hooks.on_variables = [&](const SystemCoordinates& x, size_t first) {
-    return reducer.on_variables(x, first);
+  hooks.on_variables = [&](const SystemCoordinates& x, size_t) {
+    samples.observe(x);
+    return true;
   };
-  simulate(s.model, s.initial, study_settings(s), hooks);
+  reducer.end(simulate(s.model, s.initial, study_settings(s), hooks));
   return std::move(reducer).row();
 }
 
@@ -248,21 +197,43 @@ std::vector<EnsembleRow> run_batch(const EnsembleStudy& study, std::span<const l
     std::vector<RowReducer> reducers;
     reducers.reserve(group.size());
     RunHooks hooks;
-    for (const size_t k : group) {
+    // Every lane's sample at once (a stopping crossing's is its lane's alone, below).
+    LaneSamples samples(study.outputs(), first.settings.formulation, group.size(), first.model.bodies.size());
+    hooks.on_variables = [&samples](const SystemCoordinates& x, size_t) {
+      samples.observe(x);
+      return true;
+    };
+    for (size_t j = 0; j < group.size(); ++j) {
+      const size_t k = group[j];
       const Scene& s = scenes[k];
       initial.bodies.insert(initial.bodies.end(), s.initial.bodies.begin(), s.initial.bodies.end());
-      RowReducer& reducer = reducers.emplace_back(study.outputs(), s, runs[k], std::move(drawn[k]));
+      samples.add(j, s);
+      RowReducer& reducer =
+          reducers.emplace_back(study.outputs(), s, runs[k], std::move(drawn[k]), samples, j);
       Lane& lane = hooks.lanes.emplace_back();
       lane.model = &s.model;
       lane.label = study.run_label(runs[k]);
       lane.events = make_events(s.model, s.events);
-      lane.on_variables = [&reducer](const SystemCoordinates& x, size_t row) {
-        return reducer.on_variables(x, row);
-      };
+      // A stopping crossing's sample is the lane's alone: simulate hands it to the lane only, after
+      // the crossing (on_event) and as its last.
+      if (std::any_of(s.events.begin(), s.events.end(), [](const EventSpec& e) { return e.stop; })) {
+        lane.on_variables = [&samples, &reducer, j](const SystemCoordinates& x, size_t row) {
+          if (reducer.stopped()) samples.observe_last(j, x, row);
+          return true;
+        };
+      }
       lane.on_event = [&reducer](const EventHit& hit) { reducer.on_event(hit); };
     }
-    simulate(*stacked, std::move(initial), study_settings(first), hooks);
-    for (size_t j = 0; j < group.size(); ++j) rows[group[j]] = std::move(reducers[j]).row();
+    const SystemState end = simulate(*stacked, std::move(initial), study_settings(first), hooks);
+    for (size_t j = 0; j < group.size(); ++j) {
+      const size_t n = end.bodies.size() / group.size();
+      SystemState last;
+      last.t = end.t;
+      last.bodies.assign(end.bodies.begin() + static_cast<std::ptrdiff_t>(j * n),
+                         end.bodies.begin() + static_cast<std::ptrdiff_t>((j + 1) * n));
+      reducers[j].end(std::move(last));
+      rows[group[j]] = std::move(reducers[j]).row();
+    }
   }
   return rows;
 }

@@ -98,7 +98,9 @@ struct Lane {
 struct RunHooks {
   /// Called with every sample (the initial state first); return false to stop the run early.
   SampleSink on_sample;
-  /// The same samples as the formulation's variables (after on_sample), first = 0.
+  /// The same samples as the formulation's variables (after on_sample), first = 0: the whole system's,
+  /// a batch's too (before its lanes', e.g. to reduce every lane's sample at once, a pack of lanes at a
+  /// time; a stopping crossing's sample is only its lane's).
   VariablesSink on_variables;
   /// Conditions to watch.
   std::vector<Event> events;
@@ -125,7 +127,7 @@ struct RunHooks {
 
   /// A batch of independent runs (see Lane): when not empty, the system is these runs laid end to end,
   /// each watching its own events (`events` and `on_event` above must then be empty); on_sample still
-  /// receives the whole system. A lane whose stopping event fires, or whose on_sample returns false, is
+  /// receives the whole system, and so does on_variables. A lane whose stopping event fires, or whose on_sample returns false, is
   /// done: it is stepped on with the others but reports nothing more; the run ends when all are done.
   /// Fixed-step integrators only (an adaptive step size would depend on every run's error), and no
   /// run points (a study resumes by whole runs).
