@@ -1,5 +1,7 @@
 #include "mesh_cache.hpp"
 
+#include <sys/stat.h>
+
 #include <deque>
 #include <mutex>
 
@@ -7,34 +9,37 @@ namespace tumble::scene {
 namespace {
 
 struct Key {
-  std::string path;
-  std::uintmax_t size;
-  std::filesystem::file_time_type mtime;
+  dev_t device;
+  ino_t inode;
+  off_t size;
+  std::int64_t mtime_s, mtime_ns;
   double scale;
   std::size_t part;
   bool operator==(const Key&) const = default;
 };
 
 std::mutex lock;
-std::deque<std::pair<Key, LoadedMesh>> cache;  // most recent first
+std::deque<std::pair<Key, std::shared_ptr<const LoadedMesh>>> cache;  // most recent first
 constexpr size_t kCapacity = 16;
 
 }  // namespace
 
-LoadedMesh load_mesh_cached(const std::filesystem::path& path, const MeshLoadOptions& options) {
-  std::error_code ec;
-  const auto size = std::filesystem::file_size(path, ec);
-  const auto mtime = std::filesystem::last_write_time(path, ec);
-  if (ec) return load_mesh(path, options);  // load_mesh says what is wrong with the file
-  const Key key{std::filesystem::absolute(path).lexically_normal().string(), size, mtime, options.scale,
-                options.part};
+std::shared_ptr<const LoadedMesh> load_mesh_cached(const std::filesystem::path& path,
+                                                   const MeshLoadOptions& options) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) {
+    return std::make_shared<const LoadedMesh>(load_mesh(path, options));  // load_mesh says what is wrong
+  }
+  const Key key{st.st_dev,          st.st_ino,     st.st_size,  st.st_mtim.tv_sec,
+                st.st_mtim.tv_nsec, options.scale, options.part};
   {
     const std::lock_guard<std::mutex> guard(lock);
     for (const auto& [k, mesh] : cache) {
       if (k == key) return mesh;
     }
   }
-  LoadedMesh loaded = load_mesh(path, options);  // outside the lock: other threads go on meanwhile
+  // Outside the lock: other threads go on meanwhile.
+  auto loaded = std::make_shared<const LoadedMesh>(load_mesh(path, options));
   const std::lock_guard<std::mutex> guard(lock);
   cache.emplace_front(key, loaded);
   if (cache.size() > kCapacity) cache.pop_back();

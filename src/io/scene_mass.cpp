@@ -257,17 +257,17 @@ MassProperties solid(const TableReader& t, const Material& mat, const Pose& pose
     const double scale = t.number("scale", 1.0, "", Domain::positive);
     const std::filesystem::path path = directory / file;
     scene.input_files.push_back(path);
-    TriangleMesh mesh;
+    std::shared_ptr<const LoadedMesh> loaded;
     try {
-      LoadedMesh loaded = load_mesh_cached(path, MeshLoadOptions{.scale = scale});
-      for (auto& w : loaded.warnings)
+      loaded = load_mesh_cached(path, MeshLoadOptions{.scale = scale});
+      for (const auto& w : loaded->warnings)
         scene.warnings.push_back(location(t.file(), t.where("mesh")) + ": " + w);
-      mesh = std::move(loaded.mesh);
     } catch (const Error& e) {
       t.fail_at("mesh", fmt::format("cannot load mesh \"{}\": {}; mesh paths are relative to the scene "
                                     "file's directory",
                                     file, e.what()));
     }
+    const TriangleMesh& mesh = loaded->mesh;
     source = fmt::format("mesh {} ({} triangles{}){}, {}", file, mesh.triangles.size(),
                          scale != 1.0 ? fmt::format(", scale {:g}", scale) : "", shell, mat.describe());
     display = decimate(mesh, kDisplayTriangles);

@@ -1,5 +1,6 @@
 #include "tumble/sim/event_specs.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "tumble/dynamics/quantities.hpp"
@@ -19,10 +20,13 @@ Event make_event(const Model& model, const EventSpec& spec) {
     if (!body) return e;
     // Every step, from the body's own variables (VariableColumn: ^bω is the mixed formulation's ω).
     e.body = r;
-    e.g_variables = [&b = model.bodies[r], column = VariableColumn(*spec.field, spec.component),
-                     value = spec.value](const BodyColumns& x, size_t i, Formulation F) {
-      return column(b, x, i, F) - value;
-    };
+    const VariableColumn column(*spec.field, spec.component);
+    e.g_variables = [&b = model.bodies[r], column, value = spec.value](
+                        const BodyColumns& x, size_t i, Formulation F) { return column(b, x, i, F) - value; };
+    Event::Variable v{.value = spec.value};
+    for (const Formulation F : {Formulation::world, Formulation::mixed, Formulation::body})
+      v.column[static_cast<size_t>(F)] = column.variable(F);
+    if (std::any_of(v.column.begin(), v.column.end(), [](int c) { return c >= 0; })) e.variable = v;
     return e;
   }
   const Vec3 d = spec.toward.normalized();

@@ -25,10 +25,28 @@ struct Moment {
   bool converted = false;
 };
 
-/// g of an event at a moment; a NaN or infinity would hide every crossing, so it is an error.
+/// g, of event e at time t, checked: a NaN or infinity would hide every crossing, so it is an error.
+double finite_g(const Event& e, double g, double t) {
+  if (!std::isfinite(g)) {
+    throw InvalidArgument(
+        fmt::format("event '{}' returned {} at t = {} s; an event function must return a "
+                    "finite number whose sign changes at the event",
+                    e.name, g, t));
+  }
+  return g;
+}
+
+/// The column of the variables an event's g reads as it is in formulation F (Event::variable), or −1.
+int variable_of(const Event& e, Formulation F) {
+  return e.variable ? e.variable->column[static_cast<size_t>(F)] : -1;
+}
+
+/// g of an event at a moment.
 double evaluate(const Event& e, Moment& m) {
   double g;
-  if (e.g_variables) {
+  if (const int c = variable_of(e, m.F); c >= 0) {
+    g = m.y.bodies[static_cast<size_t>(c)][m.first + e.body] - e.variable->value;  // as g_variables gives it
+  } else if (e.g_variables) {
     g = e.g_variables(m.y.bodies, m.first + e.body, m.F);
   } else {
     if (!m.converted) {
@@ -41,13 +59,7 @@ double evaluate(const Event& e, Moment& m) {
     }
     g = e.g(m.state);
   }
-  if (!std::isfinite(g)) {
-    throw InvalidArgument(
-        fmt::format("event '{}' returned {} at t = {} s; an event function must return a "
-                    "finite number whose sign changes at the event",
-                    e.name, g, m.y.t));
-  }
-  return g;
+  return finite_g(e, g, m.y.t);
 }
 
 bool crosses(const Event& e, double g0, double g1) {
@@ -61,20 +73,37 @@ struct Hit {
   SystemCoordinates x;
 };
 
+/// One event of one run, as the loop over every run's events at every step reads it: its g at the
+/// step's start, and the column g reads (Event::variable in this formulation; −1: call evaluate).
+struct Watch {
+  size_t run, event;
+  const Event* e;
+  int column;
+  size_t row;  ///< the watched body's row in the system
+  double g_prev;
+};
+
+/// A sign change of g in the step.
+struct Crossing {
+  size_t watch;
+  double g0, g1;
+};
+
 /// The τ ∈ (0, h] where g, of sign g0 ≠ 0 at τ = 0 and of the other sign (or zero) at h, changes sign,
 /// to `resolution`: the Illinois variant of regula falsi on a bracket [lo, hi] that always holds the
 /// change (g has g0's sign at lo, the other sign or zero at hi), with a bisection whenever two
 /// iterations have not halved the bracket. A handful of evaluations where bisection to 4 ulp took ~50,
 /// which matters when every run of a study locates its crossings. Returns hi and the variables there.
 /// `state_at(τ, y)` puts the run's variables at an offset τ ∈ (0, h] into the step in y: one step of
-/// length τ from the step's start (fixed-step methods) or the dense output (adaptive ones).
+/// length τ from the step's start (fixed-step methods) or the dense output (adaptive ones). y and
+/// scratch are storage (reused: a study locates every run's crossings).
 template <class StateInStep>
 double locate(const Event& e, Formulation F, double g0, double g1, double h, double resolution,
-              const StateInStep& state_at, SystemCoordinates& at_hi, SystemState& scratch) {
+              const StateInStep& state_at, SystemCoordinates& at_hi, SystemCoordinates& y,
+              SystemState& scratch) {
   double lo = 0.0, hi = h, g_lo = g0, g_hi = g1;
   int kept_side = 0;            // +1: lo moved last time, −1: hi moved (Illinois halves the other g)
   double width_before = 2 * h;  // the bracket two iterations ago
-  SystemCoordinates y;
   for (int k = 0; k < 200 && hi - lo > resolution && g_hi != 0; ++k) {
     double tau = hi - g_hi * (hi - lo) / (g_hi - g_lo);
     if (k % 2 == 0) {
@@ -158,12 +187,15 @@ struct RunInBatch {
   const std::function<void(const EventHit&)>* on_event = nullptr;
   std::string_view label;
   size_t first = 0, n = 0;            ///< its bodies in the system
-  std::vector<double> g_prev;         ///< g of each event at the start of the step
+  size_t watches = 0;                 ///< its events' Watch: watches … + events->size() − 1
   bool done = false;                  ///< a lane that stopped or needs no more samples
   SystemState state;                  ///< a lane's state, copied out of the system's (reused storage)
-  SystemCoordinates at_hi;            ///< the variables where a crossing was located
+  SystemCoordinates at_hi, inside;    ///< the variables where a crossing was located, and in its step
+  SystemState scratch;                ///< the state there, when an event's g needs it
+  EventHit event_hit;                 ///< the crossing reported (storage reused)
   std::unique_ptr<Integrator> probe;  ///< steps inside a step to locate crossings (never the run's own)
-  std::vector<Hit> hits;
+  std::vector<Hit> hits;  ///< the crossings of the step: the first hit_count (the storage is reused)
+  size_t hit_count = 0;
   size_t next_hit = 0;  ///< the first of hits not reported yet
 };
 
@@ -264,9 +296,16 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
                             s.bodies.begin() + static_cast<std::ptrdiff_t>(run.first + run.n));
     return run.state;
   };
-  const auto all_done = [&] {
-    return std::all_of(runs.begin(), runs.end(), [](const RunInBatch& r) { return r.done; });
+  size_t runs_done = 0;
+  const auto set_done = [&](RunInBatch& run) {
+    if (!run.done) ++runs_done;
+    run.done = true;
   };
+  const auto all_done = [&] { return runs_done == runs.size(); };
+  // Whether any lane takes samples of its own (a study's lanes are reduced by hooks.on_variables).
+  const bool lanes_sample = std::any_of(runs.begin(), runs.end(), [](const RunInBatch& r) {
+    return r.on_sample && (*r.on_sample || *r.on_variables);
+  });
   // A sample at the variables y, to every run that still wants them; false ends the run. `ready`: the
   // state there, when the caller has it (the initial state as given; a crossing's); else it is
   // converted from y: the whole system for a run alone (into `state`), each lane's own bodies.
@@ -284,6 +323,7 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
     }
     if (hooks.on_variables) go_on = hooks.on_variables(y, 0) && go_on;
     for (RunInBatch& run : runs) {
+      if (!lanes_sample) break;
       if (run.done) continue;
       bool more = true;
       if (*run.on_sample) {
@@ -295,7 +335,7 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
         more = (*run.on_sample)(run.state);
       }
       if (*run.on_variables) more = (*run.on_variables)(y, run.first) && more;
-      if (!more) run.done = true;
+      if (!more) set_done(run);
     }
     return go_on && !all_done();
   };
@@ -315,20 +355,52 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
   };
 
   bool any_events = false;
-  SystemState scratch;  // a run's state at a moment, when its events need it
-  for (RunInBatch& run : runs) {
+  SystemState scratch;         // a run's state at a moment, when its events need it
+  std::vector<Watch> watches;  // every run's events, run by run
+  for (size_t r = 0; r < runs.size(); ++r) {
+    RunInBatch& run = runs[r];
     Moment m{F, x, run.first, run.n, scratch};
-    for (const Event& e : *run.events) {
+    run.watches = watches.size();
+    for (size_t i = 0; i < run.events->size(); ++i) {
+      const Event& e = (*run.events)[i];
       if (!e.g && !e.g_variables) throw InvalidArgument(fmt::format("event '{}' has no function g", e.name));
-      if (e.g_variables && e.body >= run.n) {
+      if ((e.g_variables || e.variable) && e.body >= run.n) {
         throw InvalidArgument(
             fmt::format("event '{}' watches body #{}, but the run has {} bodies", e.name, e.body, run.n));
       }
-      if (!from) run.g_prev.push_back(evaluate(e, m));
+      watches.push_back({r, i, &e, variable_of(e, F), run.first + e.body, from ? 0.0 : evaluate(e, m)});
     }
     any_events = any_events || !run.events->empty();
   }
-  if (from) runs[0].g_prev = from->event_values;
+  if (from) {
+    for (size_t i = 0; i < watches.size(); ++i) watches[i].g_prev = from->event_values[i];
+  }
+  // The g of each watch at the step's end, and the sign changes in the step, in watch order.
+  std::vector<Crossing> crossings;
+  const auto find_crossings = [&](const SystemCoordinates& x_end) {
+    crossings.clear();
+    std::optional<Moment> end;  // the run of the last watch that needed evaluate
+    size_t end_run = runs.size();
+    for (size_t w = 0; w < watches.size(); ++w) {
+      Watch& watch = watches[w];
+      const RunInBatch& run = runs[watch.run];
+      if (run.done) continue;
+      double g1;
+      if (watch.column >= 0) {
+        g1 = finite_g(*watch.e,
+                      x_end.bodies[static_cast<size_t>(watch.column)][watch.row] - watch.e->variable->value,
+                      x_end.t);
+      } else {
+        if (end_run != watch.run)
+          end.emplace(Moment{F, x_end, run.first, run.n, scratch}), end_run = watch.run;
+        g1 = evaluate(*watch.e, *end);
+      }
+      const double g0 = watch.g_prev;
+      watch.g_prev = g1;
+      if (crosses(*watch.e, g0, g1)) crossings.push_back({w, g0, g1});
+    }
+  };
+  std::vector<size_t> runs_hit;  // the runs with crossings in the step, in order
   // A run point, where nothing of a step is pending (after a step that held samples, or the start).
   const auto keep = [&](const auto& stepper) {
     if (!hooks.run_point) return;
@@ -337,46 +409,59 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
     p.next_sample = k_out;
     p.t_last_sample = std::min(t0 + static_cast<double>(k_out - 1) * dt_out, t_end);
     p.samples = samples;
-    p.event_values = runs[0].g_prev;
+    p.event_values.clear();
+    for (const Watch& w : watches) p.event_values.push_back(w.g_prev);
     stepper.keep(p);
     if (hooks.on_run_point) hooks.on_run_point(p);
   };
-  // The crossings of `run`'s events in the step [t_start, t_start + step_h] that ended in x_end, located
-  // and put in time order in run.hits; g_prev becomes the values at the step's end.
-  const auto find_hits = [&](RunInBatch& run, const SystemCoordinates& x_end, double t_start, double step_h,
+  // The crossings of the step [t_start, t_start + step_h] that ended in x_end, located and put in time
+  // order in their runs' hits; the runs with hits in runs_hit.
+  const auto find_hits = [&](const SystemCoordinates& x_end, double t_start, double step_h,
                              const auto& state_at) {
-    run.hits.clear();
-    Moment end{F, x_end, run.first, run.n, scratch};
+    for (const size_t r : runs_hit) runs[r].hit_count = runs[r].next_hit = 0;
+    runs_hit.clear();
+    find_crossings(x_end);
     const double resolution = 4 * 2.220446049250313e-16 * std::max(std::abs(t_start), step_h);
-    for (size_t i = 0; i < run.events->size(); ++i) {
-      const Event& e = (*run.events)[i];
-      const double g0 = run.g_prev[i], g1 = evaluate(e, end);
-      run.g_prev[i] = g1;
-      if (!crosses(e, g0, g1)) continue;
+    for (const Crossing& c : crossings) {
+      const Watch& w = watches[c.watch];
+      RunInBatch& run = runs[w.run];
       if (batch) {
         copy_bodies(x_end, run.first, run.n, run.at_hi);
       } else {
         run.at_hi = x_end;
       }
-      SystemState inside;
-      const double tau = locate(e, F, g0, g1, step_h, resolution, state_at, run.at_hi, inside);
-      run.hits.push_back({tau, i, run.at_hi});
+      const auto run_at = [&](double tau, SystemCoordinates& y) { state_at(run, tau, y); };
+      const double tau =
+          locate(*w.e, F, c.g0, c.g1, step_h, resolution, run_at, run.at_hi, run.inside, run.scratch);
+      if (run.hit_count == run.hits.size()) run.hits.emplace_back();
+      Hit& hit = run.hits[run.hit_count++];
+      hit.tau = tau;
+      hit.event = w.event;
+      std::swap(hit.x, run.at_hi);  // at_hi takes the storage of an earlier hit
+      if (runs_hit.empty() || runs_hit.back() != w.run) runs_hit.push_back(w.run);
     }
-    std::sort(run.hits.begin(), run.hits.end(), [](const Hit& a, const Hit& b) { return a.tau < b.tau; });
+    for (const size_t r : runs_hit) {
+      const auto first = runs[r].hits.begin();
+      std::sort(first, first + static_cast<std::ptrdiff_t>(runs[r].hit_count),
+                [](const Hit& a, const Hit& b) { return a.tau < b.tau; });
+    }
   };
   // Reports a crossing; true when it stops its run (its state there is the run's last sample).
   const auto report = [&](RunInBatch& run, const Hit& hit) {
-    SystemState at = to_state(F, hit.x);
     const Event& e = (*run.events)[hit.event];
-    if (*run.on_event) (*run.on_event)(EventHit{e.name, hit.event, at});
+    EventHit& at = run.event_hit;
+    at.name = e.name;
+    at.index = hit.event;
+    to_state(F, hit.x, at.state);
+    if (*run.on_event) (*run.on_event)(at);
     if (!e.stop) return false;
     if (batch) {  // the lane's last sample; its variables are its own (first body 0)
-      if (*run.on_sample) (*run.on_sample)(at);
+      if (*run.on_sample) (*run.on_sample)(at.state);
       if (*run.on_variables) (*run.on_variables)(hit.x, 0);
-      run.done = true;
+      set_done(run);
       return all_done();
     }
-    state = std::move(at);
+    state = at.state;
     emit(hit.x, &state);
     return true;
   };
@@ -401,21 +486,20 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
       const double t_a = stepper.t_start(), t_b = stepper.t_end();
       check(stepper.end(), stepper.stats().steps, stepper.step_length());
       if (stats) *stats = stepper.stats();
-      for (RunInBatch& run : runs) {
-        run.hits.clear();
-        run.next_hit = 0;
-        if (run.done || run.events->empty()) continue;
-        find_hits(run, stepper.end(), t_a, stepper.step_length(), [&](double tau, SystemCoordinates& y) {
-          stepper.in_step({*run.model, run.first, run.n, run.probe}, tau, y);
-        });
+      if (any_events) {
+        find_hits(stepper.end(), t_a, stepper.step_length(),
+                  [&](RunInBatch& run, double tau, SystemCoordinates& y) {
+                    stepper.in_step({*run.model, run.first, run.n, run.probe}, tau, y);
+                  });
       }
       bool sampled = false, ended_on_sample = false;
       while (true) {
         const double t_next = std::min(t0 + static_cast<double>(k_out) * dt_out, t_end);
         const double limit = std::min(t_next, t_b);
-        for (RunInBatch& run : runs) {
+        for (const size_t r : runs_hit) {
+          RunInBatch& run = runs[r];
           // A crossing at τ into the step is at t_a + τ, which rounding may put past t_b: at most t_b.
-          while (!run.done && run.next_hit < run.hits.size() &&
+          while (!run.done && run.next_hit < run.hit_count &&
                  std::min(t_a + run.hits[run.next_hit].tau, t_b) <= limit) {
             if (report(run, run.hits[run.next_hit++])) return finish();
           }

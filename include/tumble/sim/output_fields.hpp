@@ -76,10 +76,16 @@ class VariableColumn {
   VariableColumn(const BodyField& field, int component);
   /// The value for `body`, row i of x.
   double operator()(const RigidBody& body, const BodyColumns& x, size_t i, Formulation formulation) const {
-    const auto k = static_cast<size_t>(k_);
-    if (read_ == Read::com) return x[BodyColumns::o + k][i];
-    if (read_ == Read::omega_b && formulation != Formulation::world) return x[BodyColumns::omega + k][i];
-    return converted(body, x, i, formulation);
+    const int c = variable(formulation);
+    return c >= 0 ? x[static_cast<size_t>(c)][i] : converted(body, x, i, formulation);
+  }
+  /// The column of BodyColumns that holds the value as it is in `formulation`, or −1 where it must be
+  /// computed from the body's variables.
+  int variable(Formulation formulation) const {
+    if (read_ == Read::com) return static_cast<int>(BodyColumns::o) + k_;
+    if (read_ == Read::omega_b && formulation != Formulation::world)
+      return static_cast<int>(BodyColumns::omega) + k_;
+    return -1;
   }
 
  private:

@@ -1,6 +1,8 @@
 #pragma once
 // The time loop: fixed steps from t₀ to t₀ + duration, samples at every output interval and at the end.
+#include <array>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -54,6 +56,14 @@ struct Event {
   /// this one only.
   std::function<double(const BodyColumns& x, size_t i, Formulation formulation)> g_variables = {};
   size_t body = 0;
+  /// Optional, beside g_variables, when g is one of the body's variables less a constant: g = x[c][i] −
+  /// value with c = column[formulation], in the formulations that hold it as it is (c ≥ 0; the others
+  /// call g_variables). simulate reads it inline: a study evaluates every run's events at every step.
+  struct Variable {
+    std::array<int, 3> column{-1, -1, -1};  ///< by Formulation (world, mixed, body)
+    double value = 0.0;
+  };
+  std::optional<Variable> variable = {};
 };
 
 /// An event that happened: its name and the state just after the crossing.
