@@ -236,7 +236,7 @@ std::vector<Lane> lanes_per_body(const Model& model, std::vector<Model>& lane_mo
     lane_models[i].forces = model.forces;
     Lane& lane = lanes[i];
     lane.model = &lane_models[i];
-    lane.label = fmt::format("body '{}'", model.bodies[i].name());
+    lane.label = [&model, i] { return fmt::format("body '{}'", model.bodies[i].name()); };
     for (size_t k = 0; k < specs.size(); ++k) {
       if (!every_body[k] && specs[k].row != i) continue;
       EventSpec e = specs[k];

@@ -181,18 +181,29 @@ std::string EnsembleStudy::run_label(long i) const {
 }
 
 Scene EnsembleStudy::scene_of_run(long i) const {
+  const long runs[] = {i};
+  const std::vector<double> values[] = {draws(i)};
+  return std::move(scenes_of_runs(runs, values).front());
+}
+
+std::vector<Scene> EnsembleStudy::scenes_of_runs(std::span<const long> runs,
+                                                 std::span<const std::vector<double>> values) const {
   toml::table root = impl_->root;
-  const std::vector<double> values = draws(i);
-  size_t at = 0;
-  for (const Variation& v : impl_->study.variations) {
-    set_values(root, v.path, values_of(v, values, at));
-    at += static_cast<size_t>(v.width);
+  std::vector<Scene> scenes;
+  scenes.reserve(runs.size());
+  for (size_t r = 0; r < runs.size(); ++r) {
+    size_t at = 0;
+    for (const Variation& v : impl_->study.variations) {
+      set_values(root, v.path, values_of(v, values[r], at));
+      at += static_cast<size_t>(v.width);
+    }
+    try {
+      scenes.push_back(scene::read_scene(root, impl_->text, impl_->path));
+    } catch (const SceneError& e) {
+      throw SceneError(fmt::format("{}: {}", run_label(runs[r]), e.what()));
+    }
   }
-  try {
-    return scene::read_scene(root, impl_->text, impl_->path);
-  } catch (const SceneError& e) {
-    throw SceneError(fmt::format("{}: {}", run_label(i), e.what()));
-  }
+  return scenes;
 }
 
 std::vector<ColumnSummary> summarize(const std::vector<std::string>& columns,

@@ -257,20 +257,20 @@ MassProperties solid(const TableReader& t, const Material& mat, const Pose& pose
     const double scale = t.number("scale", 1.0, "", Domain::positive);
     const std::filesystem::path path = directory / file;
     scene.input_files.push_back(path);
-    std::shared_ptr<const LoadedMesh> loaded;
+    std::shared_ptr<const CachedMesh> cached;
     try {
-      loaded = load_mesh_cached(path, MeshLoadOptions{.scale = scale});
-      for (const auto& w : loaded->warnings)
+      cached = load_mesh_cached(path, MeshLoadOptions{.scale = scale});
+      for (const auto& w : cached->loaded().warnings)
         scene.warnings.push_back(location(t.file(), t.where("mesh")) + ": " + w);
     } catch (const Error& e) {
       t.fail_at("mesh", fmt::format("cannot load mesh \"{}\": {}; mesh paths are relative to the scene "
                                     "file's directory",
                                     file, e.what()));
     }
-    const TriangleMesh& mesh = loaded->mesh;
+    const TriangleMesh& mesh = cached->mesh();
     source = fmt::format("mesh {} ({} triangles{}){}, {}", file, mesh.triangles.size(),
                          scale != 1.0 ? fmt::format(", scale {:g}", scale) : "", shell, mat.describe());
-    display = decimate(mesh, kDisplayTriangles);
+    display = cached->display();
     if (is_shell) {
       MeshMassResult r = shell_mass_properties(mesh, thickness, spec, file);
       for (auto& w : r.warnings) scene.warnings.push_back(location(t.file(), t.where("mesh")) + ": " + w);
@@ -281,9 +281,9 @@ MassProperties solid(const TableReader& t, const Material& mat, const Pose& pose
       for (auto& w : r.warnings) scene.warnings.push_back(location(t.file(), t.where("mesh")) + ": " + w);
       return r.properties;
     }
-    MeshMassResult r = solid_mass_properties(mesh, spec, file);
+    MeshMassResult r = cached->unit_solid(file);  // solid_mass_properties(mesh, spec, file), in two
     for (auto& w : r.warnings) scene.warnings.push_back(location(t.file(), t.where("mesh")) + ": " + w);
-    return r.properties;
+    return spec.apply(r.properties);
   } catch (const SceneError&) {
     throw;
   } catch (const NotASolidError& e) {

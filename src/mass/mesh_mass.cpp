@@ -27,6 +27,12 @@ void require_finite_integrals(const MassProperties& unit, double diagonal, const
 
 MeshMassResult solid_mass_properties(const TriangleMesh& mesh, const MassSpec& spec,
                                      const std::string& name) {
+  MeshMassResult result = solid_unit_properties(mesh, name);
+  result.properties = spec.apply(result.properties);
+  return result;
+}
+
+MeshMassResult solid_unit_properties(const TriangleMesh& mesh, const std::string& name) {
   if (mesh.triangles.empty()) {
     throw MeshError(fmt::format("{}: the mesh has no triangles, so it bounds no solid", name));
   }
@@ -65,7 +71,7 @@ MeshMassResult solid_mass_properties(const TriangleMesh& mesh, const MassSpec& s
     unit.inertia = -unit.inertia;
   }
   unit.volume = unit.mass;
-  result.properties = spec.apply(unit);
+  result.properties = unit;
   return result;
 }
 

@@ -185,7 +185,7 @@ struct RunInBatch {
   const SampleSink* on_sample = nullptr;  ///< the lane's own (a single run's is the system's)
   const VariablesSink* on_variables = nullptr;
   const std::function<void(const EventHit&)>* on_event = nullptr;
-  std::string_view label;
+  const std::function<std::string()>* label = nullptr;
   size_t first = 0, n = 0;            ///< its bodies in the system
   size_t watches = 0;                 ///< its events' Watch: watches … + events->size() − 1
   bool done = false;                  ///< a lane that stopped or needs no more samples
@@ -226,14 +226,15 @@ std::vector<RunInBatch> runs_of(const Model& model, const RunHooks& hooks, const
   for (size_t r = 0; r < L; ++r) {
     const Lane& lane = hooks.lanes[r];
     require(lane.model && lane.model->bodies.size() == n && lane.model->particles.empty(),
-            fmt::format("lane {} ({}) needs its own model of the {} bodies it holds", r, lane.label, n));
+            fmt::format("lane {} ({}) needs its own model of the {} bodies it holds", r,
+                        lane.label ? lane.label() : "", n));
     RunInBatch& run = runs.emplace_back();
     run.model = lane.model;
     run.events = &lane.events;
     run.on_sample = &lane.on_sample;
     run.on_variables = &lane.on_variables;
     run.on_event = &lane.on_event;
-    run.label = lane.label;
+    run.label = &lane.label;
     run.first = r * n;
     run.n = n;
   }
@@ -274,7 +275,8 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
     const size_t i = first_non_finite_body(y);
     if (i == y.bodies.size()) return {};
     const RunInBatch& run = runs[i / runs[0].n];
-    return fmt::format("body '{}' of {}", model.bodies[i].name(), run.label);
+    return fmt::format("body '{}' of {}", model.bodies[i].name(),
+                       *run.label ? (*run.label)() : fmt::format("lane {}", i / runs[0].n));
   };
   if (const std::string bad = body_named(x); !bad.empty()) {
     throw InvalidArgument(fmt::format("{} state of {} is not finite", from ? "the resumed" : "initial", bad));

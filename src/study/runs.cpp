@@ -158,13 +158,9 @@ EnsembleRow run_alone(const EnsembleStudy& study, long i,
 std::vector<EnsembleRow> run_batch(const EnsembleStudy& study, std::span<const long> runs) {
   // Runs whose structural draws (anything but a body's values or an event's) are equal, bit for bit,
   // share their settings, force models and bodies' count: a group, stepped as one stacked system.
-  std::vector<Scene> scenes;
-  scenes.reserve(runs.size());
   std::vector<std::vector<double>> drawn;
-  for (const long i : runs) {
-    scenes.push_back(study.scene_of_run(i));
-    drawn.push_back(study.draws(i));
-  }
+  for (const long i : runs) drawn.push_back(study.draws(i));
+  std::vector<Scene> scenes = study.scenes_of_runs(runs, drawn);
   std::vector<std::vector<size_t>> groups;
   {
     std::map<std::vector<std::uint64_t>, size_t> group_of;
@@ -212,7 +208,7 @@ std::vector<EnsembleRow> run_batch(const EnsembleStudy& study, std::span<const l
           reducers.emplace_back(study.outputs(), s, runs[k], std::move(drawn[k]), samples, j);
       Lane& lane = hooks.lanes.emplace_back();
       lane.model = &s.model;
-      lane.label = study.run_label(runs[k]);
+      lane.label = [&study, run = runs[k]] { return study.run_label(run); };
       lane.events = make_events(s.model, s.events);
       // A stopping crossing's sample is the lane's alone: simulate hands it to the lane only, after
       // the crossing (on_event) and as its last.

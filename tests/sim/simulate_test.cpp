@@ -140,7 +140,7 @@ long allocations_of_a_batch(double duration, std::vector<double>& largest_w2) {
   largest_w2.assign(kRuns, 0.0);
   for (size_t r = 0; r < kRuns; ++r) {
     lanes[r].model = &models[r];
-    lanes[r].label = "run";
+    lanes[r].label = [] { return std::string("run"); };
     EventSpec below;  // the centre of mass below z = -1 km: watched at every step, never crossed
     below.name = "deep";
     below.field = find_column("com_z")->first;

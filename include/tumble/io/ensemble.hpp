@@ -85,6 +85,11 @@ class EnsembleStudy {
   /// The scene of run i: the file with run i's values, read by the scene reader. SceneError names the
   /// run and the values when they make the scene invalid (e.g. a negative mass).
   Scene scene_of_run(long i) const;
+  /// The scenes of runs, whose drawn values are `draws` (draws(i) of each): as scene_of_run gives them,
+  /// with the scene file's tree copied once and each run's values written into it in place (every run
+  /// sets the same paths), not copied per run.
+  std::vector<Scene> scenes_of_runs(std::span<const long> runs,
+                                    std::span<const std::vector<double>> draws) const;
   /// The draw columns (indices after "run") of variations that change a run's structure: anything but
   /// the values of a body or of an event. Runs with equal such draws share settings, forces and bodies'
   /// count (study/runs.hpp steps them together).

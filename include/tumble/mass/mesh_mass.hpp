@@ -28,6 +28,10 @@ MassProperties integrate_solid_mesh(const TriangleMesh& mesh);
 /// warning says so. `name` (e.g. the file) prefixes messages.
 MeshMassResult solid_mass_properties(const TriangleMesh& mesh, const MassSpec& spec,
                                      const std::string& name = "mesh");
+/// The same at unit density (mass = volume): solid_mass_properties(mesh, spec, name) is this with
+/// spec.apply(properties), bit for bit — for a mesh whose checks and integrals are kept for many
+/// densities or masses (an ensemble reads its scene again for every run).
+MeshMassResult solid_unit_properties(const TriangleMesh& mesh, const std::string& name = "mesh");
 
 /// Thin-shell mass properties: the surface carries mass uniformly, surface density ρ·t (spec density
 /// times `thickness`) or the given total mass. Works for open meshes as well as closed ones.

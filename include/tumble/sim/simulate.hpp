@@ -97,7 +97,9 @@ struct RunPoint {
 /// or thread), a lane's samples and crossings are those of the run simulated alone, bit for bit.
 struct Lane {
   const Model* model = nullptr;  ///< the run's own model: its bodies (the stacked ones' values) and forces
-  std::string label;             ///< names the run in errors, e.g. "run 17"
+  /// Names the run in errors, e.g. "run 17 (bodies.box.mass = 2.5)": called only then (a study's
+  /// labels carry its draws, which take a while to format).
+  std::function<std::string()> label;
   std::vector<Event> events;
   SampleSink on_sample;        ///< the run's own state at every sample; return false when it needs no more
   VariablesSink on_variables;  ///< its variables at every sample (after on_sample)
