@@ -14,6 +14,19 @@ using Pack = xsimd::batch<double>;
 constexpr size_t kWidth = Pack::size;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
+/// Rows row0 + w·stride (w = 0 … W − 1) of a column (T = Pack; for double, row0 itself).
+template <class T>
+T lanes_value(const double* column, size_t row0, size_t stride) {
+  if constexpr (std::is_same_v<T, double>) {
+    return column[row0];
+  } else {
+    if (stride == 1) return T::load_aligned(column + row0);
+    alignas(64) double gathered[kWidth];
+    for (size_t w = 0; w < kWidth; ++w) gathered[w] = column[row0 + w * stride];
+    return T::load_aligned(gathered);
+  }
+}
+
 /// Body j of the lanes l … l + W − 1 whose row is row0 + w·stride (T = Pack; for double, row0 itself).
 template <class T>
 Coordinates<T> lanes_body(const BodyColumns& x, size_t row0, size_t stride) {
@@ -43,6 +56,7 @@ LaneSamples::LaneSamples(const EnsembleOutputs& outputs, Formulation F, size_t l
     const auto [field, k] = *find_column(c);
     columns_.emplace_back(*field, k);
     fields_.emplace_back(field, k);
+    converted_ = converted_ || columns_.back().variable(F) < 0;
   }
   bodies_.resize(lanes * n_);
   monitors_.resize(lanes);
@@ -87,7 +101,28 @@ void LaneSamples::add(size_t l, const Scene& s) {
 }
 
 template <class T>
-void LaneSamples::observe_drifts(const BodyColumns& x, size_t l, size_t row0, size_t stride) {
+void LaneSamples::observe_packed(const BodyColumns& x, size_t l, size_t row0, size_t stride) {
+  using std::isnan;
+  const auto at = [&](const Columns& c, size_t k) { return Lanes<T>::load(c[k] + l); };
+  const auto running = at(state_, kRunning) == T(1.0);
+  // Extrema of the columns held as variables: min and max, NaN (no sample yet) giving way to any value.
+  const size_t E = columns_.size();
+  for (size_t j = 0; j < n_; ++j) {
+    for (size_t k = 0; k < E; ++k) {
+      const int c = columns_[k].variable(F_);
+      if (c < 0) continue;
+      const T v = lanes_value<T>(x[static_cast<size_t>(c)], row0 + j, stride);
+      const T lo = at(lo_, j * E + k), hi = at(hi_, j * E + k);
+      Lanes<T>::store(lo_[j * E + k] + l, select(running && (isnan(lo) || v < lo), v, lo));
+      Lanes<T>::store(hi_[j * E + k] + l, select(running && (isnan(hi) || v > hi), v, hi));
+    }
+  }
+  if (packed_drifts_) observe_drifts<T>(x, l, row0, stride, running);
+}
+
+template <class T, class Mask>
+void LaneSamples::observe_drifts(const BodyColumns& x, size_t l, size_t row0, size_t stride,
+                                 const Mask& running) {
   using std::abs, std::isnan, std::sqrt;
   const auto at = [&](const Columns& c, size_t k) { return Lanes<T>::load(c[k] + l); };
   BodySums<T> sum;
@@ -101,7 +136,6 @@ void LaneSamples::observe_drifts(const BodyColumns& x, size_t l, size_t row0, si
   const Vec3T<T> L0(at(constants_, kL0), at(constants_, kL0 + 1), at(constants_, kL0 + 2));
   const T energy = abs((sum.kinetic_energy - at(constants_, kE0)) / scale);
   const T momentum = sqrt(squared_norm<T>(Vec3T<T>(sum.angular_momentum - L0))) / L0_norm;
-  const auto running = at(state_, kRunning) == T(1.0);
   // The larger, where defined: a quantity that is zero at t = 0 has no relative drift.
   const auto keep = [&](size_t k, const T& drift, const auto& defined) {
     const T now = at(state_, k);
@@ -119,8 +153,10 @@ void LaneSamples::observe_extrema(size_t l, const SystemCoordinates& x, size_t f
     hi_[at][l] = larger(hi_[at][l], v);
   };
   for (size_t j = 0; j < n_; ++j) {
-    for (size_t k = 0; k < E; ++k)
-      take(j * E + k, columns_[k](*bodies_[l * n_ + j], x.bodies, first + j, F_));
+    for (size_t k = 0; k < E; ++k) {
+      if (columns_[k].variable(F_) < 0)  // (the others are observe_packed's)
+        take(j * E + k, columns_[k](*bodies_[l * n_ + j], x.bodies, first + j, F_));
+    }
   }
   for (size_t p = 0; p < x.particles.size(); ++p) {  // a run alone may have particles
     for (size_t k = 0; k < E; ++k) {
@@ -138,22 +174,22 @@ void LaneSamples::observe_unpacked(size_t l, const SystemCoordinates& x, size_t 
     if (d.angular_momentum_drift)
       state_[kMomentum][l] = larger(state_[kMomentum][l], std::abs(*d.angular_momentum_drift));
   }
-  if (!columns_.empty()) observe_extrema(l, x, first);
+  if (converted_ || rows_ > n_) observe_extrema(l, x, first);
 }
 
 void LaneSamples::observe(const SystemCoordinates& x) {
-  if (packed_drifts_) {
-    size_t l = 0;
-    for (; l + kWidth <= lanes_; l += kWidth) observe_drifts<Pack>(x.bodies, l, l * n_, n_);
-    for (; l < lanes_; ++l) observe_drifts<double>(x.bodies, l, l * n_, n_);
-  }
-  for (size_t l = 0; l < lanes_; ++l) {
+  size_t l = 0;
+  for (; l + kWidth <= lanes_; l += kWidth) observe_packed<Pack>(x.bodies, l, l * n_, n_);
+  for (; l < lanes_; ++l) observe_packed<double>(x.bodies, l, l * n_, n_);
+  const bool monitored = o_.drift && !packed_drifts_;
+  if (!monitored && !converted_ && rows_ == n_) return;  // nothing is taken lane by lane
+  for (l = 0; l < lanes_; ++l) {
     if (state_[kRunning][l] == 1.0) observe_unpacked(l, x, l * n_);
   }
 }
 
 void LaneSamples::observe_last(size_t l, const SystemCoordinates& x, size_t first) {
-  if (packed_drifts_) observe_drifts<double>(x.bodies, l, first, n_);
+  observe_packed<double>(x.bodies, l, first, 1);
   observe_unpacked(l, x, first);
   state_[kRunning][l] = 0.0;
 }

@@ -50,10 +50,14 @@ class LaneSamples {
   /// Per lane: the drifts' maxima and whether it still runs (1) or stopped (0).
   enum : size_t { kEnergy = 0, kMomentum, kRunning, kState };
 
-  /// The drifts of lanes l … l + W − 1 (W = 1 for double), whose body j is row row0 + j + w·stride.
+  /// Lanes l … l + W − 1 (W = 1 for double), whose body j is row row0 + j + w·stride: the extrema of
+  /// the columns held as variables, and the drifts where they are packed.
   template <class T>
-  void observe_drifts(const BodyColumns& x, size_t l, size_t row0, size_t stride);
-  /// Lane l's extrema at a sample, its bodies rows first … of x.
+  void observe_packed(const BodyColumns& x, size_t l, size_t row0, size_t stride);
+  template <class T, class Mask>
+  void observe_drifts(const BodyColumns& x, size_t l, size_t row0, size_t stride, const Mask& running);
+  /// Lane l's other extrema (columns computed from a body's state, and particles) at a sample, its
+  /// bodies rows first … of x.
   void observe_extrema(size_t l, const SystemCoordinates& x, size_t first);
   /// Lane l's extrema and, when a DriftMonitor watches it, its drifts.
   void observe_unpacked(size_t l, const SystemCoordinates& x, size_t first);
@@ -64,7 +68,8 @@ class LaneSamples {
   bool packed_drifts_ = false;           ///< the lanes' drifts are reduced on packs (else monitors_)
   std::vector<VariableColumn> columns_;  ///< the extrema's columns
   std::vector<std::pair<const BodyField*, int>> fields_;  ///< the same, for particles
-  std::vector<const RigidBody*> bodies_;                  ///< lane l's body j is bodies_[l·n + j]
+  bool converted_ = false;  ///< some column is computed from a body's state (not a variable as it is)
+  std::vector<const RigidBody*> bodies_;  ///< lane l's body j is bodies_[l·n + j]
   std::vector<std::optional<DriftMonitor>> monitors_;
   Columns constants_, state_;
   Columns lo_, hi_;  ///< column r·E + k: row r's (body, then particle) extremum k, one value per lane
