@@ -186,14 +186,13 @@ struct RunInBatch {
   const VariablesSink* on_variables = nullptr;
   const std::function<void(const EventHit&)>* on_event = nullptr;
   const std::function<std::string()>* label = nullptr;
-  size_t first = 0, n = 0;            ///< its bodies in the system
-  size_t watches = 0;                 ///< its events' Watch: watches … + events->size() − 1
-  bool done = false;                  ///< a lane that stopped or needs no more samples
-  SystemState state;                  ///< a lane's state, copied out of the system's (reused storage)
-  SystemCoordinates at_hi, inside;    ///< the variables where a crossing was located, and in its step
-  SystemState scratch;                ///< the state there, when an event's g needs it
-  EventHit event_hit;                 ///< the crossing reported (storage reused)
-  std::unique_ptr<Integrator> probe;  ///< steps inside a step to locate crossings (never the run's own)
+  size_t first = 0, n = 0;          ///< its bodies in the system
+  size_t watches = 0;               ///< its events' Watch: watches … + events->size() − 1
+  bool done = false;                ///< a lane that stopped or needs no more samples
+  SystemState state;                ///< a lane's state, copied out of the system's (reused storage)
+  SystemCoordinates at_hi, inside;  ///< the variables where a crossing was located, and in its step
+  SystemState scratch;              ///< the state there, when an event's g needs it
+  EventHit event_hit;               ///< the crossing reported (storage reused)
   std::vector<Hit> hits;  ///< the crossings of the step: the first hit_count (the storage is reused)
   size_t hit_count = 0;
   size_t next_hit = 0;  ///< the first of hits not reported yet
@@ -403,6 +402,8 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
     }
   };
   std::vector<size_t> runs_hit;  // the runs with crossings in the step, in order
+  // Steps inside a step to locate crossings (never the run's own integrator), for every run in turn.
+  std::unique_ptr<Integrator> probe;
   // A run point, where nothing of a step is pending (after a step that held samples, or the start).
   const auto keep = [&](const auto& stepper) {
     if (!hooks.run_point) return;
@@ -491,7 +492,7 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
       if (any_events) {
         find_hits(stepper.end(), t_a, stepper.step_length(),
                   [&](RunInBatch& run, double tau, SystemCoordinates& y) {
-                    stepper.in_step({*run.model, run.first, run.n, run.probe}, tau, y);
+                    stepper.in_step({*run.model, run.first, run.n, probe}, tau, y);
                   });
       }
       bool sampled = false, ended_on_sample = false;

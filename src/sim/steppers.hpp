@@ -18,7 +18,8 @@ namespace tumble::steppers {
 inline constexpr long kChunk = 16;
 
 /// One run of a simulate call, as a stepper needs it to locate a crossing: its bodies in the system, its
-/// own model, and its probe integrator (made on first use).
+/// own model, and the probe integrator (made on first use; one for every run of a batch: what it keeps
+/// between steps, it keeps only while it is handed the same state, so it gives any run the same steps).
 struct RunInStep {
   const Model& model;
   size_t first, n;
