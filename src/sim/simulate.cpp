@@ -79,7 +79,8 @@ struct Watch {
   size_t run, event;
   const Event* e;
   int column;
-  size_t row;  ///< the watched body's row in the system
+  size_t row;    ///< the watched body's row in the system
+  double value;  ///< Event::variable's, when column ≥ 0
   double g_prev;
 };
 
@@ -298,9 +299,11 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
     return run.state;
   };
   size_t runs_done = 0;
+  std::vector<unsigned char> run_done(runs.size(), 0);  // run.done, in a row: read at every step
   const auto set_done = [&](RunInBatch& run) {
     if (!run.done) ++runs_done;
     run.done = true;
+    run_done[static_cast<size_t>(&run - runs.data())] = 1;
   };
   const auto all_done = [&] { return runs_done == runs.size(); };
   // Whether any lane takes samples of its own (a study's lanes are reduced by hooks.on_variables).
@@ -369,7 +372,9 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
         throw InvalidArgument(
             fmt::format("event '{}' watches body #{}, but the run has {} bodies", e.name, e.body, run.n));
       }
-      watches.push_back({r, i, &e, variable_of(e, F), run.first + e.body, from ? 0.0 : evaluate(e, m)});
+      const int column = variable_of(e, F);
+      watches.push_back({r, i, &e, column, run.first + e.body, column >= 0 ? e.variable->value : 0.0,
+                         from ? 0.0 : evaluate(e, m)});
     }
     any_events = any_events || !run.events->empty();
   }
@@ -384,13 +389,12 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
     size_t end_run = runs.size();
     for (size_t w = 0; w < watches.size(); ++w) {
       Watch& watch = watches[w];
+      if (run_done[watch.run]) continue;
       const RunInBatch& run = runs[watch.run];
-      if (run.done) continue;
       double g1;
       if (watch.column >= 0) {
-        g1 = finite_g(*watch.e,
-                      x_end.bodies[static_cast<size_t>(watch.column)][watch.row] - watch.e->variable->value,
-                      x_end.t);
+        g1 = x_end.bodies[static_cast<size_t>(watch.column)][watch.row] - watch.value;
+        if (!std::isfinite(g1)) finite_g(*watch.e, g1, x_end.t);
       } else {
         if (end_run != watch.run)
           end.emplace(Moment{F, x_end, run.first, run.n, scratch}), end_run = watch.run;
