@@ -203,6 +203,12 @@ std::vector<const SystemField*> all_system_fields() {
   return out;
 }
 
+size_t row_width(const std::vector<const BodyField*>& fields) {
+  size_t w = 0;
+  for (const BodyField* f : fields) w += static_cast<size_t>(f->width);
+  return w;
+}
+
 class CsvWriter final : public TrajectoryWriter {
  public:
   CsvWriter(const std::filesystem::path& trajectory, const std::filesystem::path& diagnostics,
@@ -211,6 +217,7 @@ class CsvWriter final : public TrajectoryWriter {
       : info_(info),
         names_(row_names(model)),
         fields_(body_fields(info.fields)),
+        width_(row_width(fields_)),
         trajectory_(trajectory, header({"t", "body"}, fields_), "trajectory",
                     kept(continuation, names_.size())),
         samples_(continuation ? continuation->samples : 0) {
@@ -234,18 +241,16 @@ class CsvWriter final : public TrajectoryWriter {
 
   void write(const Model& model, const SystemState& state, const DriftSample& d) override {
     buffer_.clear();
-    double values[4];
+    row_.resize(width_);
     const io::NumberText t(state.t);
     for (size_t r = 0; r < names_.size(); ++r) {
       buffer_.append(t.view());
       buffer_.push_back(',');
       buffer_.append(names_[r]);
-      for (const BodyField* f : fields_) {
-        field_of_row(*f, model, state, r, values);
-        for (int k = 0; k < f->width; ++k) {
-          buffer_.push_back(',');
-          io::append_number(buffer_, values[k]);
-        }
+      fields_of_row(fields_, model, state, r, row_.data());
+      for (const double v : row_) {
+        buffer_.push_back(',');
+        io::append_number(buffer_, v);
       }
       buffer_.push_back('\n');
       if (buffer_.size() > kFlushBytes) {  // a sample of 10⁵ bodies would hold 25 MB at once
@@ -259,6 +264,7 @@ class CsvWriter final : public TrajectoryWriter {
       ++samples_;
       return;
     }
+    double values[3];
     buffer_.clear();
     buffer_.append(t.view());
     for (const SystemField& f : system_fields()) {
@@ -315,6 +321,8 @@ class CsvWriter final : public TrajectoryWriter {
   TrajectoryInfo info_;  // the scene text is a copy: small beside the samples
   std::vector<std::string> names_;
   std::vector<const BodyField*> fields_;
+  size_t width_ = 0;         // the values of a row: Σ field widths
+  std::vector<double> row_;  // one row's values
   CsvFile trajectory_;
   long samples_ = 0;
   std::optional<CsvFile> diagnostics_;

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <string_view>
@@ -70,24 +71,27 @@ std::vector<size_t> distinct_kinds(const std::vector<BodyGeometry>& bodies,
                                    std::vector<const BodyGeometry*>& kinds) {
   std::vector<size_t> kind(bodies.size());
   std::unordered_multimap<std::uint64_t, size_t> seen;
+  seen.reserve(bodies.size());
   const auto same = [](const BodyGeometry& a, const BodyGeometry& b) {
     return a.mass == b.mass && a.com == b.com && a.U == b.U && a.Lambda == b.Lambda &&
            a.mesh.vertices == b.mesh.vertices && a.mesh.triangles == b.mesh.triangles;
   };
   for (size_t i = 0; i < bodies.size(); ++i) {
     const BodyGeometry& g = bodies[i];
-    // A hash of the bytes (std::hash of string_views: a few bytes per cycle), combined.
-    std::uint64_t h = 0;
-    const auto add = [&h](const void* p, size_t n) {
-      const std::string_view bytes(static_cast<const char*>(p), n);
-      h = h * 0x9e3779b97f4a7c15ull + std::hash<std::string_view>{}(bytes);
-    };
-    add(&g.mass, sizeof g.mass);
-    add(g.com.data(), sizeof(double) * 3);
-    add(g.U.data(), sizeof(double) * 9);
-    add(g.Lambda.data(), sizeof(double) * 3);
-    add(g.mesh.vertices.data(), g.mesh.vertices.size() * sizeof(Vec3));
-    add(g.mesh.triangles.data(), g.mesh.triangles.size() * sizeof(g.mesh.triangles[0]));
+    // Run-length first: bodies of one kind usually come together (a table of copies).
+    if (i > 0 && same(*kinds[kind[i - 1]], g)) {
+      kind[i] = kind[i - 1];
+      continue;
+    }
+    // A hash of the mass properties and the mesh's size (std::hash of the bytes); bodies with the same
+    // hash are compared in full, vertices and triangles too.
+    std::array<double, 18> key{g.mass, static_cast<double>(g.mesh.vertices.size()),
+                               static_cast<double>(g.mesh.triangles.size())};
+    std::copy_n(g.com.data(), 3, key.begin() + 3);
+    std::copy_n(g.U.data(), 9, key.begin() + 6);
+    std::copy_n(g.Lambda.data(), 3, key.begin() + 15);
+    const std::uint64_t h = std::hash<std::string_view>{}(
+        std::string_view(reinterpret_cast<const char*>(key.data()), sizeof key));
     const auto [first, last] = seen.equal_range(h);
     auto it = first;
     while (it != last && !same(*kinds[it->second], g)) ++it;

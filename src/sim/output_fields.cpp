@@ -22,6 +22,26 @@ void put(const Quat& q, double* out) {  // w first: the order of every tumble fi
   out[3] = q.z();
 }
 
+/// A field of the reference frame's state, for a body (BodyField::of_body).
+template <void (*of_reference)(const ReferenceFrameState&, double*)>
+void via_reference(const RigidBody& b, const BodyState& s, double* out) {
+  of_reference(reference_state(b, s), out);
+}
+void reference_position(const ReferenceFrameState& r, double* out) { put(r.position, out); }
+void reference_orientation(const ReferenceFrameState& r, double* out) { put(r.orientation, out); }
+void reference_velocity(const ReferenceFrameState& r, double* out) { put(r.velocity, out); }
+void reference_euler_zyx(const ReferenceFrameState& r, double* out) {
+  put(euler_zyx(r.orientation.toRotationMatrix()), out);
+}
+void reference_euler_zxz(const ReferenceFrameState& r, double* out) {
+  put(euler_zxz(r.orientation.toRotationMatrix()), out);
+}
+void reference_axis_angle(const ReferenceFrameState& r, double* out) {
+  const AxisAngle a = axis_angle(r.orientation);
+  put(a.axis, out);
+  out[3] = a.angle;
+}
+
 // The reference frame's pose: R_ref = R Uᵀ, p = o − R_ref c, v_p = v + ω × (p − o) (state.hpp).
 constexpr BodyField kBodyFields[] = {
     {"position",
@@ -30,24 +50,27 @@ constexpr BodyField kBodyFields[] = {
      "m",
      "world",
      "origin of the body's reference frame",
-     [](const RigidBody& b, const BodyState& s, double* out) { put(reference_state(b, s).position, out); },
-     [](const ParticleState& p, double* out) { put(p.x, out); }},
+     via_reference<reference_position>,
+     [](const ParticleState& p, double* out) { put(p.x, out); },
+     reference_position},
     {"orientation",
      4,
      {"qw", "qx", "qy", "qz"},
      "1",
      "reference -> world",
      "unit quaternion (w, x, y, z) of the body's reference frame",
-     [](const RigidBody& b, const BodyState& s, double* out) { put(reference_state(b, s).orientation, out); },
-     [](const ParticleState&, double* out) { put(Quat::Identity(), out); }},
+     via_reference<reference_orientation>,
+     [](const ParticleState&, double* out) { put(Quat::Identity(), out); },
+     reference_orientation},
     {"velocity",
      3,
      {"vx", "vy", "vz"},
      "m/s",
      "world",
      "velocity of the reference frame's origin",
-     [](const RigidBody& b, const BodyState& s, double* out) { put(reference_state(b, s).velocity, out); },
-     [](const ParticleState& p, double* out) { put(p.v, out); }},
+     via_reference<reference_velocity>,
+     [](const ParticleState& p, double* out) { put(p.v, out); },
+     reference_velocity},
     {"angular_velocity",
      3,
      {"wx", "wy", "wz"},
@@ -103,35 +126,30 @@ constexpr BodyField kBodyFields[] = {
      "rad",
      "reference -> world",
      "R_ref = Rz(yaw) Ry(pitch) Rx(roll); yaw, roll in (−π, π], pitch in [−π/2, π/2]",
-     [](const RigidBody& b, const BodyState& s, double* out) {
-       put(euler_zyx(reference_state(b, s).orientation.toRotationMatrix()), out);
-     },
-     [](const ParticleState&, double* out) { put(Vec3::Zero(), out); }},
+     via_reference<reference_euler_zyx>,
+     [](const ParticleState&, double* out) { put(Vec3::Zero(), out); },
+     reference_euler_zyx},
     {"euler_zxz",
      3,
      {"phi", "theta", "psi"},
      "rad",
      "reference -> world",
      "R_ref = Rz(φ) Rx(θ) Rz(ψ) (3-1-3); φ, ψ in (−π, π], θ in [0, π]",
-     [](const RigidBody& b, const BodyState& s, double* out) {
-       put(euler_zxz(reference_state(b, s).orientation.toRotationMatrix()), out);
-     },
-     [](const ParticleState&, double* out) { put(Vec3::Zero(), out); }},
+     via_reference<reference_euler_zxz>,
+     [](const ParticleState&, double* out) { put(Vec3::Zero(), out); },
+     reference_euler_zxz},
     {"axis_angle",
      4,
      {"axis_x", "axis_y", "axis_z", "angle"},
      "1, rad",
      "reference -> world",
      "R_ref = exp(angle [axis]×), angle in [0, π]; axis (1, 0, 0) at angle 0",
-     [](const RigidBody& b, const BodyState& s, double* out) {
-       const AxisAngle a = axis_angle(reference_state(b, s).orientation);
-       put(a.axis, out);
-       out[3] = a.angle;
-     },
+     via_reference<reference_axis_angle>,
      [](const ParticleState&, double* out) {
        put(Vec3::UnitX(), out);
        out[3] = 0.0;
-     }},
+     },
+     reference_axis_angle},
 };
 constexpr size_t kDefaultBodyFields = 4;
 
@@ -255,6 +273,20 @@ void field_of_row(const BodyField& field, const Model& model, const SystemState&
     field.of_body(model.bodies[r], state.bodies[r], out);
   } else {
     field.of_particle(state.particles[r - n], out);
+  }
+}
+
+void fields_of_row(std::span<const BodyField* const> fields, const Model& model, const SystemState& state,
+                   size_t r, double* out) {
+  std::optional<ReferenceFrameState> reference;
+  for (const BodyField* f : fields) {
+    if (f->of_reference && r < model.bodies.size()) {
+      if (!reference) reference = reference_state(model.bodies[r], state.bodies[r]);
+      f->of_reference(*reference, out);
+    } else {
+      field_of_row(*f, model, state, r, out);
+    }
+    out += f->width;
   }
 }
 

@@ -34,6 +34,9 @@ struct BodyField {
   void (*of_body)(const RigidBody& body, const BodyState& state, double* out);
   /// The value for a particle: a frame at the particle with the identity orientation and ω = 0.
   void (*of_particle)(const ParticleState& state, double* out);
+  /// For a field of the reference frame's state alone: of_body is this of reference_state(body, state),
+  /// which a writer of several such fields computes once per row.
+  void (*of_reference)(const ReferenceFrameState& reference, double* out) = nullptr;
 };
 
 struct SystemField {
@@ -61,6 +64,10 @@ std::vector<std::string> row_names(const Model& model);
 /// The `field.width` values of a field for row r of a sample (a body, or a particle after the bodies).
 void field_of_row(const BodyField& field, const Model& model, const SystemState& state, size_t r,
                   double* out);
+/// The values of every field of `fields` for row r, one after the other (the reference frame's state,
+/// which several fields derive from, computed once).
+void fields_of_row(std::span<const BodyField* const> fields, const Model& model, const SystemState& state,
+                   size_t r, double* out);
 /// The field and the component that a CSV column name stands for, e.g. "w2" → angular_velocity_principal,
 /// 1; nullopt for a name no field has.
 std::optional<std::pair<const BodyField*, int>> find_column(std::string_view column);
