@@ -6,6 +6,7 @@
 #include <hdf5.h>
 
 #include <algorithm>
+#include <bit>
 #include <cstdlib>
 
 #include "../support/scene_files.hpp"
@@ -308,6 +309,33 @@ TEST(OutputFields, EveryFieldIsDocumentedWithItsColumns) {
     const auto columns = fmt::format("{}", fmt::join(f.columns.begin(), f.columns.begin() + f.width, ","));
     const auto row = fmt::format("| `{}` | `{}` | {} |", f.name, columns, f.unit);
     EXPECT_NE(doc.find(row), std::string::npos) << "docs/scene-format.md lacks the row " << row;
+  }
+}
+
+TEST(OutputFields, ARowOfEveryFieldHasTheValuesOfEachFieldAlone) {
+  // fields_of_row computes the reference frame's state once for the fields derived from it: the same
+  // numbers, bit for bit, as each field on its own (body and particle rows, every sample).
+  const Fixture f;
+  std::vector<const BodyField*> all;
+  size_t width = 0;
+  for (const BodyField& field : body_fields()) {
+    all.push_back(&field);
+    width += static_cast<size_t>(field.width);
+  }
+  for (const SystemState& s : f.states) {
+    for (size_t r = 0; r < 2; ++r) {
+      std::vector<double> row(width);
+      fields_of_row(all, f.model, s, r, row.data());
+      size_t at = 0;
+      for (const BodyField* field : all) {
+        double alone[4];
+        field_of_row(*field, f.model, s, r, alone);
+        for (int k = 0; k < field->width; ++k, ++at) {
+          EXPECT_EQ(std::bit_cast<std::uint64_t>(row[at]), std::bit_cast<std::uint64_t>(alone[k]))
+              << field->name << "[" << k << "] of row " << r << " at t = " << s.t;
+        }
+      }
+    }
   }
 }
 
