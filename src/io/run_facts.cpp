@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -47,6 +48,9 @@ class JsonText {
     return *this;
   }
   JsonText& text(std::string_view s) {
+    // Printable ASCII without quotes or backslashes (every name tumble allows) is its own JSON text.
+    if (std::all_of(s.begin(), s.end(), [](char c) { return c >= ' ' && c <= '~' && c != '"' && c != '\\'; }))
+      return raw("\"").raw(s).raw("\"");
     return raw(json(s).dump(-1, ' ', false, json::error_handler_t::replace));
   }
   JsonText& vec(const Vec3& v) {
