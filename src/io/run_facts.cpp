@@ -10,6 +10,7 @@
 #include <cmath>
 #include <string_view>
 #include <unordered_map>
+#include <utility>
 
 #include "tumble/error.hpp"
 
@@ -73,39 +74,52 @@ class JsonText {
 /// compared.
 std::vector<size_t> distinct_kinds(const std::vector<BodyGeometry>& bodies,
                                    std::vector<const BodyGeometry*>& kinds) {
-  std::vector<size_t> kind(bodies.size());
-  std::unordered_multimap<std::uint64_t, size_t> seen;
-  seen.reserve(bodies.size());
   const auto same = [](const BodyGeometry& a, const BodyGeometry& b) {
     return a.mass == b.mass && a.com == b.com && a.U == b.U && a.Lambda == b.Lambda &&
            a.mesh.vertices == b.mesh.vertices && a.mesh.triangles == b.mesh.triangles;
   };
-  for (size_t i = 0; i < bodies.size(); ++i) {
+  // A hash of each body's mass properties and mesh size (std::hash of the bytes), sorted: bodies with
+  // the same hash are neighbours, compared in full (vertices and triangles too). A sort of 10⁵ pairs
+  // touches memory in order, where a hash table of them missed the cache at every insertion.
+  const size_t n = bodies.size();
+  std::vector<std::pair<std::uint64_t, size_t>> order(n);
+  for (size_t i = 0; i < n; ++i) {
     const BodyGeometry& g = bodies[i];
-    // Run-length first: bodies of one kind usually come together (a table of copies).
-    if (i > 0 && same(*kinds[kind[i - 1]], g)) {
-      kind[i] = kind[i - 1];
-      continue;
-    }
-    // A hash of the mass properties and the mesh's size (std::hash of the bytes); bodies with the same
-    // hash are compared in full, vertices and triangles too.
     std::array<double, 18> key{g.mass, static_cast<double>(g.mesh.vertices.size()),
                                static_cast<double>(g.mesh.triangles.size())};
     std::copy_n(g.com.data(), 3, key.begin() + 3);
     std::copy_n(g.U.data(), 9, key.begin() + 6);
     std::copy_n(g.Lambda.data(), 3, key.begin() + 15);
-    const std::uint64_t h = std::hash<std::string_view>{}(
-        std::string_view(reinterpret_cast<const char*>(key.data()), sizeof key));
-    const auto [first, last] = seen.equal_range(h);
-    auto it = first;
-    while (it != last && !same(*kinds[it->second], g)) ++it;
-    if (it != last) {
-      kind[i] = it->second;
-      continue;
+    order[i] = {std::hash<std::string_view>{}(
+                    std::string_view(reinterpret_cast<const char*>(key.data()), sizeof key)),
+                i};
+  }
+  std::sort(order.begin(), order.end());
+  // The first body equal to each (within its hash's run, which is in body order).
+  std::vector<size_t> first(n);
+  for (size_t a = 0, b = 0; a < n; a = b) {
+    while (b < n && order[b].first == order[a].first) ++b;
+    for (size_t k = a; k < b; ++k) {
+      const size_t i = order[k].second;
+      first[i] = i;
+      for (size_t m = a; m < k; ++m) {
+        const size_t j = order[m].second;
+        if (first[j] == j && same(bodies[j], bodies[i])) {
+          first[i] = j;
+          break;
+        }
+      }
     }
-    kind[i] = kinds.size();
-    seen.emplace(h, kind[i]);
-    kinds.push_back(&g);
+  }
+  // Kinds numbered in the order of their first body.
+  std::vector<size_t> kind(n);
+  for (size_t i = 0; i < n; ++i) {
+    if (first[i] == i) {
+      kind[i] = kinds.size();
+      kinds.push_back(&bodies[i]);
+    } else {
+      kind[i] = kind[first[i]];
+    }
   }
   return kind;
 }
