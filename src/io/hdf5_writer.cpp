@@ -164,11 +164,17 @@ class Hdf5Writer final : public TrajectoryWriter {
   void write(const Model& model, const SystemState& state, const DriftSample& d) override {
     if (samples_ == 0) create_diagnostics(d);
     t_->append(state.t);
-    for (size_t k = 0; k < fields_.size(); ++k) {
-      const BodyField& f = *fields_[k];
-      const size_t width = static_cast<size_t>(f.width);
+    // Every field of a row at once (the reference frame's state computed once), then each field's
+    // dataset gathered from them.
+    size_t row_width = 0;
+    for (const BodyField* f : fields_) row_width += static_cast<size_t>(f->width);
+    all_.resize(names_.size() * row_width);
+    for (size_t r = 0; r < names_.size(); ++r) fields_of_row(fields_, model, state, r, &all_[r * row_width]);
+    for (size_t k = 0, at = 0; k < fields_.size(); at += static_cast<size_t>(fields_[k]->width), ++k) {
+      const size_t width = static_cast<size_t>(fields_[k]->width);
       row_.resize(names_.size() * width);
-      for (size_t r = 0; r < names_.size(); ++r) field_of_row(f, model, state, r, &row_[r * width]);
+      for (size_t r = 0; r < names_.size(); ++r)
+        std::copy_n(&all_[r * row_width + at], width, &row_[r * width]);
       field_series_[k].append(row_.data());
     }
     double values[3];
@@ -349,7 +355,8 @@ class Hdf5Writer final : public TrajectoryWriter {
   std::optional<Series> t_;
   std::vector<Series> field_series_;
   std::vector<std::optional<Series>> diagnostic_series_;  ///< one per SystemField, empty if undefined
-  std::vector<double> row_;
+  std::vector<double> row_;                               // one field of every row
+  std::vector<double> all_;                               // every field of every row, row by row
   bool watch_events_ = false;
   std::vector<std::string> warnings_;
   std::vector<std::string> event_names_;
