@@ -188,7 +188,6 @@ struct RunInBatch {
   const std::function<void(const EventHit&)>* on_event = nullptr;
   const std::function<std::string()>* label = nullptr;
   size_t first = 0, n = 0;          ///< its bodies in the system
-  size_t watches = 0;               ///< its events' Watch: watches … + events->size() − 1
   bool done = false;                ///< a lane that stopped or needs no more samples
   SystemState state;                ///< a lane's state, copied out of the system's (reused storage)
   SystemCoordinates at_hi, inside;  ///< the variables where a crossing was located, and in its step
@@ -364,7 +363,6 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
   for (size_t r = 0; r < runs.size(); ++r) {
     RunInBatch& run = runs[r];
     Moment m{F, x, run.first, run.n, scratch};
-    run.watches = watches.size();
     for (size_t i = 0; i < run.events->size(); ++i) {
       const Event& e = (*run.events)[i];
       if (!e.g && !e.g_variables) throw InvalidArgument(fmt::format("event '{}' has no function g", e.name));

@@ -47,6 +47,15 @@ final = ["orientation"]
 
 /// Every value of the rows of run_batch equals that of each run simulated alone (run_alone), bit for bit
 /// (NaN where NaN).
+/// Where column `name` of the table is in a row's values (they start after "run"); fails the test for a
+/// name the table lacks.
+size_t value_index(const EnsembleStudy& s, const std::string& name) {
+  const auto& c = s.columns();
+  const auto k = std::find(c.begin(), c.end(), name);
+  EXPECT_NE(k, c.end()) << name;
+  return static_cast<size_t>(k - c.begin()) - 1;
+}
+
 void expect_batch_equals_runs_alone(const EnsembleStudy& s) {
   const std::vector<long> runs = every_run(s);
   const std::vector<EnsembleRow> batch = run_batch(s, runs);
@@ -155,10 +164,7 @@ extrema = ["w1", "com_z", "wx"]
 )",
                                                  "study.toml");
     expect_batch_equals_runs_alone(s);
-    const auto& c = s.columns();
-    const auto at = [&](const std::string& name) {
-      return static_cast<size_t>(std::find(c.begin(), c.end(), name) - c.begin()) - 1;
-    };
+    const auto at = [&](const std::string& name) { return value_index(s, name); };
     int stopped = 0;
     for (const EnsembleRow& r : run_batch(s, every_run(s))) {
       for (const char* drift : {"energy_drift_max", "angular_momentum_drift_max"}) {
@@ -201,12 +207,7 @@ final = ["com_position"]
                                                "study.toml");
   expect_batch_equals_runs_alone(s);
   // Each run stops where its centre of mass reaches z = −1 m, at t = (v + √(v² + 2g)) / g.
-  const auto& c = s.columns();
-  const auto at = [&](const std::string& name) {
-    const auto k = std::find(c.begin(), c.end(), name);
-    EXPECT_NE(k, c.end()) << name;
-    return static_cast<size_t>(k - c.begin()) - 1;
-  };
+  const auto at = [&](const std::string& name) { return value_index(s, name); };
   int stopped = 0;
   for (const EnsembleRow& r : run_batch(s, every_run(s))) {
     const double v = r.values[0], t = (v + std::sqrt(v * v + 2 * 9.81)) / 9.81;
@@ -304,10 +305,7 @@ mean = 10.0
 std = 0.3
 )");
   const auto rows = run_ensemble(s, every_run(s), 2, {});
-  const auto& c = s.columns();
-  const auto at = [&](const std::string& name) {
-    return static_cast<size_t>(std::find(c.begin(), c.end(), name) - c.begin()) - 1;
-  };
+  const auto at = [&](const std::string& name) { return value_index(s, name); };
   const Vec3 Lambda = s.base().model.bodies[0].Lambda();
   int checked = 0;
   for (const EnsembleRow& r : rows) {
@@ -321,7 +319,7 @@ std = 0.3
   }
   EXPECT_GT(checked, 30) << "most runs flip twice in 8 s";
   // A free body conserves energy and angular momentum: RK4's drift over 8 s at ω h = 0.01 is ~1e-12.
-  const auto stats = summarize(c, rows);
+  const auto stats = summarize(s.columns(), rows);
   for (const ColumnSummary& st : stats) {
     if (st.column == "energy_drift_max") {
       EXPECT_LT(st.max, 1e-9);
