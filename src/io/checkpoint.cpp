@@ -16,12 +16,13 @@
 #include "tumble/error.hpp"
 #include "tumble/io/trajectory_writer.hpp"
 #include "tumble/mass/input_file.hpp"
+#include "tumble/sim/run_settings.hpp"
 
 namespace tumble {
 namespace {
 
 constexpr char kMagic[8] = {'T', 'U', 'M', 'B', 'L', 'E', 'C', 'K'};
-constexpr std::uint32_t kVersion = 1;
+constexpr std::uint32_t kVersion = 2;  // 2: the run settings by the settings table, key by key
 constexpr std::uint32_t kByteOrder = 0x01020304;
 
 class Out {
@@ -225,20 +226,23 @@ void write_checkpoint(const std::filesystem::path& path, const Checkpoint& c) {
     o.u64(s.size);
     o.u64(s.hash);
   }
-  const RunSettings& r = c.settings;
-  o.f64(r.duration);
-  o.f64(r.timestep);
-  o.f64(r.output_interval);
-  o.u64(static_cast<std::uint64_t>(r.formulation));
-  o.str(r.integrator);
-  o.f64(r.tolerances.relative);
-  o.f64(r.tolerances.absolute);
-  o.i64(r.threads);
+  // Every setting of the table (sim/run_settings.hpp) by its key: a setting added to the table is kept
+  // without a line here.
+  o.u64(run_settings().size());
+  for (const RunSetting& s : run_settings()) {
+    o.str(s.key);
+    const SettingValue v = s.get(c.settings);
+    o.u64(std::holds_alternative<std::string>(v) ? 1 : 0);
+    if (const auto* name = std::get_if<std::string>(&v)) {
+      o.str(*name);
+    } else {
+      o.f64(std::get<double>(v));
+    }
+  }
   o.str(c.output);
   o.str(c.diagnostics);
   o.u64(c.fields.size());
   for (const std::string& f : c.fields) o.str(f);
-  o.f64(r.drift_threshold);
   o.u64(c.strict ? 1 : 0);
   o.i64(c.writer_pid);
   o.opt(c.largest_energy_drift);
@@ -321,20 +325,30 @@ Checkpoint read_checkpoint(const std::filesystem::path& path) {
     s.size = in.u64();
     s.hash = in.u64();
   }
-  RunSettings& r = c.settings;
-  r.duration = in.f64();
-  r.timestep = in.f64();
-  r.output_interval = in.f64();
-  r.formulation = static_cast<Formulation>(in.i64(0, 2));
-  r.integrator = in.str();
-  r.tolerances.relative = in.f64();
-  r.tolerances.absolute = in.f64();
-  r.threads = static_cast<int>(in.i64(0, 4096));
+  // The settings by key; one the table does not have is from another tumble (a setting this file lacks
+  // keeps its default).
+  const size_t settings = in.count(16);
+  for (size_t k = 0; k < settings; ++k) {
+    const std::string key = in.str();
+    const bool is_name = in.flag();
+    const SettingValue v = is_name ? SettingValue(in.str()) : SettingValue(in.f64());
+    const RunSetting* s = find_run_setting(key);
+    if (!s) {
+      throw InvalidArgument(
+          fmt::format("checkpoint {} holds the setting '{}', which this tumble does not know: "
+                      "resume it with the tumble that wrote it ({})",
+                      name, key, c.tumble_version));
+    }
+    try {
+      set_run_setting(c.settings, *s, v, key);
+    } catch (const InvalidArgument&) {
+      in.corrupt();
+    }
+  }
   c.output = in.str();
   c.diagnostics = in.str();
   c.fields.resize(in.count(8));
   for (std::string& f : c.fields) f = in.str();
-  r.drift_threshold = in.f64();
   c.strict = in.flag();
   c.writer_pid = in.i64(1, kMaxLong);
   c.largest_energy_drift = in.opt();

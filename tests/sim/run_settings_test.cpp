@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
@@ -86,6 +87,34 @@ TEST(RunSettings, ACheckpointKeepsEverySetting) {
   write_checkpoint(dir / "c.ckpt", c);
   const Checkpoint back = read_checkpoint(dir / "c.ckpt");
   for (const RunSetting& s : run_settings()) EXPECT_EQ(s.get(back.settings), other_value(s)) << s.key;
+}
+
+// A checkpoint stores the settings by key: one this tumble does not know (a checkpoint of another
+// version) is refused by name, not read into the wrong setting.
+TEST(RunSettings, ACheckpointWithASettingThisTumbleLacksIsRefusedByName) {
+  const test::TempDir dir("run_settings_checkpoint_key");
+  Checkpoint c;
+  c.tumble_version = "test";
+  c.scene_path = "s.toml";
+  c.scene_absolute = (dir / "s.toml").string();
+  c.output = (dir / "o.csv").string();
+  c.writer_pid = 1;
+  c.point.samples = 1;
+  write_checkpoint(dir / "c.ckpt", c);
+  std::string bytes = text_of(dir / "c.ckpt");
+  const size_t at = bytes.find("drift_threshold");
+  ASSERT_NE(at, std::string::npos);
+  bytes.replace(at, 15, "drift_ceiling_x");  // the same length, and the checksum made again
+  const std::uint64_t sum = fnv1a64(std::string_view(bytes).substr(0, bytes.size() - 8));
+  std::memcpy(bytes.data() + bytes.size() - 8, &sum, 8);
+  std::ofstream(dir / "c.ckpt", std::ios::binary) << bytes;
+  try {
+    read_checkpoint(dir / "c.ckpt");
+    FAIL() << "an unknown setting was read";
+  } catch (const InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("holds the setting 'drift_ceiling_x'"), std::string::npos)
+        << e.what();
+  }
 }
 
 // docs/scene-format.md's [simulation] table has a row per scene setting with its unit and default, and

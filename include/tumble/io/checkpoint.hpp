@@ -10,10 +10,11 @@
 // outputs hold at that point, what the drift monitor reported so far and the PID of the process that
 // wrote the outputs (its staged FINAL.tmp-PID holds them until they are committed).
 //
-// Format (version 1; docs/ARCHITECTURE.md): "TUMBLECK", a uint32 version, a uint32 byte-order mark
+// Format (version 2; docs/ARCHITECTURE.md): "TUMBLECK", a uint32 version, a uint32 byte-order mark
 // 0x01020304, then the fields in a fixed order — integers as uint64, doubles as their 8 bytes
-// (exact), strings and arrays as a uint64 length and their bytes — and last the FNV-1a 64 hash of all
-// bytes before it. Native byte order: a checkpoint moves between machines of the same byte order only.
+// (exact), strings and arrays as a uint64 length and their bytes; the run settings as every row of the
+// settings table (sim/run_settings.hpp): its key, then 0 and a double or 1 and a name — and last the
+// FNV-1a 64 hash of all bytes before it. Version 1 stored the settings field by field. Native byte order: a checkpoint moves between machines of the same byte order only.
 // Written atomically: CHECKPOINT.tmp-PID, fsync, rename.
 #include <cstdint>
 #include <filesystem>
