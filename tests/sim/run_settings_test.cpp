@@ -74,8 +74,8 @@ TEST(RunSettings, EveryOneIsSetByKindAndTheWrongKindIsNamed) {
   }
 }
 
-TEST(RunSettings, ACheckpointKeepsEverySetting) {
-  const test::TempDir dir("run_settings_checkpoint");
+/// The least checkpoint that writes and reads back: a scene and an output in `dir`, one sample.
+Checkpoint checkpoint_in(const std::filesystem::path& dir) {
   Checkpoint c;
   c.tumble_version = "test";
   c.scene_path = "s.toml";
@@ -83,6 +83,12 @@ TEST(RunSettings, ACheckpointKeepsEverySetting) {
   c.output = (dir / "o.csv").string();
   c.writer_pid = 1;
   c.point.samples = 1;
+  return c;
+}
+
+TEST(RunSettings, ACheckpointKeepsEverySetting) {
+  const test::TempDir dir("run_settings_checkpoint");
+  Checkpoint c = checkpoint_in(dir.path());
   for (const RunSetting& s : run_settings()) set_run_setting(c.settings, s, other_value(s), s.flag);
   write_checkpoint(dir / "c.ckpt", c);
   const Checkpoint back = read_checkpoint(dir / "c.ckpt");
@@ -93,14 +99,7 @@ TEST(RunSettings, ACheckpointKeepsEverySetting) {
 // version) is refused by name, not read into the wrong setting.
 TEST(RunSettings, ACheckpointWithASettingThisTumbleLacksIsRefusedByName) {
   const test::TempDir dir("run_settings_checkpoint_key");
-  Checkpoint c;
-  c.tumble_version = "test";
-  c.scene_path = "s.toml";
-  c.scene_absolute = (dir / "s.toml").string();
-  c.output = (dir / "o.csv").string();
-  c.writer_pid = 1;
-  c.point.samples = 1;
-  write_checkpoint(dir / "c.ckpt", c);
+  write_checkpoint(dir / "c.ckpt", checkpoint_in(dir.path()));
   std::string bytes = text_of(dir / "c.ckpt");
   const size_t at = bytes.find("drift_threshold");
   ASSERT_NE(at, std::string::npos);
