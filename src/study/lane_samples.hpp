@@ -22,7 +22,8 @@ namespace tumble {
 /// Where the drifts are the bodies' sums alone (no force model, so no potential, and no particles) they
 /// are reduced a pack of lanes at a time from sim/diagnostics.hpp's add_body_sums; a lane of a pack gives
 /// the bits of the same run observed alone, on doubles (the same operations in the same order). Other
-/// runs' drifts are a DriftMonitor's each.
+/// runs' drifts are a DriftMonitor's each. Extrema of the columns the formulation holds as variables
+/// (VariableColumn::variable) are taken a pack of lanes at a time too, the others lane by lane.
 class LaneSamples {
  public:
   LaneSamples(const EnsembleOutputs& outputs, Formulation F, size_t lanes, size_t bodies_per_lane,
