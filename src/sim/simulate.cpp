@@ -224,9 +224,10 @@ std::vector<RunInBatch> runs_of(const Model& model, const RunHooks& hooks, const
                       L, model.bodies.size(), model.particles.size()));
   for (size_t r = 0; r < L; ++r) {
     const Lane& lane = hooks.lanes[r];
-    require(lane.model && lane.model->bodies.size() == n && lane.model->particles.empty(),
-            fmt::format("lane {} ({}) needs its own model of the {} bodies it holds", r,
-                        lane.label ? lane.label() : "", n));
+    if (!lane.model || lane.model->bodies.size() != n || !lane.model->particles.empty()) {
+      throw InvalidArgument(fmt::format("lane {} ({}) needs its own model of the {} bodies it holds", r,
+                                        lane.label ? lane.label() : "", n));  // the label formatted only here
+    }
     RunInBatch& run = runs.emplace_back();
     run.model = lane.model;
     run.events = &lane.events;
