@@ -4,7 +4,7 @@
 #    10 ms, a flip event, extrema, final values, drifts; draws on ω, an edge and the attitude);
 #  - the T-handle study of examples/t_handle_ensemble.toml as bench/ensemble_scaling.sh runs it (20 s,
 #    splitting, h = 0.02 s, a sample every step), on 1 and 2 threads;
-#  - the engine alone: batch_throughput's rk4 rate for 10^4 free boxes (the plate study's batches, 512
+#  - the engine alone: batch_throughput's rk4 rate for 10^4 free boxes (the plate study's batches, 256
 #    runs at a time, is of that order), one step per call as a study with events takes them;
 #  - MuJoCo 2.2.2's RK4 on 10⁴ free boxes (bench/peers, built by bench/peers/run.sh).
 # REPEATS interleaved repetitions of each; min and median. Prints a table with the ratios; the study
