@@ -20,13 +20,8 @@ EnsembleStudy study(const std::string& ensemble) { return test::racket_study(ens
 TEST(StudyRuns, TheTableIsTheSameForAnyNumberOfThreads) {
   const EnsembleStudy s = study(R"([ensemble]
 runs = 24
-seed = 3
-[[ensemble.vary]]
-path = "bodies.racket.angular_velocity[0]"
-distribution = "uniform"
-low = 0.01
-high = 0.2
-[ensemble.outputs]
+seed = 3)" + test::vary("bodies.racket.angular_velocity[0]", "uniform", "low = 0.01\nhigh = 0.2") +
+                                R"([ensemble.outputs]
 extrema = ["w2", "w1"]
 final = ["orientation"]
 )");
@@ -91,7 +86,8 @@ TEST(StudyRuns, RunsSteppedAsOneBatchGiveTheRowsOfEachRunAloneBitForBit) {
     std::string scene = test::racket_scene(2.0) + forces;
     scene.insert(scene.find("timestep"), fmt::format("integrator = \"{}\"\n", integrator));
     scene.insert(scene.find("[[bodies]]"), "[world]\ngravity = [0.0, 0.0, -9.81]\n");
-    const EnsembleStudy s = EnsembleStudy::parse(scene + R"([[events]]
+    const EnsembleStudy s = EnsembleStudy::parse(
+        scene + R"([[events]]
 name = "tilt"
 body = "racket"
 axis = [0.0, 0.0, 1.0]
@@ -99,29 +95,14 @@ toward = [0.0, 0.0, 1.0]
 angle_deg = 20.0
 [ensemble]
 runs = 37
-seed = 5
-[[ensemble.vary]]
-path = "bodies.racket.angular_velocity"
-distribution = "direction"
-magnitude = 10.0
-[[ensemble.vary]]
-path = "bodies.racket.mass"
-distribution = "uniform"
-low = 0.5
-high = 2.0
-[[ensemble.vary]]
-path = "bodies.racket.orientation"
-distribution = "rotation"
-[[ensemble.vary]]
-path = "events.tilt.angle_deg"
-distribution = "uniform"
-low = 5.0
-high = 90.0
-[ensemble.outputs]
+seed = 5)" + test::vary("bodies.racket.angular_velocity", "direction", "magnitude = 10.0") +
+            test::vary("bodies.racket.mass", "uniform", "low = 0.5\nhigh = 2.0") +
+            test::vary("bodies.racket.orientation", "rotation") +
+            test::vary("events.tilt.angle_deg", "uniform", "low = 5.0\nhigh = 90.0") + R"([ensemble.outputs]
 extrema = ["w1", "w2", "com_z"]
 final = ["orientation", "angular_velocity"]
 )",
-                                                 "study.toml");
+        "study.toml");
     expect_batch_equals_runs_alone(s);
   }
 }
@@ -141,7 +122,8 @@ TEST(StudyRuns, FreeRunsAreReducedAPackOfRunsAtATimeWithTheBitsOfEachRunAlone) {
                  "[[bodies]]\nname = \"plate\"\nshape = { type = \"box\", size = [0.3, 0.2, 0.01] }\n"
                  "mass = 0.5\nposition = [1.0, 0.0, 0.0]\nvelocity = [0.0, 0.0, 0.3]\n"
                  "angular_velocity = [3.0, 0.1, 0.2]\n");
-    const EnsembleStudy s = EnsembleStudy::parse(scene + R"([[events]]
+    const EnsembleStudy s =
+        EnsembleStudy::parse(scene + R"([[events]]
 name = "high"
 body = "plate"
 column = "com_z"
@@ -149,20 +131,12 @@ value = 0.4
 stop = true
 [ensemble]
 runs = 21
-seed = 9
-[[ensemble.vary]]
-path = "bodies.racket.angular_velocity"
-distribution = "direction"
-magnitude = 10.0
-[[ensemble.vary]]
-path = "bodies.plate.velocity[2]"
-distribution = "uniform"
-low = 0.0
-high = 0.5
-[ensemble.outputs]
+seed = 9)" + test::vary("bodies.racket.angular_velocity", "direction", "magnitude = 10.0") +
+                                 test::vary("bodies.plate.velocity[2]", "uniform", "low = 0.0\nhigh = 0.5") +
+                                 R"([ensemble.outputs]
 extrema = ["w1", "com_z", "wx"]
 )",
-                                                 "study.toml");
+                             "study.toml");
     expect_batch_equals_runs_alone(s);
     const auto at = [&](const std::string& name) { return value_index(s, name); };
     int stopped = 0;
@@ -195,13 +169,8 @@ column = "com_z"
 value = -1.0
 stop = true
 [ensemble]
-runs = 20
-[[ensemble.vary]]
-path = "bodies.racket.velocity[2]"
-distribution = "uniform"
-low = -2.0
-high = 8.0
-[ensemble.outputs]
+runs = 20)" + test::vary("bodies.racket.velocity[2]", "uniform", "low = -2.0\nhigh = 8.0") +
+                                                   R"([ensemble.outputs]
 final = ["com_position"]
 )",
                                                "study.toml");
@@ -225,30 +194,16 @@ final = ["com_position"]
 // (a system model) keeps every run on its own.
 TEST(StudyRuns, RunsAreBatchedByStructureAndSystemModelsRunAlone) {
   expect_batch_equals_runs_alone(study(R"([ensemble]
-runs = 30
-[[ensemble.vary]]
-path = "simulation.timestep"
-distribution = "grid"
-values = [1e-3, 2e-3, 4e-3]
-[[ensemble.vary]]
-path = "bodies.racket.angular_velocity[0]"
-distribution = "uniform"
-low = 0.01
-high = 0.2
-)"));
+runs = 30)" + test::vary("simulation.timestep", "grid", "values = [1e-3, 2e-3, 4e-3]") +
+                                       test::vary("bodies.racket.angular_velocity[0]", "uniform",
+                                                  "low = 0.01\nhigh = 0.2")));
   expect_batch_equals_runs_alone(study(R"([[forces]]
 type = "spring"
 a = { body = "racket", point = [0.0, 0.0, 0.15] }
 b = { anchor = [0.0, 0.0, 1.0] }
 stiffness = 10.0
 [ensemble]
-runs = 6
-[[ensemble.vary]]
-path = "bodies.racket.angular_velocity[0]"
-distribution = "uniform"
-low = 0.01
-high = 0.2
-)"));
+runs = 6)" + test::vary("bodies.racket.angular_velocity[0]", "uniform", "low = 0.01\nhigh = 0.2")));
 }
 
 // A run that blows up inside a batch is named with its draws' run number.
@@ -258,12 +213,9 @@ type = "drag"
 body = "racket"
 angular = 1e-3
 [ensemble]
-runs = 16
-[[ensemble.vary]]
-path = "bodies.racket.angular_velocity[1]"
-distribution = "list"
-values = [1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1e6, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0]
-)");
+runs = 16)" + test::vary("bodies.racket.angular_velocity[1]", "list",
+                         "values = [1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1e6, 1.0, 1.0, 1.0, "
+                         "1.0, 1.0, 1.0, 1.0, 1.0]"));
   try {
     (void)run_batch(s, every_run(s));
     FAIL() << "the blow-up went unnoticed";
@@ -292,18 +244,9 @@ values = [1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1e6, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 
 TEST(StudyRuns, EachRunsFlipIntervalIsTheExactOne) {
   const EnsembleStudy s = study(R"([ensemble]
 runs = 40
-seed = 11
-[[ensemble.vary]]
-path = "bodies.racket.angular_velocity[0]"
-distribution = "lognormal"
-mu = -3.0
-sigma = 0.5
-[[ensemble.vary]]
-path = "bodies.racket.angular_velocity[1]"
-distribution = "normal"
-mean = 10.0
-std = 0.3
-)");
+seed = 11)" + test::vary("bodies.racket.angular_velocity[0]", "lognormal", "mu = -3.0\nsigma = 0.5") +
+                                test::vary("bodies.racket.angular_velocity[1]", "normal",
+                                           "mean = 10.0\nstd = 0.3"));
   const auto rows = run_ensemble(s, every_run(s), 2, {});
   const auto at = [&](const std::string& name) { return value_index(s, name); };
   const Vec3 Lambda = s.base().model.bodies[0].Lambda();
