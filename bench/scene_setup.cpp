@@ -309,8 +309,10 @@ int main(int argc, char** argv) {
       "machine: {}, {} hardware threads; first touch of fresh memory {:.2f} us per 4 KiB page\n"
       "scenes in {}; `tumble run`: {}\n\n",
       repetitions, bench::cpu_model(), std::thread::hardware_concurrency(), first_touch_us_per_page(),
-      dir.string(),
-      std::filesystem::exists(tumble) ? tumble.string() + " run SCENE --duration 0 --quiet" : "not found");
+      // Names, not this machine's paths: the output is kept in bench/results.
+      argc > 3 ? dir.filename().string() : "a temporary directory",
+      std::filesystem::exists(tumble) ? "tumble (beside this program) run SCENE --duration 0 --quiet"
+                                      : "not found");
   fmt::print("{:>7} {:<30} {:>10} {:>10} {:>10}\n", "", "", "wall", "wall", "CPU");
   fmt::print("{:>7} {:<30} {:>10} {:>10} {:>10}\n", "N", "stage (us per body)", "min", "median", "min");
   for (const bool table : {false, true}) {

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <sstream>
@@ -56,7 +57,9 @@ int main(int argc, char** argv) {
   size_t tables = 0;
   for (size_t at = text.find("[[bodies]]"); at != std::string::npos; at = text.find("[[bodies]]", at + 1))
     ++tables;
-  std::printf("# %s: %zu bytes, %zu [[bodies]] tables; best of %d, parse and free the tree\n", argv[1],
+  // The file's name, not its path: the output is kept in bench/results.
+  const std::string file = std::filesystem::path(argv[1]).filename().string();
+  std::printf("# %s: %zu bytes, %zu [[bodies]] tables; best of %d, parse and free the tree\n", file.c_str(),
               text.size(), tables, repeats);
   const auto per = [&](double s) { return tables ? 1e6 * s / static_cast<double>(tables) : 0.0; };
 
