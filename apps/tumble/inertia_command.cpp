@@ -109,7 +109,7 @@ std::vector<Report> measure_scene(const InertiaOptions& o) {
     if (!o.body.empty() && b.name() != o.body) continue;
     Report r;
     r.name = b.name();
-    r.source = fmt::format("body '{}' of {}: {}", b.name(), o.file, scene.body_info[i].source);
+    r.source = fmt::format("body '{}' of {}: {}", b.name(), o.file, *scene.body_info[i].source);
     r.mp = b.mass_properties();
     out.push_back(std::move(r));
   }

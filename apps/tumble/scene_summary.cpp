@@ -43,7 +43,7 @@ void print_scene_summary(std::FILE* out, const Scene& scene) {
              count(m.forces.size(), "force model", "force models"));
   for (size_t i = 0; i < m.bodies.size(); ++i) {
     const RigidBody& b = m.bodies[i];
-    fmt::print(out, "  body '{}': {}\n", b.name(), scene.body_info[i].source);
+    fmt::print(out, "  body '{}': {}\n", b.name(), *scene.body_info[i].source);
     fmt::print(out, "    mass               {:.10g} kg\n", b.mass());
     fmt::print(out, "    centre of mass     {} m (body reference frame)\n", vec(b.center_of_mass()));
     fmt::print(out, "    principal moments  {:.10g}  {:.10g}  {:.10g} kg*m^2 (ascending)\n", b.Lambda()(0),

@@ -53,11 +53,13 @@ Scene from_arrays(const Eigen::VectorXd& mass, const Rows3& moments, std::option
   scene.settings.integrator = integrator;
   scene.model.bodies.reserve(static_cast<size_t>(n));
   scene.initial.bodies.reserve(static_cast<size_t>(n));
+  scene.body_info.reserve(static_cast<size_t>(n));
+  const auto source = std::make_shared<const std::string>("arrays");  // one for every body
   for (Eigen::Index i = 0; i < n; ++i) {
-    const std::string name = "body_" + std::to_string(i);
     RigidBody body = [&] {
       try {
-        return RigidBody::from_principal_moments(mass(i), moments.row(i).transpose(), name);
+        return RigidBody::from_principal_moments(mass(i), moments.row(i).transpose(),
+                                                 "body_" + std::to_string(i));
       } catch (const InvalidMassProperties& e) {
         throw InvalidArgument(py::str("row {}: {}").format(i, e.what()).cast<std::string>());
       }
@@ -78,7 +80,7 @@ Scene from_arrays(const Eigen::VectorXd& mass, const Rows3& moments, std::option
     };
     scene.initial.bodies.push_back(
         state_from_reference(body, row(position), q, row(velocity), row(omega), frame));
-    scene.body_info.push_back({"arrays", body.mass_properties(), {}});
+    scene.body_info.push_back({source, nullptr});
     scene.model.add_body(std::move(body));
   }
   if (gravity && gravity->norm() > 0) {

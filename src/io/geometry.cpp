@@ -1,6 +1,7 @@
 #include "tumble/io/geometry.hpp"
 
 #include "tumble/forces/forces.hpp"
+#include "tumble/math/huge_pages.hpp"
 
 namespace tumble {
 
@@ -8,10 +9,11 @@ SceneGeometry scene_geometry(const Scene& scene) {
   SceneGeometry g;
   const Model& model = scene.model;
   g.bodies.reserve(model.bodies.size());
+  prefer_huge_pages(g.bodies);  // 144 bytes a body
   for (size_t i = 0; i < model.bodies.size(); ++i) {
     const RigidBody& b = model.bodies[i];
     BodyGeometry& out = g.bodies.emplace_back();
-    if (i < scene.body_info.size()) out.mesh = scene.body_info[i].display;
+    if (i < scene.body_info.size()) out.mesh = scene.body_info[i].display;  // shared, not copied
     out.mass = b.mass();
     out.com = b.center_of_mass();
     out.U = b.U();

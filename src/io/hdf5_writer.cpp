@@ -292,8 +292,8 @@ class Hdf5Writer final : public TrajectoryWriter {
       com.insert(com.end(), {b.com.x(), b.com.y(), b.com.z()});
       for (int r = 0; r < 3; ++r) U.insert(U.end(), {b.U(r, 0), b.U(r, 1), b.U(r, 2)});
       Lambda.insert(Lambda.end(), {b.Lambda.x(), b.Lambda.y(), b.Lambda.z()});
-      for (const Vec3& v : b.mesh.vertices) vertices.insert(vertices.end(), {v.x(), v.y(), v.z()});
-      for (const auto& t : b.mesh.triangles) triangles.insert(triangles.end(), t.begin(), t.end());
+      for (const Vec3& v : b.surface().vertices) vertices.insert(vertices.end(), {v.x(), v.y(), v.z()});
+      for (const auto& t : b.surface().triangles) triangles.insert(triangles.end(), t.begin(), t.end());
       vertex_offsets.push_back(vertices.size() / 3);
       triangle_offsets.push_back(triangles.size() / 3);
     }

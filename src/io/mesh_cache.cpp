@@ -32,8 +32,10 @@ MeshMassResult CachedMesh::unit_solid(const std::string& name) const {
   return unit_->second;
 }
 
-const TriangleMesh& CachedMesh::display() const {
-  std::call_once(display_once_, [this] { display_ = decimate(loaded_.mesh, kDisplayTriangles); });
+std::shared_ptr<const TriangleMesh> CachedMesh::display() const {
+  std::call_once(display_once_, [this] {
+    display_ = std::make_shared<const TriangleMesh>(decimate(loaded_.mesh, kDisplayTriangles));
+  });
   return display_;
 }
 

@@ -24,15 +24,15 @@ class CachedMesh {
   /// solid_unit_properties(mesh(), name): its checks and integrals once (per name, which its messages
   /// carry); throws as it does.
   MeshMassResult unit_solid(const std::string& name) const;
-  /// decimate(mesh(), kDisplayTriangles), once.
-  const TriangleMesh& display() const;
+  /// decimate(mesh(), kDisplayTriangles), once; every body of this mesh shares it.
+  std::shared_ptr<const TriangleMesh> display() const;
 
  private:
   LoadedMesh loaded_;
   mutable std::mutex lock_;
   mutable std::optional<std::pair<std::string, MeshMassResult>> unit_;
   mutable std::once_flag display_once_;
-  mutable TriangleMesh display_;
+  mutable std::shared_ptr<const TriangleMesh> display_;
 };
 
 /// load_mesh(path, options), from the cache when the same file (the same size and mtime) was read with

@@ -62,7 +62,7 @@ json array_f32(const std::vector<double>& v, std::vector<size_t> shape) {
 /// A body's surface in its reference frame: its display mesh, or the box of its principal moments
 /// placed on its principal axes at its centre of mass.
 json body_mesh(const BodyGeometry& g) {
-  TriangleMesh mesh = g.mesh;
+  TriangleMesh mesh = g.surface();
   if (mesh.triangles.empty()) {
     mesh = inertia_box(g.mass, g.Lambda);
     for (Vec3& v : mesh.vertices) v = g.com + g.U * v;
@@ -86,7 +86,7 @@ json body_mesh(const BodyGeometry& g) {
 
 double bounding_radius(const BodyGeometry& g) {
   double r = 0.0;
-  for (const Vec3& v : g.mesh.vertices) r = std::max(r, (v - g.com).norm());
+  for (const Vec3& v : g.surface().vertices) r = std::max(r, (v - g.com).norm());
   if (r > 0) return r;
   // No mesh: the half diagonal of its inertia box.
   const Vec3 L = g.Lambda;

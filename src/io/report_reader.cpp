@@ -247,8 +247,9 @@ Samples read_hdf5(const std::filesystem::path& path, Report& r, const Scene* sce
       for (int j = 0; j < 3; ++j) g.U(i, j) = U[9 * b + 3 * static_cast<size_t>(i) + static_cast<size_t>(j)];
     g.Lambda = Vec3(Lambda[3 * b], Lambda[3 * b + 1], Lambda[3 * b + 2]);
     const auto v0 = static_cast<size_t>(vo[b]), v1 = static_cast<size_t>(vo[b + 1]);
+    TriangleMesh mesh;
     for (size_t v = v0; v < v1; ++v)
-      g.mesh.vertices.emplace_back(vertices[3 * v], vertices[3 * v + 1], vertices[3 * v + 2]);
+      mesh.vertices.emplace_back(vertices[3 * v], vertices[3 * v + 1], vertices[3 * v + 2]);
     for (auto f = static_cast<size_t>(to[b]); f < static_cast<size_t>(to[b + 1]); ++f) {
       const std::array<std::uint32_t, 3> tri{triangles[3 * f], triangles[3 * f + 1], triangles[3 * f + 2]};
       for (std::uint32_t k : tri) {
@@ -256,8 +257,9 @@ Samples read_hdf5(const std::filesystem::path& path, Report& r, const Scene* sce
           throw InvalidArgument(
               fmt::format("{}: geometry triangle {} names a missing vertex", path.string(), f));
       }
-      g.mesh.triangles.push_back(tri);
+      mesh.triangles.push_back(tri);
     }
+    if (!mesh.triangles.empty()) g.mesh = std::make_shared<const TriangleMesh>(std::move(mesh));
   }
   std::vector<hsize_t> spring_shape;
   const auto ends = h.doubles("geometry/springs", &spring_shape);

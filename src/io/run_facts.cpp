@@ -76,7 +76,8 @@ std::vector<size_t> distinct_kinds(const std::vector<BodyGeometry>& bodies,
                                    std::vector<const BodyGeometry*>& kinds) {
   const auto same = [](const BodyGeometry& a, const BodyGeometry& b) {
     return a.mass == b.mass && a.com == b.com && a.U == b.U && a.Lambda == b.Lambda &&
-           a.mesh.vertices == b.mesh.vertices && a.mesh.triangles == b.mesh.triangles;
+           (a.mesh == b.mesh ||
+            (a.surface().vertices == b.surface().vertices && a.surface().triangles == b.surface().triangles));
   };
   // A hash of each body's mass properties and mesh size (std::hash of the bytes), sorted: bodies with
   // the same hash are neighbours, compared in full (vertices and triangles too). A sort of 10⁵ pairs
@@ -85,8 +86,8 @@ std::vector<size_t> distinct_kinds(const std::vector<BodyGeometry>& bodies,
   std::vector<std::pair<std::uint64_t, size_t>> order(n);
   for (size_t i = 0; i < n; ++i) {
     const BodyGeometry& g = bodies[i];
-    std::array<double, 18> key{g.mass, static_cast<double>(g.mesh.vertices.size()),
-                               static_cast<double>(g.mesh.triangles.size())};
+    std::array<double, 18> key{g.mass, static_cast<double>(g.surface().vertices.size()),
+                               static_cast<double>(g.surface().triangles.size())};
     std::copy_n(g.com.data(), 3, key.begin() + 3);
     std::copy_n(g.U.data(), 9, key.begin() + 6);
     std::copy_n(g.Lambda.data(), 3, key.begin() + 15);
@@ -148,13 +149,14 @@ void run_facts(const TrajectoryInfo& info, const std::vector<std::string>& names
     j.raw(",").key("principal_axes").raw("[");
     for (int r = 0; r < 3; ++r) (r ? j.raw(",") : j).vec(b.U.row(r).transpose());
     j.raw("],").key("principal_moments").vec(b.Lambda).raw(",").key("vertices").raw("[");
-    for (size_t v = 0; v < b.mesh.vertices.size(); ++v) {
-      const Vec3& x = b.mesh.vertices[v];
+    const TriangleMesh& mesh = b.surface();
+    for (size_t v = 0; v < mesh.vertices.size(); ++v) {
+      const Vec3& x = mesh.vertices[v];
       (v ? j.raw(",") : j).number(x.x()).raw(",").number(x.y()).raw(",").number(x.z());
     }
     j.raw("],").key("triangles").raw("[");
-    for (size_t t = 0; t < b.mesh.triangles.size(); ++t) {
-      const auto& tri = b.mesh.triangles[t];
+    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+      const auto& tri = mesh.triangles[t];
       (t ? j.raw(",") : j).integer(tri[0]).raw(",").integer(tri[1]).raw(",").integer(tri[2]);
     }
     j.raw("]}");
@@ -223,7 +225,8 @@ void read_run_facts(const json& j, const std::string& file, Report& r) {
       g.com = to_vec(b.at("center_of_mass"));
       for (int row = 0; row < 3; ++row) g.U.row(row) = to_vec(b.at("principal_axes").at(row)).transpose();
       g.Lambda = to_vec(b.at("principal_moments"));
-      g.mesh = read_mesh(b.at("vertices"), b.at("triangles"));
+      TriangleMesh mesh = read_mesh(b.at("vertices"), b.at("triangles"));
+      if (!mesh.triangles.empty()) g.mesh = std::make_shared<const TriangleMesh>(std::move(mesh));
     };
     if (version == 1) {  // each body with its own geometry
       for (const json& b : j.at("bodies")) read_body(b, r.geometry.bodies.emplace_back());

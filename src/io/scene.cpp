@@ -103,11 +103,11 @@ Scene read_scene(const toml::table& root, std::string text, const std::filesyste
                        "events", "ensemble"});
   read_simulation(r, scene);
   read_output(r, scene);
-  NameTable names;
-  std::deque<std::string> table_names;  // the names of [[body_tables]] rows, viewed by `names`
+  NameTable names(scene.model, file);
   read_bodies(r, path.parent_path(), names, scene);
-  read_body_tables(r, path.parent_path(), names, table_names, scene);
+  read_body_tables(r, path.parent_path(), names, scene);
   read_particles(r, names, scene);
+  names.seal();
   if (scene.model.bodies.empty() && scene.model.particles.empty()) {
     r.fail_here("the scene has nothing to simulate: add [[bodies]], [[body_tables]] or [[particles]]");
   }

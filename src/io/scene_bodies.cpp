@@ -23,24 +23,14 @@ void register_name(const TableReader& table, std::string_view name, bool is_part
     table.fail_at(
         "name", fmt::format("name \"{}\" is not allowed: use letters, digits, '_', '-' and '.' only", name));
   }
-  const auto [it, inserted] =
-      names.try_emplace(name, NameEntry{table.where("name").begin, is_particle, index});
-  if (!inserted) {
-    const toml::source_position first = it->second.where;
-    table.fail_at("name",
-                  fmt::format("duplicate name \"{}\" (first defined {}): give every body and particle "
-                              "its own name",
-                              name,
-                              first.line == 0
-                                  ? std::string("in a [[body_tables]] file")
-                                  : fmt::format("at line {}, column {}", first.line, first.column)));
-  }
+  const toml::source_position at = table.where("name").begin;
+  names.add(name, is_particle, index, 0, at.line, at.column);
 }
 
 void read_bodies(const TableReader& root, const std::filesystem::path& directory, NameTable& names,
                  Scene& scene) {
   const auto bodies = root.tables("bodies");
-  names.reserve(names.size() + bodies.size());
+  names.reserve(bodies.size());
   scene.model.bodies.reserve(bodies.size());
   scene.initial.bodies.reserve(bodies.size());
   scene.body_info.reserve(bodies.size());
@@ -81,13 +71,14 @@ void read_bodies(const TableReader& root, const std::filesystem::path& directory
     }
     scene.initial.bodies.push_back(state);
     scene.model.add_body(std::move(rigid));
-    scene.body_info.push_back({std::move(mass.source), mass.properties, std::move(mass.display)});
+    scene.body_info.push_back(
+        {std::make_shared<const std::string>(std::move(mass.source)), std::move(mass.display)});
   }
 }
 
 void read_particles(const TableReader& root, NameTable& names, Scene& scene) {
   const auto particles = root.tables("particles");
-  names.reserve(names.size() + particles.size());
+  names.reserve(particles.size());
   for (size_t i = 0; i < particles.size(); ++i) {
     const auto untitled =
         TableReader::any_keys(*particles[i], Context::numbered("[[particles]] #", i + 1), root.file());

@@ -23,8 +23,8 @@ std::vector<std::string> all_columns() {
 size_t watched_row(const TableReader& t, const NameTable& names, const Scene& scene) {
   const std::string_view name =
       t.required_string("body", "the body or particle to watch, e.g. body = \"handle\"");
-  if (const auto found = names.find(name); found != names.end()) {
-    return found->second.is_particle ? scene.model.bodies.size() + found->second.index : found->second.index;
+  if (const auto* found = names.find(name)) {
+    return found->is_particle ? scene.model.bodies.size() + found->index : found->index;
   }
   const std::vector<std::string> rows = row_names(scene.model);
   const auto s = closest(std::string(name), rows);
@@ -115,12 +115,11 @@ std::vector<EventSpec> parse_events(const Scene& s, const std::string& text,
   const toml::table root = scene::parse_toml(text, file);
   const scene::TableReader r(root, "events", file, {"events"});
   // The names as the scene file registered them: bodies, then particles.
-  const std::vector<std::string> rows = row_names(s.model);
-  scene::NameTable names;
-  for (size_t i = 0; i < rows.size(); ++i) {
-    const bool particle = i >= s.model.bodies.size();
-    names.emplace(rows[i], scene::NameEntry{{}, particle, particle ? i - s.model.bodies.size() : i});
-  }
+  scene::NameTable names(s.model, s.path.string());
+  for (size_t i = 0; i < s.model.bodies.size(); ++i) names.add(s.model.bodies[i].name(), false, i, 0, 0, 0);
+  for (size_t i = 0; i < s.model.particles.size(); ++i)
+    names.add(s.model.particles[i].name, true, i, 0, 0, 0);
+  names.seal();
   return scene::read_events(r, names, s);
 }
 

@@ -13,8 +13,8 @@ namespace {
 /// The index of the body named by `key` in t.
 size_t body_index(const TableReader& t, std::string_view key, const NameTable& names, const Scene& scene) {
   const std::string_view name = *t.string(key);
-  if (const auto found = names.find(name); found != names.end()) {
-    if (!found->second.is_particle) return found->second.index;
+  if (const auto* found = names.find(name)) {
+    if (!found->is_particle) return found->index;
     t.fail_at(key, fmt::format("\"{}\" is a particle; this force acts on rigid bodies only", name));
   }
   std::vector<std::string> bodies;
@@ -30,9 +30,7 @@ size_t body_index(const TableReader& t, std::string_view key, const NameTable& n
 size_t particle_index(const TableReader& t, std::string_view key, const NameTable& names,
                       const Scene& scene) {
   const std::string_view name = *t.string(key);
-  if (const auto found = names.find(name); found != names.end() && found->second.is_particle) {
-    return found->second.index;
-  }
+  if (const auto* found = names.find(name); found && found->is_particle) return found->index;
   std::vector<std::string> particles;
   for (const Particle& p : scene.model.particles) particles.push_back(p.name);
   const auto s = closest(std::string(name), particles);

@@ -224,8 +224,8 @@ DensityField density_in_part(const Material& mat, const Pose& pose) {
 /// The solid of `shape` or `mesh` in table t (its own frame), with material `mat`; `pose` places it
 /// in the body frame, where a polynomial density is written.
 MassProperties solid(const TableReader& t, const Material& mat, const Pose& pose,
-                     const std::filesystem::path& directory, std::string& source, TriangleMesh& display,
-                     Scene& scene) {
+                     const std::filesystem::path& directory, std::string& source,
+                     std::shared_ptr<const TriangleMesh>& display, Scene& scene) {
   // The rule of degree d is exact for ρ of degree d − 2 (density.hpp).
   const int degree = std::max(kMinDensityDegree, mat.polynomial.degree + 2);
   const MassSpec spec = mat.kind == Material::Kind::mass      ? MassSpec::mass(mat.value)
@@ -247,7 +247,7 @@ MassProperties solid(const TableReader& t, const Material& mat, const Pose& pose
         t.fail_at("scale", "scale applies to a mesh only: remove it or give mesh = \"...\"");
       const Shape shape = read_shape(t);
       source = describe_shape(shape) + shell + ", " + mat.describe();
-      display = tessellate(shape, kDisplaySegments);
+      display = std::make_shared<const TriangleMesh>(tessellate(shape, kDisplaySegments));
       if (is_shell) return shell_mass_properties(shape, thickness, spec);
       if (mat.kind == Material::Kind::polynomial)
         return integrate_density(shape, density_in_part(mat, pose), degree).properties;
@@ -270,7 +270,7 @@ MassProperties solid(const TableReader& t, const Material& mat, const Pose& pose
     const TriangleMesh& mesh = cached->mesh();
     source = fmt::format("mesh {} ({} triangles{}){}, {}", file, mesh.triangles.size(),
                          scale != 1.0 ? fmt::format(", scale {:g}", scale) : "", shell, mat.describe());
-    display = cached->display();
+    display = cached->display();  // shared by every body of this mesh
     if (is_shell) {
       MeshMassResult r = shell_mass_properties(mesh, thickness, spec, file);
       for (auto& w : r.warnings) scene.warnings.push_back(location(t.file(), t.where("mesh")) + ": " + w);
@@ -398,11 +398,12 @@ BodyMass read_body_mass(const TableReader& body, const std::filesystem::path& di
     }
     const Pose pose = read_pose(part);
     std::string source;
-    TriangleMesh shown;
+    std::shared_ptr<const TriangleMesh> shown;
     const MassProperties mp = part.has("inertia") ? explicit_inertia(part, m)
                                                   : solid(part, m, pose, directory, source, shown, scene);
     const MassProperties placed = mp.transformed(pose.R, pose.t);
-    if (!part.boolean("hole").value_or(false)) append_placed(display, shown, pose);  // holes are not drawn
+    if (shown && !part.boolean("hole").value_or(false))
+      append_placed(display, *shown, pose);  // holes are not drawn
     if (part.boolean("hole").value_or(false)) {
       if (!(placed.mass < total.mass)) {
         part.fail_here(
@@ -452,7 +453,7 @@ BodyMass read_body_mass(const TableReader& body, const std::filesystem::path& di
           fmt::format("{} parts{}, {}", parts.size(),
                       holes.empty() ? "" : fmt::format(" ({} holes)", holes.size()),
                       material.kind == Material::Kind::none ? "materials per part" : material.describe()),
-          decimate(display, kDisplayTriangles)};
+          std::make_shared<const TriangleMesh>(decimate(display, kDisplayTriangles))};
 }
 
 }  // namespace tumble::scene

@@ -1,12 +1,11 @@
 #pragma once
 // The sections of a scene file, each read by its own source file (scene.cpp, scene_bodies.cpp,
 // scene_forces.cpp) into the Scene under construction.
-#include <deque>
 #include <filesystem>
 #include <string>
 #include <string_view>
-#include <unordered_map>
 
+#include "name_table.hpp"
 #include "scene_reader.hpp"
 
 namespace tumble::scene {
@@ -20,23 +19,13 @@ toml::table parse_toml(const std::string& text, const std::string& file);
 /// parse_toml() and this, kept apart so that bench/scene_setup can time each stage.
 Scene read_scene(const toml::table& root, std::string text, const std::filesystem::path& path);
 
-/// A name of a body or particle, where it is defined (so that a duplicate can say where the first
-/// one is) and what it names.
-struct NameEntry {
-  toml::source_position where;  // line 0: a row of a [[body_tables]] file
-  bool is_particle;
-  size_t index;  // in model.bodies or model.particles
-};
-/// The names seen so far. Bodies and particles share one namespace: both are rows of the same
-/// trajectory. The keys are views into the parsed TOML, which outlives the table.
-using NameTable = std::unordered_map<std::string_view, NameEntry>;
-
 /// The mass properties of one [[bodies]] table (shape, mesh, explicit inertia or parts) in its
 /// reference frame, and a description of where they came from. Mesh warnings go to scene.warnings.
 struct BodyMass {
   MassProperties properties;
   std::string source;
-  TriangleMesh display;  ///< its surface for pictures (reference frame); empty for given mass and inertia
+  /// Its surface for pictures (reference frame); null for given mass and inertia.
+  std::shared_ptr<const TriangleMesh> display;
 };
 BodyMass read_body_mass(const TableReader& body, const std::filesystem::path& directory, Scene& scene);
 
@@ -44,10 +33,9 @@ BodyMass read_body_mass(const TableReader& body, const std::filesystem::path& di
 /// `directory`.
 void read_bodies(const TableReader& root, const std::filesystem::path& directory, NameTable& names,
                  Scene& scene);
-/// [[body_tables]]: bodies from CSV files, a row each (scene_body_table.cpp). Their names are stored
-/// in `name_storage` (a deque: the views in `names` stay valid as it grows).
+/// [[body_tables]]: bodies from CSV files, a row each (scene_body_table.cpp).
 void read_body_tables(const TableReader& root, const std::filesystem::path& directory, NameTable& names,
-                      std::deque<std::string>& name_storage, Scene& scene);
+                      Scene& scene);
 /// [[particles]].
 void read_particles(const TableReader& root, NameTable& names, Scene& scene);
 /// [world] gravity and [[forces]], which name bodies and particles by `names`; sets scene.conserved
@@ -59,8 +47,8 @@ std::vector<EventSpec> read_events(const TableReader& root, const NameTable& nam
 
 /// Whether a body or particle name is non-empty and only letters, digits, '_', '-' and '.'.
 bool valid_name(std::string_view name);
-/// Checks a body or particle name (non-empty, letters, digits, '_', '-', '.', unique) and records it
-/// with its index. `name` must be a view into the parsed TOML.
+/// Checks a body or particle name of a TOML table (non-empty, letters, digits, '_', '-', '.') and records
+/// it with its index and place; NameTable::seal() checks that it is unique.
 void register_name(const TableReader& table, std::string_view name, bool is_particle, size_t index,
                    NameTable& names);
 

@@ -2,6 +2,7 @@
 // the checks apply to the file actually read and a FIFO is never waited on.
 #include "tumble/mass/input_file.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cstdlib>
@@ -35,14 +36,6 @@ std::string readable(std::uint64_t bytes) {
   while (v >= 1024.0 && u < 5) v /= 1024.0, ++u;
   return fmt::format("{} bytes ({:.3g} {})", bytes, v, units[u]);
 }
-
-/// Closes a file descriptor on every path out.
-struct Descriptor {
-  int fd;
-  ~Descriptor() {
-    if (fd >= 0) ::close(fd);
-  }
-};
 
 [[noreturn]] void throw_open_error(const std::filesystem::path& path, std::string_view what, int error) {
   if (error == ENOENT || error == ENOTDIR) {
@@ -107,29 +100,50 @@ std::uint64_t checked_input_size(const std::filesystem::path& path, std::string_
   return checked_size(path, what, st);
 }
 
-std::string read_input_file(const std::filesystem::path& path, std::string_view what) {
-  // O_NONBLOCK: opening a FIFO without a writer would otherwise wait for one, forever.
-  const Descriptor file{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)};
-  if (file.fd < 0) throw_open_error(path, what, errno);
-  struct stat st {};
-  if (::fstat(file.fd, &st) != 0) throw_open_error(path, what, errno);
-  const std::uint64_t size = checked_size(path, what, st);
-  std::string bytes(static_cast<std::size_t>(size), '\0');
-  std::size_t done = 0;
-  while (done < bytes.size()) {
-    const ssize_t n = ::read(file.fd, bytes.data() + done, bytes.size() - done);
+InputFile::InputFile(const std::filesystem::path& path, std::string_view what)
+    : path_(path),
+      what_(what),
+      // O_NONBLOCK: opening a FIFO without a writer would otherwise wait for one, forever.
+      fd_(::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)) {
+  if (fd_ < 0) throw_open_error(path, what, errno);
+  try {
+    struct stat st {};
+    if (::fstat(fd_, &st) != 0) throw_open_error(path, what, errno);
+    size_ = checked_size(path, what, st);
+  } catch (...) {
+    ::close(fd_);  // the destructor of an object never made does not run
+    throw;
+  }
+}
+
+InputFile::~InputFile() { ::close(fd_); }
+
+std::size_t InputFile::read(char* buffer, std::size_t capacity) {
+  const auto wanted = static_cast<std::size_t>(std::min<std::uint64_t>(capacity, size_ - done_));
+  std::size_t got = 0;
+  while (got < wanted) {
+    const ssize_t n = ::read(fd_, buffer + got, wanted - got);
     if (n < 0 && errno == EINTR) continue;
     if (n < 0) {
-      throw FileError(fmt::format("{}: cannot read the {}: {}", path.string(), what, std::strerror(errno)));
+      throw FileError(fmt::format("{}: cannot read the {}: {}", path_.string(), what_, std::strerror(errno)));
     }
     if (n == 0) {
       throw FileError(
           fmt::format("{}: the {} became shorter while it was read ({} of {} bytes); read it "
                       "again when nothing writes to it",
-                      path.string(), what, done, size));
+                      path_.string(), what_, done_ + got, size_));
     }
-    done += static_cast<std::size_t>(n);
+    got += static_cast<std::size_t>(n);
   }
+  done_ += got;
+  return got;
+}
+
+std::string read_input_file(const std::filesystem::path& path, std::string_view what) {
+  InputFile file(path, what);
+  std::string bytes(static_cast<std::size_t>(file.size()), '\0');
+  for (std::size_t done = 0; done < bytes.size();)
+    done += file.read(bytes.data() + done, bytes.size() - done);
   return bytes;
 }
 

@@ -313,10 +313,19 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
   // A sample at the variables y, to every run that still wants them; false ends the run. `ready`: the
   // state there, when the caller has it (the initial state as given; a crossing's); else it is
   // converted from y: the whole system for a run alone (into `state`), each lane's own bodies.
+  // Which variables `state` was last converted from, and at what time: the run's end state is that
+  // sample when they are the stepper's end at its time, and is then handed back without a conversion
+  // (a copy of 112 bytes a body).
+  const SystemCoordinates* state_of = nullptr;
+  double state_t = 0.0;
   auto emit = [&](const SystemCoordinates& y, const SystemState* ready) {
     ++samples;
     if (!batch) {
-      if (ready != &state) to_state(F, y, state);  // reuses the storage: no allocation per sample
+      if (ready != &state) {
+        to_state(F, y, state);  // reuses the storage: no allocation per sample
+        state_of = &y;
+        state_t = y.t;
+      }
       const bool go_on = !on_sample || on_sample(state);
       return (!hooks.on_variables || hooks.on_variables(y, 0)) && go_on;
     }
@@ -475,7 +484,7 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
   const auto loop = [&](auto& stepper) -> SystemState {
     // The one time loop: a step, the crossings inside it, then the samples it reached, in time order;
     // run points after a step that held samples; a stop request answered after every step.
-    const auto finish = [&] { return batch ? to_state(F, stepper.end()) : state; };
+    const auto finish = [&] { return batch ? to_state(F, stepper.end()) : std::move(state); };
     if (!from) keep(stepper);
     while (!stepper.finished()) {
       const double t_sample = std::min(t0 + static_cast<double>(k_out) * dt_out, t_end);
@@ -525,7 +534,8 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
         return finish();
       }
     }
-    return stepper.final_state(state, F);
+    const bool state_is_end = !batch && state_of == &stepper.end() && state_t == stepper.end().t;
+    return stepper.final_state(std::move(state), state_is_end, F);
   };
   if (is_adaptive(settings.integrator)) {
     steppers::AdaptiveSteps stepper(model, F, settings, x, t_end, from);

@@ -133,7 +133,10 @@ class FixedSteps {
     p.integrator = integrator_->save_state();
   }
 
-  SystemState final_state(const SystemState&, Formulation) const { return to_state(F_, x_); }
+  /// The state the run ends in: `last_sample` when it was converted from the end itself.
+  SystemState final_state(SystemState&& last_sample, bool last_sample_is_end, Formulation) const {
+    return last_sample_is_end ? std::move(last_sample) : to_state(F_, x_);
+  }
 
  private:
   const Model& model_;
@@ -199,8 +202,9 @@ class AdaptiveSteps {
     p.integrator = integrator_->save_state();
   }
 
-  SystemState final_state(const SystemState& last_sample, Formulation F) const {
-    return resumed_at_end_ ? to_state(F, x_b_) : last_sample;
+  /// The state the run ends in: its last sample, which is at the end, unless it resumed there.
+  SystemState final_state(SystemState&& last_sample, bool, Formulation F) const {
+    return resumed_at_end_ ? to_state(F, x_b_) : std::move(last_sample);
   }
 
  private:

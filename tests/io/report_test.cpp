@@ -61,7 +61,8 @@ TEST(Report, TheCsvAndHdf5FilesGiveTheReportTheRunRecorded) {
     EXPECT_EQ(r->samples_total, 2001);
     ASSERT_EQ(r->t.size(), 2001u) << "within the size budget: nothing thinned";
     ASSERT_EQ(r->geometry.bodies.size(), 1u);
-    EXPECT_FALSE(r->geometry.bodies[0].mesh.triangles.empty()) << "the T-handle's mesh travels with the file";
+    EXPECT_FALSE(r->geometry.bodies[0].surface().triangles.empty())
+        << "the T-handle's mesh travels with the file";
     ASSERT_EQ(r->events.size(), 4u);
     EXPECT_EQ(r->events[0].name, "flip");
     EXPECT_EQ(r->integrator, "rk4");
@@ -73,7 +74,7 @@ TEST(Report, TheCsvAndHdf5FilesGiveTheReportTheRunRecorded) {
   EXPECT_EQ(from_csv.quaternion, from_h5.quaternion);
   EXPECT_EQ(from_csv.omega_world, from_h5.omega_world);
   EXPECT_EQ(from_csv.energy_drift, from_h5.energy_drift);
-  EXPECT_EQ(from_csv.geometry.bodies[0].mesh.vertices, from_h5.geometry.bodies[0].mesh.vertices);
+  EXPECT_EQ(from_csv.geometry.bodies[0].surface().vertices, from_h5.geometry.bodies[0].surface().vertices);
 
   // ω in principal axes, recomputed from the file as Uᵀ R_refᵀ ω, against the run's own
   // angular_velocity_principal column: equal to rounding (a few ulp of |ω| = 20 rad/s).
@@ -141,7 +142,7 @@ TEST(Report, TheRunFileHoldsEachDistinctGeometryOnce) {
   for (size_t i = 0; i < 42; ++i) {
     EXPECT_EQ(r.geometry.bodies[i].mass, s.model.bodies[i].mass()) << i;
     EXPECT_EQ(r.geometry.bodies[i].Lambda, s.model.bodies[i].Lambda()) << i;
-    EXPECT_EQ(r.geometry.bodies[i].mesh.vertices, s.body_info[i].display.vertices) << i;
+    EXPECT_EQ(r.geometry.bodies[i].surface().vertices, s.body_info[i].display->vertices) << i;
   }
   // Format 1: the kinds written out per body.
   nlohmann::json old = facts;
@@ -157,7 +158,7 @@ TEST(Report, TheRunFileHoldsEachDistinctGeometryOnce) {
   const Report from_old = read_report(dir / "b.csv");
   ASSERT_EQ(from_old.geometry.bodies.size(), 42u);
   for (size_t i = 0; i < 42; ++i)
-    EXPECT_EQ(from_old.geometry.bodies[i].mesh.vertices, r.geometry.bodies[i].mesh.vertices);
+    EXPECT_EQ(from_old.geometry.bodies[i].surface().vertices, r.geometry.bodies[i].surface().vertices);
   // A body naming a kind that is not there is refused with the file's name.
   nlohmann::json bad = facts;
   bad["body_kinds"][0][0] = 9;
@@ -199,9 +200,9 @@ TEST(Report, TheHtmlHoldsTheJsonTheViewerDecodes) {
   const auto& body = j.at("bodies").at(0);
   EXPECT_EQ(body.at("kind"), "body");
   EXPECT_EQ(decode<float>(body.at("mesh").at("positions")).size(),
-            3 * r.geometry.bodies[0].mesh.vertices.size());
+            3 * r.geometry.bodies[0].surface().vertices.size());
   EXPECT_EQ(decode<std::uint32_t>(body.at("mesh").at("indices")).size(),
-            3 * r.geometry.bodies[0].mesh.triangles.size());
+            3 * r.geometry.bodies[0].surface().triangles.size());
   EXPECT_EQ(j.at("events").size(), 4u);
 }
 

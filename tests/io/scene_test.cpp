@@ -169,13 +169,13 @@ density = 2000.0
 )");
   const double R2 = 0.05 * 0.05, r2 = 0.04 * 0.04, L = 0.4;
   const double m = 2000.0 * pi * (R2 - r2) * L;
-  const MassProperties& mp = s.body_info[0].mass_properties;
+  const MassProperties mp = s.model.bodies[0].mass_properties();  // U Λ Uᵀ: rounding of ~1e-16
   // The difference of two masses 2.8 times larger than the result: rounding is amplified ~3x.
   EXPECT_NEAR(mp.mass, m, 1e-14 * m);
   EXPECT_NEAR(mp.center_of_mass.z(), 0.2, 1e-15);
   EXPECT_NEAR(mp.inertia(2, 2), m * (R2 + r2) / 2, 1e-13 * m * R2);
   EXPECT_NEAR(mp.inertia(0, 0), m * (3 * (R2 + r2) + L * L) / 12, 1e-13 * m * L * L);
-  EXPECT_NE(s.body_info[0].source.find("2 parts (1 holes)"), std::string::npos) << s.body_info[0].source;
+  EXPECT_NE(s.body_info[0].source->find("2 parts (1 holes)"), std::string::npos) << *s.body_info[0].source;
 }
 
 TEST(SceneFile, RotatedPartsAndTotalMass) {
@@ -210,7 +210,7 @@ name = "graded"
 shape = { type = "box", size = [0.2, 0.2, 0.2] }
 density = { polynomial = [[1000.0, 0, 0, 0], [2000.0, 0, 0, 1]] }
 )");
-  const MassProperties& mp = s.body_info[0].mass_properties;
+  const MassProperties mp = s.model.bodies[0].mass_properties();  // U Λ Uᵀ: rounding of ~1e-16
   EXPECT_NEAR(mp.mass, 1000.0 * 0.008, 1e-13);
   EXPECT_NEAR(mp.center_of_mass.z(), 2000.0 * 0.04 / (12 * 1000.0), 1e-15);
   EXPECT_NEAR(mp.center_of_mass.x(), 0.0, 1e-16);
@@ -290,7 +290,7 @@ density = 2700.0
   // T volume 0.1·0.02·0.02 + 0.06·0.02·0.02 = 6.4e-5 m³, ×8 for scale 2. The STL stores float32
   // coordinates (relative rounding up to 6e-8 each), so the volume is exact to ~2e-7 relative.
   EXPECT_NEAR(s.model.bodies[0].mass(), 2700.0 * 6.4e-5 * 8, 2e-7 * 1.3824);
-  EXPECT_NE(s.body_info[0].source.find("scale 2"), std::string::npos);
+  EXPECT_NE(s.body_info[0].source->find("scale 2"), std::string::npos);
 }
 
 TEST(SceneFile, ForcesByNameAndWhatTheyConserve) {

@@ -13,11 +13,19 @@
 namespace tumble {
 
 struct BodyGeometry {
-  TriangleMesh mesh;  ///< reference frame (m); empty: drawn as the box of the same principal moments
+  /// Its surface, reference frame (m), shared by the bodies of one mesh; null: drawn as the box of the
+  /// same principal moments.
+  std::shared_ptr<const TriangleMesh> mesh;
   double mass = 0.0;
   Vec3 com = Vec3::Zero();     ///< centre of mass, reference frame
   Mat3 U = Mat3::Identity();   ///< principal axes (columns), reference frame
   Vec3 Lambda = Vec3::Zero();  ///< principal moments, ascending
+
+  /// The surface, empty where there is none.
+  const TriangleMesh& surface() const {
+    static const TriangleMesh none;
+    return mesh ? *mesh : none;
+  }
 };
 
 struct SpringGeometry {

@@ -4,6 +4,7 @@
 // anything wrong in the file is a SceneError whose message begins with file:line:column and says
 // what was expected, what was found and how to fix it.
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -22,14 +23,16 @@ class SceneError : public Error {
   using Error::Error;
 };
 
-/// What a scene says about one body besides its dynamics (for `tumble check` and summaries).
+/// What a scene says about one body besides its dynamics (for `tumble check`, summaries and pictures).
+/// Both are shared: the rows of a body table share one source, the bodies of one mesh one display mesh,
+/// so a scene of 10^5 bodies holds two pointers per body here (its mass properties are the RigidBody's).
 struct SceneBodyInfo {
-  std::string source;              ///< where the mass came from, e.g. "mesh t_handle.stl, 2700 kg/m^3"
-  MassProperties mass_properties;  ///< in the body's reference frame
+  /// Where the mass came from, e.g. "mesh t_handle.stl, 2700 kg/m^3".
+  std::shared_ptr<const std::string> source;
   /// The body's surface for pictures (reports), reference frame: its shape tessellated, its mesh (at most
-  /// kDisplayTriangles, decimated beyond), its parts but the holes; empty where only mass and inertia are
+  /// kDisplayTriangles, decimated beyond), its parts but the holes; null where only mass and inertia are
   /// known (a report then draws the box of the same principal moments).
-  TriangleMesh display;
+  std::shared_ptr<const TriangleMesh> display;
 };
 
 struct Scene {

@@ -37,4 +37,26 @@ std::uint64_t checked_input_size(const std::filesystem::path& path, std::string_
 /// file itself (so the file cannot be swapped for a FIFO between the check and the read).
 std::string read_input_file(const std::filesystem::path& path, std::string_view what);
 
+/// An input file read in pieces, for files too large to hold whole (a body table of 10⁶ rows): opened
+/// and checked as read_input_file() does, then read a buffer at a time. Exactly size() bytes are read;
+/// a file that ends sooner (it was truncated meanwhile) is a FileError.
+class InputFile {
+ public:
+  InputFile(const std::filesystem::path& path, std::string_view what);
+  ~InputFile();
+  InputFile(const InputFile&) = delete;
+  InputFile& operator=(const InputFile&) = delete;
+
+  /// The size the file had when it was opened: what is read.
+  std::uint64_t size() const { return size_; }
+  /// Reads up to `capacity` bytes into `buffer`: how many, 0 once size() bytes have been read.
+  std::size_t read(char* buffer, std::size_t capacity);
+
+ private:
+  std::filesystem::path path_;
+  std::string what_;
+  int fd_;
+  std::uint64_t size_ = 0, done_ = 0;
+};
+
 }  // namespace tumble
