@@ -85,10 +85,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const tumble::Scene scene = tumble::parse_scene(text, work_dir / "fuzz.toml");
     FUZZ_CHECK(scene.body_info.size() == scene.model.bodies.size());
     FUZZ_CHECK(scene.initial.bodies.size() == scene.model.bodies.size());
-    for (const auto& info : scene.body_info) {
-      const auto& p = info.mass_properties;
-      FUZZ_CHECK(std::isfinite(p.mass) && p.mass > 0.0);
-      FUZZ_CHECK(p.center_of_mass.allFinite() && p.inertia.allFinite());
+    for (const auto& body : scene.model.bodies) {
+      FUZZ_CHECK(std::isfinite(body.mass()) && body.mass() > 0.0);
+      FUZZ_CHECK(body.center_of_mass().allFinite() && body.Lambda().allFinite() && body.U().allFinite());
     }
     for (const auto& b : scene.initial.bodies) {
       FUZZ_CHECK(b.o.allFinite() && b.q.coeffs().allFinite() && b.v.allFinite() && b.omega_w.allFinite());
