@@ -10,9 +10,11 @@
 // box_0 … box_N-1, uniform gravity. Each repetition loads it through the calls `tumble run` makes
 // (apps/tumble/run_command.cpp) and times the stages apart:
 //   read     the file into memory (scene::read_file, as load_scene calls it)
-//   parse    toml++ (scene::parse_toml, as load_scene calls it)
-//   build    the Scene from the TOML: validation, mass properties, RigidBody, initial states, forces
-//   free     the TOML tree (toml++), destroyed as load_scene returns
+//   parse    the text cut into its [[bodies]] sections and the rest, the rest parsed by toml++
+//            (scene::parse_scene_text, as load_scene calls it)
+//   build    the Scene: the [[bodies]] sections parsed one at a time (toml++), validation, mass
+//            properties, RigidBody, initial states, forces
+//   free     the rest's TOML tree (toml++), destroyed as load_scene returns
 //   prepare  settings validated, CSV writer opened, DriftMonitor, simulate() up to its first sample
 //   set-up   all of the above: process start to first step, less the program's start and the sample
 //   sample   the initial sample: invariants and the CSV rows (written before the first step too)
@@ -220,11 +222,13 @@ Lap time_stages(const std::filesystem::path& scene_path, const std::filesystem::
   Stopwatch total, lap;
   std::string text = scene::read_file(scene_path);
   series[stage::read] = lap.lap();
-  std::optional<toml::table> root = scene::parse_toml(text, scene_path.string());
+  std::optional<scene::ParsedScene> parsed =
+      scene::parse_scene_text(text, scene::TomlFile{scene_path.string()});
   series[stage::parse] = lap.lap();
-  Scene scene = scene::read_scene(*root, std::move(text), scene_path);
+  const scene::BodySections* sections = parsed->sections ? &*parsed->sections : nullptr;
+  Scene scene = scene::read_scene(parsed->root, sections, std::move(text), scene_path);
   series[stage::build] = lap.lap();
-  root.reset();
+  parsed.reset();
   series[stage::free_toml] = lap.lap();
 
   // run_command.cpp: settings, writer, drift monitor, then simulate() until its first sample.

@@ -12,12 +12,15 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <string>
 #include <system_error>
 
 #include "fuzz_support.hpp"
+#include "io/scene_sections.hpp"
 #include "tumble/io/ensemble.hpp"
 #include "tumble/io/scene.hpp"
 
@@ -79,10 +82,46 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
   return 0;
 }
 
+namespace {
+
+/// The scene of `text` read from the tree of the whole document, with no [[bodies]] sections split off
+/// (io/body_sections.hpp), or null where that refuses it.
+std::optional<tumble::Scene> whole_tree(const std::string& text) {
+  const fs::path path = work_dir / "fuzz.toml";
+  try {
+    namespace scene = tumble::scene;
+    return scene::read_scene(scene::parse_toml(text, scene::TomlFile{path.string()}), text, path);
+  } catch (const tumble::Error&) {
+    return std::nullopt;
+  }
+}
+
+bool same_bits(const double* a, const double* b, size_t n) {
+  return std::memcmp(a, b, n * sizeof(double)) == 0;
+}
+
+}  // namespace
+
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
+  // Differential: the [[bodies]] sections parsed apart give the whole tree's scene, or both refuse (with
+  // more than one mistake in the text, not always the same one first).
+  const std::optional<tumble::Scene> reference = whole_tree(text);
+  bool accepted = false;
   tumble::fuzz::refused_or_ok([&] {
     const tumble::Scene scene = tumble::parse_scene(text, work_dir / "fuzz.toml");
+    accepted = true;
+    FUZZ_CHECK(reference && reference->model.bodies.size() == scene.model.bodies.size());
+    for (size_t i = 0; i < scene.model.bodies.size(); ++i) {
+      const tumble::RigidBody &a = scene.model.bodies[i], &b = reference->model.bodies[i];
+      FUZZ_CHECK(a.name() == b.name() && same_bits(a.Lambda().data(), b.Lambda().data(), 3) &&
+                 same_bits(a.U().data(), b.U().data(), 9) && a.mass() == b.mass());
+      const tumble::BodyState &s = scene.initial.bodies[i], &t = reference->initial.bodies[i];
+      FUZZ_CHECK(same_bits(s.o.data(), t.o.data(), 3) && same_bits(s.v.data(), t.v.data(), 3) &&
+                 same_bits(s.omega_w.data(), t.omega_w.data(), 3));
+    }
+    FUZZ_CHECK(scene.model.forces.size() == reference->model.forces.size());
+    FUZZ_CHECK(scene.events.size() == reference->events.size());
     FUZZ_CHECK(scene.body_info.size() == scene.model.bodies.size());
     FUZZ_CHECK(scene.initial.bodies.size() == scene.model.bodies.size());
     for (const auto& body : scene.model.bodies) {
@@ -95,6 +134,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     FUZZ_CHECK(std::isfinite(scene.initial.t));
     FUZZ_CHECK(std::isfinite(scene.settings.duration) && std::isfinite(scene.settings.timestep));
   });
+  FUZZ_CHECK(accepted == reference.has_value());
   // An [ensemble] table: the study is read as `tumble ensemble` reads it, and its first runs' scenes
   // are built from their draws (not simulated); each is a valid scene or a tumble::Error.
   if (text.find("ensemble") != std::string::npos) {

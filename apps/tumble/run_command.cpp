@@ -277,14 +277,14 @@ int execute(Job& j) {
                      plan_run(settings, scene.model.bodies.size(), scene.model.particles.size(), 0).samples);
   }
   // The writer keeps the scene's text (HDF5 stores it); the run needs it no more, so it is not copied.
-  const TrajectoryInfo info{std::move(scene.text), j.scene_arg, TUMBLE_VERSION, settings, j.fields,
-                            !scene.events.empty(), geometry};
+  TrajectoryInfo info{std::move(scene.text), j.scene_arg, TUMBLE_VERSION, settings, j.fields,
+                      !scene.events.empty(), geometry};
   const auto started = std::chrono::steady_clock::now();
   std::optional<CsvContinuation> continuation;
   if (j.resumed) continuation = CsvContinuation{j.resumed->point.samples, j.resumed->point.t_last_sample};
   const std::unique_ptr<TrajectoryWriter> writer =
       hdf5 ? make_hdf5_writer(out, scene.model, info)
-           : make_csv_writer(out, diagnostics, scene.model, info, continuation);
+           : make_csv_writer(out, diagnostics, scene.model, std::move(info), continuation);
 
   const double t0 = scene.initial.t;
   Run run(scene.model, std::move(scene.initial), settings, scene.conserved);  // 112 bytes a body: not copied

@@ -212,11 +212,10 @@ size_t row_width(const std::vector<const BodyField*>& fields) {
 class CsvWriter final : public TrajectoryWriter {
  public:
   CsvWriter(const std::filesystem::path& trajectory, const std::filesystem::path& diagnostics,
-            const Model& model, const TrajectoryInfo& info,
-            const std::optional<CsvContinuation>& continuation)
-      : info_(info),
+            const Model& model, TrajectoryInfo&& info, const std::optional<CsvContinuation>& continuation)
+      : info_(std::move(info)),
         names_(row_names(model)),
-        fields_(body_fields(info.fields)),
+        fields_(body_fields(info_.fields)),
         width_(row_width(fields_)),
         trajectory_(trajectory, header({"t", "body"}, fields_), "trajectory",
                     kept(continuation, names_.size())),
@@ -224,7 +223,7 @@ class CsvWriter final : public TrajectoryWriter {
     if (!diagnostics.empty())
       diagnostics_.emplace(diagnostics, header({"t"}, all_system_fields()), "diagnostics",
                            kept(continuation, 1));
-    if (info.events && trajectory_.staged().kind() == io::OutputKind::staged) {
+    if (info_.events && trajectory_.staged().kind() == io::OutputKind::staged) {
       events_.emplace(events_path(trajectory), "t,event,body", "events", kept(continuation, 0));
     }
   }
@@ -318,7 +317,7 @@ class CsvWriter final : public TrajectoryWriter {
   long samples() const override { return samples_; }
 
  private:
-  TrajectoryInfo info_;  // the scene text is a copy: small beside the samples
+  TrajectoryInfo info_;
   std::vector<std::string> names_;
   std::vector<const BodyField*> fields_;
   size_t width_ = 0;         // the values of a row: Σ field widths
@@ -359,14 +358,14 @@ bool same_file(const std::filesystem::path& a, const std::filesystem::path& b) {
 
 std::unique_ptr<TrajectoryWriter> make_csv_writer(const std::filesystem::path& trajectory,
                                                   const std::filesystem::path& diagnostics,
-                                                  const Model& model, const TrajectoryInfo& info,
+                                                  const Model& model, TrajectoryInfo info,
                                                   const std::optional<CsvContinuation>& continuation) {
   if (!diagnostics.empty() && same_file(trajectory, diagnostics)) {
     throw InvalidArgument(
         fmt::format("the trajectory {} and the diagnostics {} are the same file: give different files",
                     trajectory.string(), diagnostics.string()));
   }
-  return std::make_unique<CsvWriter>(trajectory, diagnostics, model, info, continuation);
+  return std::make_unique<CsvWriter>(trajectory, diagnostics, model, std::move(info), continuation);
 }
 
 }  // namespace tumble

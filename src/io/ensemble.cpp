@@ -108,8 +108,9 @@ EnsembleStudy EnsembleStudy::parse(const std::string& text, const std::filesyste
   auto impl = std::make_unique<Impl>();
   impl->text = text;
   impl->path = path;
-  impl->root = scene::parse_toml(text, path.string());
-  impl->study = ensemble::read_study(impl->root, path.string());
+  const scene::TomlFile file{path.string()};
+  impl->root = scene::parse_toml(text, file);  // one tree, whose values each run's draws replace
+  impl->study = ensemble::read_study(impl->root, file);
   impl->base = scene::read_scene(impl->root, text, path);
   impl->rows = row_names(impl->base.model);
   impl->columns = {"run"};

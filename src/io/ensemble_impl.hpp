@@ -19,7 +19,7 @@ struct Study {
 };
 
 /// The [ensemble] table of a scene file; SceneError at file:line:column for anything wrong in it.
-Study read_study(const toml::table& root, const std::string& file);
+Study read_study(const toml::table& root, const scene::TomlFile& file);
 
 /// The node at `path` in a scene's TOML ("bodies.handle.angular_velocity[1]": a key, an element of
 /// bodies/particles/forces/events by its name, an index); nullptr with `error` saying why.

@@ -104,7 +104,7 @@ toml::node* resolve(toml::table& root, const std::string& path, std::string& err
   return node;
 }
 
-Study read_study(const toml::table& root, const std::string& file) {
+Study read_study(const toml::table& root, const scene::TomlFile& file) {
   Study s;
   const scene::TableReader top = scene::TableReader::any_keys(root, "scene", file);
   const auto e = top.table("ensemble", "[ensemble]", {"runs", "seed", "vary", "outputs"});

@@ -84,27 +84,37 @@ std::string read_file(const std::filesystem::path& path, const char* what) {
   }
 }
 
-toml::table parse_toml(const std::string& text, const std::string& file) {
+toml::table parse_toml(std::string_view text, const TomlFile& file) {
   try {
-    return toml::parse(text, file);
+    return toml::parse(text);  // positions in the text; messages name `file`
   } catch (const toml::parse_error& e) {
     fail(file, e.source(), fmt::format("TOML syntax error: {}", e.description()));
   }
 }
 
-Scene read_scene(const toml::table& root, std::string text, const std::filesystem::path& path) {
+ParsedScene parse_scene_text(std::string_view text, const TomlFile& file) {
+  if (auto split = split_body_sections(text)) {
+    toml::table rest = parse_toml(split->rest, file);
+    // A `bodies` the rest still defines (bodies = [...], [bodies] or a dotted key) is no TOML together
+    // with [[bodies]] tables: parsed whole, the text gets toml++'s own message.
+    if (!rest.contains("bodies")) return {std::move(rest), std::move(split)};
+  }
+  return {parse_toml(text, file), std::nullopt};
+}
+
+Scene read_scene(const toml::table& root, const BodySections* sections, std::string&& text,
+                 const std::filesystem::path& path) {
   Scene scene;
   scene.path = path;
-  scene.text = std::move(text);
-  scene.input_files.push_back(path);       // then every mesh, as it is read
-  const std::string file = path.string();  // for messages; outlives every reader
+  scene.input_files.push_back(path);   // then every mesh, as it is read
+  const TomlFile file{path.string()};  // for messages; outlives every reader
   const TableReader r(root, "scene", file,
                       {"simulation", "output", "world", "bodies", "body_tables", "particles", "forces",
                        "events", "ensemble"});
   read_simulation(r, scene);
   read_output(r, scene);
-  NameTable names(scene.model, file);
-  read_bodies(r, path.parent_path(), names, scene);
+  NameTable names(scene.model, file.name);
+  read_bodies(r, sections, path.parent_path(), names, scene);
   read_body_tables(r, path.parent_path(), names, scene);
   read_particles(r, names, scene);
   names.seal();
@@ -113,19 +123,23 @@ Scene read_scene(const toml::table& root, std::string text, const std::filesyste
   }
   read_forces(r, names, scene);
   scene.events = read_events(r, names, scene);
+  scene.text = std::move(text);  // last: the sections are views into it
   return scene;
 }
 
 }  // namespace scene
 
 Scene parse_scene(const std::string& text, const std::filesystem::path& path) {
-  return scene::read_scene(scene::parse_toml(text, path.string()), text, path);
+  const scene::ParsedScene parsed = scene::parse_scene_text(text, scene::TomlFile{path.string()});
+  return scene::read_scene(parsed.root, parsed.sections ? &*parsed.sections : nullptr, std::string(text),
+                           path);
 }
 
 Scene load_scene(const std::filesystem::path& path) {
   std::string text = scene::read_file(path);
-  const toml::table root = scene::parse_toml(text, path.string());
-  return scene::read_scene(root, std::move(text), path);
+  const scene::ParsedScene parsed = scene::parse_scene_text(text, scene::TomlFile{path.string()});
+  const scene::BodySections* sections = parsed.sections ? &*parsed.sections : nullptr;
+  return scene::read_scene(parsed.root, sections, std::move(text), path);
 }
 
 }  // namespace tumble

@@ -5,6 +5,7 @@
 
 #include "scene_sections.hpp"
 #include "tumble/dynamics/rigid_body.hpp"
+#include "tumble/math/huge_pages.hpp"
 
 namespace tumble::scene {
 
@@ -23,24 +24,21 @@ void register_name(const TableReader& table, std::string_view name, bool is_part
     table.fail_at(
         "name", fmt::format("name \"{}\" is not allowed: use letters, digits, '_', '-' and '.' only", name));
   }
-  const toml::source_position at = table.where("name").begin;
+  const toml::source_position at = table.file().in_file(table.where("name").begin);
   names.add(name, is_particle, index, 0, at.line, at.column);
 }
 
-void read_bodies(const TableReader& root, const std::filesystem::path& directory, NameTable& names,
-                 Scene& scene) {
-  const auto bodies = root.tables("bodies");
-  names.reserve(bodies.size());
-  scene.model.bodies.reserve(bodies.size());
-  scene.initial.bodies.reserve(bodies.size());
-  scene.body_info.reserve(bodies.size());
-  for (size_t i = 0; i < bodies.size(); ++i) {
+namespace {
+
+/// The [[bodies]] table `body`, the `number`-th (from 1), of the text `file` describes.
+void read_body(const toml::table& body, size_t number, const TomlFile& file,
+               const std::filesystem::path& directory, NameTable& names, Scene& scene) {
+  {
     // The name first (any keys allowed), so that every other message can name the body.
-    const auto untitled =
-        TableReader::any_keys(*bodies[i], Context::numbered("[[bodies]] #", i + 1), root.file());
+    const auto untitled = TableReader::any_keys(body, Context::numbered("[[bodies]] #", number), file);
     const std::string_view name = untitled.required_string("name", "the body a name, e.g. name = \"handle\"");
     register_name(untitled, name, false, scene.model.bodies.size(), names);
-    const TableReader named(*bodies[i], Context::named("body", name), root.file(),
+    const TableReader named(body, Context::named("body", name), file,
                             {"name", "shape", "mesh", "scale", "thickness", "parts", "inertia",
                              "center_of_mass", "density", "mass", "position", "orientation", "velocity",
                              "velocity_of", "angular_velocity", "angular_velocity_frame"});
@@ -73,6 +71,35 @@ void read_bodies(const TableReader& root, const std::filesystem::path& directory
     scene.model.add_body(std::move(rigid));
     scene.body_info.push_back(
         {std::make_shared<const std::string>(std::move(mass.source)), std::move(mass.display)});
+  }
+}
+
+}  // namespace
+
+void read_bodies(const TableReader& root, const BodySections* sections,
+                 const std::filesystem::path& directory, NameTable& names, Scene& scene) {
+  const size_t count = sections ? sections->bodies : root.tables("bodies").size();
+  names.reserve(count);
+  scene.model.bodies.reserve(count);
+  scene.initial.bodies.reserve(count);
+  scene.body_info.reserve(count);
+  prefer_huge_pages(scene.model.bodies);
+  prefer_huge_pages(scene.initial.bodies);
+  prefer_huge_pages(scene.body_info);
+  if (!sections) {
+    const auto bodies = root.tables("bodies");
+    for (size_t i = 0; i < bodies.size(); ++i)
+      read_body(*bodies[i], i + 1, root.file(), directory, names, scene);
+    return;
+  }
+  // A section at a time: its tree is freed before the next one is parsed (body_sections.hpp).
+  size_t number = 0;
+  for (const BodySections::Section& section : sections->sections) {
+    const TomlFile file{root.file().name, section.first_line};
+    const toml::table tree = parse_toml(section.text, file);
+    for (const toml::table* body : TableReader::any_keys(tree, "scene", file).tables("bodies")) {
+      read_body(*body, ++number, file, directory, names, scene);
+    }
   }
 }
 

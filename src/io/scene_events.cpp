@@ -111,7 +111,7 @@ std::vector<EventSpec> read_events(const TableReader& root, const NameTable& nam
 
 std::vector<EventSpec> parse_events(const Scene& s, const std::string& text,
                                     const std::filesystem::path& path) {
-  const std::string file = path.string();
+  const scene::TomlFile file{path.string()};
   const toml::table root = scene::parse_toml(text, file);
   const scene::TableReader r(root, "events", file, {"events"});
   // The names as the scene file registered them: bodies, then particles.

@@ -9,11 +9,12 @@
 
 namespace tumble::scene {
 
-std::string location(const std::string& file, const toml::source_region& where) {
-  return fmt::format("{}:{}:{}", file, where.begin.line, where.begin.column);
+std::string location(const TomlFile& file, const toml::source_region& where) {
+  const toml::source_position at = file.in_file(where.begin);
+  return fmt::format("{}:{}:{}", file.name, at.line, at.column);
 }
 
-void fail(const std::string& file, const toml::source_region& where, const std::string& message) {
+void fail(const TomlFile& file, const toml::source_region& where, const std::string& message) {
   throw SceneError(fmt::format("{}: {}", location(file, where), message));
 }
 
@@ -179,14 +180,14 @@ double number_value(const TableReader& reader, const toml::node& node, const Val
   return x;
 }
 
-TableReader::TableReader(const toml::table& table, Context context, const std::string& file, Keys allowed)
+TableReader::TableReader(const toml::table& table, Context context, const TomlFile& file, Keys allowed)
     : TableReader(table, context, file) {
   for (auto&& [k, v] : table) {
     if (!is_allowed(k.str(), allowed)) fail_unknown_key(k, allowed);
   }
 }
 
-TableReader TableReader::any_keys(const toml::table& table, Context context, const std::string& file) {
+TableReader TableReader::any_keys(const toml::table& table, Context context, const TomlFile& file) {
   return TableReader(table, context, file);
 }
 

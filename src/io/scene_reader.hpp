@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 #include "toml.hpp"
 
+#include <cstdint>
 #include <initializer_list>
 #include <optional>
 #include <span>
@@ -24,11 +25,24 @@
 
 namespace tumble::scene {
 
-/// "file:line:column" of a region of the scene file.
-std::string location(const std::string& file, const toml::source_region& where);
+/// The file a parsed TOML text is from, for messages: its name as the user gave it, and the line of the
+/// file the text starts at (a scene's [[bodies]] are parsed a section at a time: body_sections.hpp).
+struct TomlFile {
+  std::string name;
+  std::uint32_t first_line = 1;
+
+  /// A position in the parsed text as one in the file.
+  toml::source_position in_file(toml::source_position p) const {
+    p.line += first_line - 1;
+    return p;
+  }
+};
+
+/// "file:line:column" of a region of a parsed text.
+std::string location(const TomlFile& file, const toml::source_region& where);
 
 /// Throws SceneError "file:line:column: message".
-[[noreturn]] void fail(const std::string& file, const toml::source_region& where, const std::string& message);
+[[noreturn]] void fail(const TomlFile& file, const toml::source_region& where, const std::string& message);
 
 /// "a string", "an array", ... for messages about what was found.
 std::string type_name(const toml::node& node);
@@ -98,14 +112,14 @@ class TableReader {
   /// `context` names the table in messages; `allowed` lists the keys it may contain; anything else
   /// throws with the closest allowed key suggested. `file` names the scene file in messages and must
   /// outlive the reader.
-  TableReader(const toml::table& table, Context context, const std::string& file, Keys allowed);
-  TableReader(const toml::table&, Context, std::string&&, Keys) = delete;  // `file` would dangle
+  TableReader(const toml::table& table, Context context, const TomlFile& file, Keys allowed);
+  TableReader(const toml::table&, Context, TomlFile&&, Keys) = delete;  // `file` would dangle
   /// A reader that accepts any key: for reading a table's name, before a reader that checks the keys
   /// (and names the table in its messages) can be made.
-  static TableReader any_keys(const toml::table& table, Context context, const std::string& file);
+  static TableReader any_keys(const toml::table& table, Context context, const TomlFile& file);
 
   const Context& context() const { return context_; }
-  const std::string& file() const { return *file_; }
+  const TomlFile& file() const { return *file_; }
   const toml::table& table() const { return *table_; }
   bool has(std::string_view key) const { return table_->contains(key); }
   const toml::node* node(std::string_view key) const { return table_->get(key); }
@@ -144,13 +158,13 @@ class TableReader {
   std::vector<const toml::table*> tables(std::string_view key) const;
 
  private:
-  TableReader(const toml::table& table, Context context, const std::string& file)
+  TableReader(const toml::table& table, Context context, const TomlFile& file)
       : table_(&table), context_(context), file_(&file) {}
   [[noreturn]] void fail_unknown_key(const toml::key& key, Keys allowed) const;
 
   const toml::table* table_;
   Context context_;
-  const std::string* file_;
+  const TomlFile* file_;
 };
 
 /// Quaternions whose norm is within this of 1 are normalised silently: hand-typed values such as

@@ -5,6 +5,7 @@
 #include <string>
 #include <string_view>
 
+#include "body_sections.hpp"
 #include "name_table.hpp"
 #include "scene_reader.hpp"
 
@@ -13,11 +14,27 @@ namespace tumble::scene {
 /// The contents of a scene file (or another input it names: `what` says which, for messages); FileError
 /// if it cannot be read.
 std::string read_file(const std::filesystem::path& path, const char* what = "scene file");
-/// The TOML of a scene file; a syntax error is a SceneError at its file:line:column.
-toml::table parse_toml(const std::string& text, const std::string& file);
-/// The Scene of the scene file `text` from `path`, parsed into `root`. load_scene() is read_file(),
-/// parse_toml() and this, kept apart so that bench/scene_setup can time each stage.
-Scene read_scene(const toml::table& root, std::string text, const std::filesystem::path& path);
+/// The TOML of a scene file (or a part of one); a syntax error is a SceneError at its file:line:column.
+toml::table parse_toml(std::string_view text, const TomlFile& file);
+
+/// A scene's text parsed for read_scene(): the tree of all but its [[bodies]] sections, which are parsed
+/// one at a time as the bodies are read (body_sections.hpp); or the tree of the whole text, where it is
+/// not split (`sections` empty). The sections are views into the text.
+struct ParsedScene {
+  toml::table root;
+  std::optional<BodySections> sections;
+};
+ParsedScene parse_scene_text(std::string_view text, const TomlFile& file);
+
+/// The Scene of the scene file `text` from `path`: `root` and its [[bodies]] `sections` (views into
+/// `text`, or null when `root` holds the bodies). load_scene() is read_file(), parse_scene_text() and
+/// this, kept apart so that bench/scene_setup can time each stage.
+Scene read_scene(const toml::table& root, const BodySections* sections, std::string&& text,
+                 const std::filesystem::path& path);
+/// The same for a tree of the whole text (an ensemble's runs).
+inline Scene read_scene(const toml::table& root, std::string text, const std::filesystem::path& path) {
+  return read_scene(root, nullptr, std::move(text), path);
+}
 
 /// The mass properties of one [[bodies]] table (shape, mesh, explicit inertia or parts) in its
 /// reference frame, and a description of where they came from. Mesh warnings go to scene.warnings.
@@ -29,10 +46,10 @@ struct BodyMass {
 };
 BodyMass read_body_mass(const TableReader& body, const std::filesystem::path& directory, Scene& scene);
 
-/// [[bodies]]: mass properties, the rigid bodies and their initial states. Mesh paths are relative to
-/// `directory`.
-void read_bodies(const TableReader& root, const std::filesystem::path& directory, NameTable& names,
-                 Scene& scene);
+/// [[bodies]]: mass properties, the rigid bodies and their initial states, from root's `bodies` or from
+/// `sections` when there are. Mesh paths are relative to `directory`.
+void read_bodies(const TableReader& root, const BodySections* sections,
+                 const std::filesystem::path& directory, NameTable& names, Scene& scene);
 /// [[body_tables]]: bodies from CSV files, a row each (scene_body_table.cpp).
 void read_body_tables(const TableReader& root, const std::filesystem::path& directory, NameTable& names,
                       Scene& scene);

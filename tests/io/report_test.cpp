@@ -172,6 +172,22 @@ TEST(Report, TheRunFileHoldsEachDistinctGeometryOnce) {
   }
 }
 
+TEST(Report, TheRunFileKeepsTheSceneTextByteForByte) {
+  // The scene's text is escaped into OUT.run.json a line at a time: quotes, backslashes, tabs, CR LF
+  // line ends and UTF-8 beyond ASCII (comments in any language) come back as they were written.
+  const test::TempDir dir("report_text");
+  const std::string scene =
+      "# Kreisel über \"Achse\" \\ 回転\r\n[simulation]\r\nduration = 0.01\t# s\r\ntimestep = 1e-3\n"
+      "[[bodies]]\nname = \"b\"  # 'ß'\nshape = { type = \"sphere\", radius = 0.1 }\ndensity = 1000.0\n";
+  dir.write("s.toml", scene);
+  const auto run =
+      test::run_tumble("run " + (dir / "s.toml").string() + " -o " + (dir / "s.csv").string() + " -q");
+  ASSERT_EQ(run.status, 0) << run.output;
+  const nlohmann::json facts = nlohmann::json::parse(test::read_text(dir / "s.run.json"));
+  EXPECT_EQ(facts.at("scene").get<std::string>(), scene);
+  EXPECT_EQ(read_report(dir / "s.csv").scene_text, scene);
+}
+
 TEST(Report, TheHtmlHoldsTheJsonTheViewerDecodes) {
   const test::TempDir dir("report_html");
   const auto run =

@@ -81,10 +81,11 @@ struct CsvContinuation {
 /// CSV: `trajectory` ("-": standard output) has the header t,body, then the columns of each field (by default
 /// px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz) and one row per body and per particle per sample, 17
 /// significant digits; `diagnostics` has t and the columns of every SystemField, one row per sample
-/// (an empty path: no diagnostics file). Throws InvalidArgument if both name the same file.
+/// (an empty path: no diagnostics file). Throws InvalidArgument if both name the same file. The writer
+/// keeps `info` for OUT.run.json (moved in, it is not copied: a scene's text can be 50 MB).
 std::unique_ptr<TrajectoryWriter> make_csv_writer(const std::filesystem::path& trajectory,
                                                   const std::filesystem::path& diagnostics,
-                                                  const Model& model, const TrajectoryInfo& info,
+                                                  const Model& model, TrajectoryInfo info,
                                                   const std::optional<CsvContinuation>& continuation = {});
 
 /// HDF5 (one file): datasets t, names, one (n, N, width) dataset per field, and the group diagnostics;
