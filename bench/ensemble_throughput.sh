@@ -13,15 +13,14 @@
 #   TUMBLE=path/to/tumble bash bench/ensemble_throughput.sh     (another build of tumble, for an A/B)
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source bench/lib.sh
 repeats=${1:-3}
 csv=${2:-}
 tumble=${TUMBLE:-build/release/bin/tumble}
 engine=build/release/bin/batch_throughput
 peers=build/peers/bin/peers
-for p in "$tumble" "$engine"; do
-  [ -x "$p" ] || { echo "build the release preset first: bash scripts/build.sh release ($p)" >&2; exit 2; }
-done
-[ -x "$peers" ] || { echo "build the peers first: bash bench/peers/run.sh --sizes 1 --reps 1 (it builds $peers)" >&2; exit 2; }
+require_built "$tumble" "$engine"
+require_peers "$peers"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cp bench/studies/plate_tumbling.toml "$work/plate.toml"
@@ -38,8 +37,6 @@ seconds() {  # wall time of a command, in s
   end=$(date +%s.%N)
   echo "$end - $start" | bc
 }
-min_median() { tr ' ' '\n' | grep . | sort -g | awk '{a[NR]=$1} END {print a[1], a[int((NR+1)/2)]}'; }
-calc() { awk "BEGIN {printf \"%.6g\", $1}"; }  # arithmetic on numbers like 6.04e+05 (bc reads no exponents)
 
 declare -A t
 engine_rates="" mujoco_rates=""
@@ -49,8 +46,7 @@ for ((r = 0; r < repeats; r++)); do
   t[th2]+="$(seconds "$tumble" ensemble "$work/t_handle.toml" -o "$work/th2.csv" --threads 2 -q --fresh) "
   # The engine: rk4 on 10^4 boxes, one step per call (column 6: the median of its repetitions).
   engine_rates+="$("$engine" "$work/engine.csv" 1 10000 rk4 1 1 | awk '$1 == "rk4" && $2 == 10000 && $4 == 1 {print $6}' | tail -1) "
-  mujoco_rates+="$("$peers" "$work/peers.csv" --engines mujoco/rk4 --sizes 10000 --reps 1 --no-accuracy |
-    awk '/mujoco\/rk4/ {for (i = 1; i <= NF; i++) if ($i ~ /^[0-9.]+e\+[0-9]+$/) {print $i; exit}}') "
+  mujoco_rates+="$(mujoco_rk4_rate "$peers" "$work/peers.csv") "
 done
 cmp -s "$work/th1.csv" "$work/th2.csv" || { echo "FAIL: 1 and 2 threads wrote different tables" >&2; exit 1; }
 

@@ -10,21 +10,18 @@
 #   TUMBLE=path/to/tumble bash bench/whole_process.sh     (another build of tumble, for an A/B)
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source bench/lib.sh
 repeats=${1:-3}
 n=${2:-100000}
 tumble=$(realpath "${TUMBLE:-build/release/bin/tumble}")
 setup=build/release/bin/scene_setup
 peers=build/peers/bin/peers
-for p in "$tumble" "$setup"; do
-  [ -x "$p" ] || { echo "build the release preset first: bash scripts/build.sh release ($p)" >&2; exit 2; }
-done
-[ -x "$peers" ] || { echo "build the peers first: bash bench/peers/run.sh --sizes 1 --reps 1 (it builds $peers)" >&2; exit 2; }
+require_built "$tumble" "$setup"
+require_peers "$peers"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 "$setup" --write "$work" "$n" 0.2 0.1
 
-min_median() { tr ' ' '\n' | grep . | sort -g | awk '{a[NR]=$1} END {print a[1], a[int((NR+1)/2)]}'; }
-calc() { awk "BEGIN {printf \"%.6g\", $1}"; }
 declare -A t m
 mujoco_rates=""
 for ((r = 0; r < repeats; r++)); do
@@ -34,8 +31,7 @@ for ((r = 0; r < repeats; r++)); do
     t[$scene]+="$wall "
     m[$scene]+="$kib "
   done
-  mujoco_rates+="$("$peers" "$work/peers.csv" --engines mujoco/rk4 --sizes 10000 --reps 1 --no-accuracy |
-    awk '/mujoco\/rk4/ {for (i = 1; i <= NF; i++) if ($i ~ /^[0-9.]+e\+[0-9]+$/) {print $i; exit}}') "
+  mujoco_rates+="$(mujoco_rk4_rate "$peers" "$work/peers.csv") "
 done
 read -r mj_min mj_med < <(echo "$mujoco_rates" | min_median)
 steps=$((n * 200))
