@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "tumble/math/huge_pages.hpp"
 #include "tumble/math/simd.hpp"
 
 namespace tumble {
@@ -22,6 +23,10 @@ SystemCoordinates to_coordinates(Formulation formulation, const SystemState& sta
 
 void to_state(Formulation formulation, const SystemCoordinates& x, SystemState& s) {
   s.t = x.t;
+  if (s.bodies.capacity() < x.bodies.size()) {
+    s.bodies.reserve(x.bodies.size());
+    prefer_huge_pages(s.bodies);
+  }
   s.bodies.resize(x.bodies.size());
   for (size_t i = 0; i < x.bodies.size(); ++i) s.bodies[i] = to_state(formulation, x.bodies.load(i));
   s.particles = x.particles;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "tumble/forces/model.hpp"
+#include "tumble/math/huge_pages.hpp"
 
 namespace tumble::scene {
 
@@ -36,7 +37,10 @@ class NameTable {
 
   /// A [[body_tables]] file whose rows name bodies from model.bodies[first_body] on: its number for add().
   std::uint32_t add_origin(std::string file, size_t first_body);
-  void reserve(size_t names) { entries_.reserve(entries_.size() + names); }
+  void reserve(size_t names) {
+    entries_.reserve(entries_.size() + names);
+    prefer_huge_pages(entries_);
+  }
   /// Registers `name` of body `index` (or particle `index`), written at line:column of `origin`. Bodies
   /// come before particles, each in file order; by seal() the model holds them under these names.
   void add(std::string_view name, bool is_particle, size_t index, std::uint32_t origin, std::uint32_t line,

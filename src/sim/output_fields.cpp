@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "tumble/error.hpp"
+#include "tumble/math/huge_pages.hpp"
 #include "tumble/math/rotations.hpp"
 
 namespace tumble {
@@ -261,6 +262,8 @@ std::span<const SystemField> system_fields() { return kSystemFields; }
 
 std::vector<std::string> row_names(const Model& model) {
   std::vector<std::string> names;
+  names.reserve(model.bodies.size() + model.particles.size());
+  prefer_huge_pages(names);
   for (const RigidBody& b : model.bodies) names.push_back(b.name());
   for (const Particle& p : model.particles) names.push_back(p.name);
   return names;

@@ -18,15 +18,20 @@
 
 namespace tumble {
 
-/// Advises the kernel to back the whole 2 MiB pages inside [p, p + bytes) with huge pages, before
-/// they are first touched. Smaller ranges are left alone.
+/// Advises the kernel to back the 2 MiB pages that [p, p + bytes) touches with huge pages, before they
+/// are first touched; ranges under 1 MiB are left alone. The pages are rounded outwards: a large
+/// allocation is malloc's own mapping, which the kernel aligns to 2 MiB, and its first page starts
+/// just before p (malloc's header); where the range shares a page with other memory, that memory
+/// gets the hint too, which changes nothing but how it is mapped.
 inline void prefer_huge_pages(const void* p, std::size_t bytes) noexcept {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
   constexpr std::uintptr_t kHuge = std::uintptr_t{2} << 20;
+  if (bytes < kHuge / 2) return;
   const auto start = reinterpret_cast<std::uintptr_t>(p);
-  const std::uintptr_t begin = (start + kHuge - 1) & ~(kHuge - 1);
-  const std::uintptr_t end = (start + bytes) & ~(kHuge - 1);
-  if (end > begin) ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);  // a hint
+  const std::uintptr_t begin = start & ~(kHuge - 1);
+  const std::uintptr_t end = (start + bytes + kHuge - 1) & ~(kHuge - 1);
+  // A hint: where part of the range is not mapped, the rest still gets it (ENOMEM is ignored).
+  ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
 #else
   (void)p;
   (void)bytes;
