@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <functional>
-#include <tuple>
 
 #include "tumble/io/scene.hpp"
 
@@ -13,12 +12,13 @@ namespace {
 
 std::uint64_t hash_of(std::string_view name) { return std::hash<std::string_view>{}(name); }
 
-/// The order of the sorted records: by hash, then in file order (bodies before particles).
+/// Whether a comes before b in the file (bodies before particles).
+bool in_file_order(const NameTable::Entry& a, const NameTable::Entry& b) {
+  return a.is_particle != b.is_particle ? b.is_particle : a.index < b.index;
+}
+/// The order of the sorted records: by hash, then in file order.
 bool before(const NameTable::Entry& a, const NameTable::Entry& b) {
-  const auto key = [](const NameTable::Entry& e) {
-    return std::make_tuple(e.hash, static_cast<bool>(e.is_particle), e.index);
-  };
-  return key(a) < key(b);
+  return a.hash != b.hash ? a.hash < b.hash : in_file_order(a, b);
 }
 
 }  // namespace
@@ -56,8 +56,7 @@ void NameTable::seal() {
     for (size_t k = a + 1; k < b; ++k) {
       for (size_t m = a; m < k; ++m) {
         if (name_of(entries_[m]) != name_of(entries_[k])) continue;
-        const auto file_order = [](const Entry& e) { return std::make_pair(e.is_particle, e.index); };
-        if (!repeat || file_order(entries_[k]) < file_order(*repeat)) {
+        if (!repeat || in_file_order(entries_[k], *repeat)) {
           repeat = &entries_[k];
           first = &entries_[m];
         }

@@ -1,7 +1,9 @@
 // Principal axes: I = U Λ Uᵀ (tutorial, "Principal Axes"), with a canonical U.
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <utility>
 
 #include "tumble/mass/mass_properties.hpp"
 
@@ -30,14 +32,28 @@ Vec3 canonical_perpendicular(const Vec3& n) {
   return (e - e.dot(n) * n).normalized();
 }
 
+/// The eigenvalues (ascending) and eigenvectors of the symmetric `S`.
+std::pair<Vec3, Mat3> eigen_decomposition(const Mat3& S) {
+  if (S(0, 1) == 0.0 && S(0, 2) == 0.0 && S(1, 2) == 0.0 && S.diagonal().allFinite()) {
+    // Diagonal (a body table's row, principal moments given along the reference axes): the moments and
+    // the coordinate axes, in ascending order, as the solver would give them (up to the signs that
+    // principal_axes() fixes; tested), without its work: a tenth of a table row's set-up.
+    std::array<int, 3> k{0, 1, 2};
+    std::stable_sort(k.begin(), k.end(), [&](int a, int b) { return S(a, a) < S(b, b); });
+    Mat3 V;
+    V << Vec3::Unit(k[0]), Vec3::Unit(k[1]), Vec3::Unit(k[2]);
+    return {Vec3(S(k[0], k[0]), S(k[1], k[1]), S(k[2], k[2])), V};
+  }
+  // The iterative (QR) solver, not computeDirect(): the closed-form 3×3 route loses accuracy in the
+  // eigenvectors of nearly repeated moments. Eigenvalues come out ascending.
+  const Eigen::SelfAdjointEigenSolver<Mat3> solver(S);
+  return {solver.eigenvalues(), solver.eigenvectors()};
+}
+
 }  // namespace
 
 PrincipalAxes principal_axes(const Mat3& I, const PrincipalAxesOptions& options) {
-  // The iterative (QR) solver, not computeDirect(): the closed-form 3×3 route loses accuracy in the
-  // eigenvectors of nearly repeated moments. Eigenvalues come out ascending.
-  const Eigen::SelfAdjointEigenSolver<Mat3> solver(0.5 * (I + I.transpose()));
-  const Vec3 lambda = solver.eigenvalues();
-  const Mat3 V = solver.eigenvectors();
+  const auto [lambda, V] = eigen_decomposition(0.5 * (I + I.transpose()));
   const double tol = options.repeated_tolerance * lambda.cwiseAbs().maxCoeff();
   const bool low_pair = lambda(1) - lambda(0) <= tol;
   const bool high_pair = lambda(2) - lambda(1) <= tol;

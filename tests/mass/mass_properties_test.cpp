@@ -2,6 +2,8 @@
 // point masses, whose inertia is the defining sum I = Σ mᵢ((rᵢ·rᵢ)I₃ − rᵢrᵢᵀ) evaluated directly.
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <vector>
 
 #include "../support/random.hpp"
@@ -205,6 +207,35 @@ TEST(PrincipalAxes, AxisymmetricBodiesAreCanonicalAndStable) {
       J(2, 2) -= 2e-15;
       EXPECT_LT((principal_axes(J).U - pa.U).cwiseAbs().maxCoeff(), 1e-12);
     }
+  }
+}
+
+TEST(PrincipalAxes, ADiagonalTensorHasTheSolversAxesWithoutItsWork) {
+  // principal_axes() takes a diagonal tensor's moments and coordinate axes straight (a body table's
+  // rows give their moments so); the solver gives the same axes in the same order, up to sign, which
+  // the canonical choice that follows fixes either way. Distinct, repeated and nearly repeated moments.
+  for (const Vec3& d : {Vec3(1, 2, 3), Vec3(3, 1, 2), Vec3(2, 3, 1), Vec3(3, 2, 1), Vec3(0.5, 0.5, 0.8),
+                        Vec3(0.8, 0.5, 0.5), Vec3(0.5, 0.8, 0.5), Vec3(2, 2, 2), Vec3(1, 1 + 1e-13, 1.5),
+                        Vec3(1.7, 0.3, 1.7 * (1 + 1e-14)), Vec3(1e-3, 4e2, 3e2)}) {
+    const Mat3 D = d.asDiagonal();
+    const Eigen::SelfAdjointEigenSolver<Mat3> solver(D);
+    const PrincipalAxes pa = principal_axes(D);
+    Vec3 sorted = d;
+    std::sort(sorted.data(), sorted.data() + 3);
+    EXPECT_EQ(solver.eigenvalues(), sorted) << d.transpose();
+    EXPECT_EQ(solver.eigenvectors().cwiseAbs().cwiseAbs2(), solver.eigenvectors().cwiseAbs())  // 0s and 1s
+        << d.transpose();
+    const bool distinct = sorted(1) - sorted(0) > 1e-10 * sorted(2) &&
+                          sorted(2) - sorted(1) > 1e-10 * sorted(2);
+    if (distinct) {  // each axis the solver's, of the same moment
+      EXPECT_EQ(pa.U.cwiseAbs(), solver.eigenvectors().cwiseAbs()) << d.transpose();
+      EXPECT_EQ(pa.Lambda, sorted) << d.transpose();
+    }
+    expect_proper_diagonalisation(D, pa);
+    // A signed permutation, each moment the diagonal entry along its axis (a repeated group's mean).
+    EXPECT_EQ(pa.U.cwiseAbs().colwise().sum(), Eigen::RowVector3d::Ones()) << d.transpose();
+    for (int i = 0; i < 3; ++i)
+      EXPECT_NEAR(pa.Lambda(i), pa.U.col(i).dot(D * pa.U.col(i)), 1e-10 * sorted(2));
   }
 }
 
