@@ -13,7 +13,6 @@
 #include <new>
 
 #include "tumble/dynamics/newton_euler.hpp"
-#include "tumble/math/huge_pages.hpp"
 
 namespace tumble {
 
@@ -55,7 +54,6 @@ class Columns {
       data_.reset(total()
                       ? static_cast<double*>(::operator new[](total() * sizeof(double), std::align_val_t{64}))
                       : nullptr);
-      prefer_huge_pages(data_.get(), total() * sizeof(double));  // before the zeros below touch it
     }
     std::fill(data_.get(), data_.get() + total(), 0.0);
   }

@@ -5,9 +5,11 @@
 // on the virtual machines tumble is measured on (bench/scene_setup prints it), where a scene of 10⁵
 // bodies touches ~40 000 pages and their faults cost more than reading the scene or stepping it.
 // Linux's default is to give huge pages (one fault per 2 MiB) only to memory a program asks them for
-// ("madvise" in /sys/kernel/mm/transparent_hugepage/enabled), so tumble asks for its largest arrays:
-// the engine's columns and a large scene's bodies. A hint only: where the kernel lacks huge pages,
-// nothing changes.
+// ("madvise" in /sys/kernel/mm/transparent_hugepage/enabled), so tumble asks for the large arrays a
+// scene is read into and its outputs are made from, which are touched once or a few times. Not for
+// the engine's columns, which every step reads: there huge pages made stepping 10⁵ bodies 5–20 %
+// slower on the virtual machine measured (bench/results/amd-epyc-avx512/batch_throughput_stop3_ab.txt),
+// more than their faults cost. A hint only: where the kernel lacks huge pages, nothing changes.
 #include <cstddef>
 #include <cstdint>
 #include <vector>
