@@ -57,7 +57,7 @@ read -r eng_min eng_med < <(echo "$engine_rates" | min_median)
 read -r mj_min mj_med < <(echo "$mujoco_rates" | min_median)
 plate_steps=$((4000 * 5000))
 plate_rate=$(calc "$plate_steps / $plate_med")
-echo "# machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(nproc) cores; $(date -u +%F); ${TUMBLE:+another build of tumble (TUMBLE)}${TUMBLE:-$tumble}"
+echo "# machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(nproc) cores; $(date -u +%F); ${TUMBLE:+another build of tumble (TUMBLE)}${TUMBLE:-build/release/bin/tumble}"
 echo "# $repeats interleaved repetitions, medians (min in brackets); one thread unless said"
 printf "%-44s %14s %14s\n" "what" "median" "min"
 printf "%-44s %14.3f %14.3f\n" "plate study: 4000 runs, s" "$plate_med" "$plate_min"
