@@ -78,7 +78,7 @@ class Lexer {
         if (t_.substr(i_, 3) == (c == '"' ? "\"\"\"" : "'''")) return false;  // a multi-line string
         for (++i_; i_ < t_.size() && t_[i_] != c; ++i_) {
           if (t_[i_] == '\n') return false;  // unterminated: toml++ says where
-          if (c == '"' && t_[i_] == '\\') ++i_;
+          if (c == '"' && t_[i_] == '\\' && i_ + 1 < t_.size() && t_[i_ + 1] != '\n') ++i_;  // an escape
         }
         if (i_ >= t_.size()) return false;
         ++i_;

@@ -33,45 +33,43 @@ namespace {
 /// The [[bodies]] table `body`, the `number`-th (from 1), of the text `file` describes.
 void read_body(const toml::table& body, size_t number, const TomlFile& file,
                const std::filesystem::path& directory, NameTable& names, Scene& scene) {
-  {
-    // The name first (any keys allowed), so that every other message can name the body.
-    const auto untitled = TableReader::any_keys(body, Context::numbered("[[bodies]] #", number), file);
-    const std::string_view name = untitled.required_string("name", "the body a name, e.g. name = \"handle\"");
-    register_name(untitled, name, false, scene.model.bodies.size(), names);
-    const TableReader named(body, Context::named("body", name), file,
-                            {"name", "shape", "mesh", "scale", "thickness", "parts", "inertia",
-                             "center_of_mass", "density", "mass", "position", "orientation", "velocity",
-                             "velocity_of", "angular_velocity", "angular_velocity_frame"});
-    BodyMass mass = read_body_mass(named, directory, scene);
-    RigidBody rigid = [&] {
-      try {
-        return RigidBody::from_mass_properties(mass.properties, std::string(name));
-      } catch (const InvalidMassProperties& e) {
-        named.fail_at(named.has("inertia") ? "inertia" : "name", e.what());
-      }
-    }();
-    const Vec3 position = named.vec3("position", Vec3::Zero(), "m");
-    const Quat orientation = named.rotation("orientation").value_or(Quat::Identity());
-    const Vec3 velocity = named.vec3("velocity", Vec3::Zero(), "m/s");
-    const Vec3 omega = named.vec3("angular_velocity", Vec3::Zero(), "rad/s");
-    const Frame omega_frame = named.frame("angular_velocity_frame", Frame::world);
-    BodyState state = state_from_reference(rigid, position, orientation, velocity, omega, omega_frame);
-    // `velocity` is that of the reference origin unless velocity_of = "com" says it is the centre of
-    // mass's (an off-centre part spun "at rest" then stays in place).
-    const std::string_view velocity_of = named.string("velocity_of").value_or("origin");
-    if (velocity_of == "com") {
-      state.v = velocity;
-    } else if (velocity_of != "origin") {
-      named.fail_at("velocity_of",
-                    fmt::format("velocity_of must be \"origin\" (the reference frame's origin, the default) "
-                                "or \"com\" (the centre of mass), found \"{}\"",
-                                velocity_of));
+  // The name first (any keys allowed), so that every other message can name the body.
+  const auto untitled = TableReader::any_keys(body, Context::numbered("[[bodies]] #", number), file);
+  const std::string_view name = untitled.required_string("name", "the body a name, e.g. name = \"handle\"");
+  register_name(untitled, name, false, scene.model.bodies.size(), names);
+  const TableReader named(body, Context::named("body", name), file,
+                          {"name", "shape", "mesh", "scale", "thickness", "parts", "inertia",
+                           "center_of_mass", "density", "mass", "position", "orientation", "velocity",
+                           "velocity_of", "angular_velocity", "angular_velocity_frame"});
+  BodyMass mass = read_body_mass(named, directory, scene);
+  RigidBody rigid = [&] {
+    try {
+      return RigidBody::from_mass_properties(mass.properties, std::string(name));
+    } catch (const InvalidMassProperties& e) {
+      named.fail_at(named.has("inertia") ? "inertia" : "name", e.what());
     }
-    scene.initial.bodies.push_back(state);
-    scene.model.add_body(std::move(rigid));
-    scene.body_info.push_back(
-        {std::make_shared<const std::string>(std::move(mass.source)), std::move(mass.display)});
+  }();
+  const Vec3 position = named.vec3("position", Vec3::Zero(), "m");
+  const Quat orientation = named.rotation("orientation").value_or(Quat::Identity());
+  const Vec3 velocity = named.vec3("velocity", Vec3::Zero(), "m/s");
+  const Vec3 omega = named.vec3("angular_velocity", Vec3::Zero(), "rad/s");
+  const Frame omega_frame = named.frame("angular_velocity_frame", Frame::world);
+  BodyState state = state_from_reference(rigid, position, orientation, velocity, omega, omega_frame);
+  // `velocity` is that of the reference origin unless velocity_of = "com" says it is the centre of
+  // mass's (an off-centre part spun "at rest" then stays in place).
+  const std::string_view velocity_of = named.string("velocity_of").value_or("origin");
+  if (velocity_of == "com") {
+    state.v = velocity;
+  } else if (velocity_of != "origin") {
+    named.fail_at("velocity_of",
+                  fmt::format("velocity_of must be \"origin\" (the reference frame's origin, the default) "
+                              "or \"com\" (the centre of mass), found \"{}\"",
+                              velocity_of));
   }
+  scene.initial.bodies.push_back(state);
+  scene.model.add_body(std::move(rigid));
+  scene.body_info.push_back(
+      {std::make_shared<const std::string>(std::move(mass.source)), std::move(mass.display)});
 }
 
 }  // namespace

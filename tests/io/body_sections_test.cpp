@@ -125,8 +125,8 @@ TEST(BodySections, TextsNotPlainEnoughAreParsedWhole) {
            kHead + "[bodies.shape]\ntype = \"box\"\n" + body(0),  // bodies.x outside a section
            kHead + "[bodies]\n" + body(0),
            kHead + body(0) + "x = [1, 2\n",  // an array never closed
-           kHead + body(0) + "x = ]\n",
-           kHead + body(0) + "name = \"unterminated\n",
+           kHead + body(0) + "x = ]\n", kHead + body(0) + "name = \"unterminated\n",
+           kHead + "x = \"a line end escaped \\\n" + body(0),  // "\" and a line end: no single-line string
        }) {
     EXPECT_FALSE(split_body_sections(text)) << text;
   }
