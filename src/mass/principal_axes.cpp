@@ -38,8 +38,10 @@ std::pair<Vec3, Mat3> eigen_decomposition(const Mat3& S) {
     // Diagonal (a body table's row, principal moments given along the reference axes): the moments and
     // the coordinate axes, in ascending order, as the solver would give them (up to the signs that
     // principal_axes() fixes; tested), without its work: a tenth of a table row's set-up.
-    std::array<int, 3> k{0, 1, 2};
-    std::stable_sort(k.begin(), k.end(), [&](int a, int b) { return S(a, a) < S(b, b); });
+    std::array<int, 3> k{0, 1, 2};  // the axes by ascending moment, equal ones in axis order
+    for (int i = 1; i < 3; ++i) {
+      for (int j = i; j > 0 && S(k[j], k[j]) < S(k[j - 1], k[j - 1]); --j) std::swap(k[j], k[j - 1]);
+    }
     Mat3 V;
     V << Vec3::Unit(k[0]), Vec3::Unit(k[1]), Vec3::Unit(k[2]);
     return {Vec3(S(k[0], k[0]), S(k[1], k[1]), S(k[2], k[2])), V};
