@@ -35,7 +35,7 @@ BodyState state_from_reference(const RigidBody& body, const Vec3& position, cons
   const Quat q_ref = orientation.normalized();
   BodyState s;
   s.o = position + q_ref * body.center_of_mass();
-  s.q = (q_ref * Quat(body.U())).normalized();
+  s.q = (q_ref * body.q_U()).normalized();
   // ^rω = U ^bω: principal components are first taken into reference axes.
   const Vec3 omega_ref = omega_frame == Frame::principal ? Vec3(body.U() * omega) : omega;
   s.omega_w = omega_frame == Frame::world ? omega : Vec3(q_ref * omega_ref);
@@ -45,7 +45,7 @@ BodyState state_from_reference(const RigidBody& body, const Vec3& position, cons
 
 ReferenceFrameState reference_state(const RigidBody& body, const BodyState& s) {
   ReferenceFrameState r;
-  r.orientation = (s.q * Quat(body.U()).conjugate()).normalized();
+  r.orientation = (s.q * body.q_U().conjugate()).normalized();
   r.position = s.o - r.orientation * body.center_of_mass();
   r.velocity = s.v + s.omega_w.cross(r.position - s.o);
   r.omega_w = s.omega_w;

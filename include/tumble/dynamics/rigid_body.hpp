@@ -25,17 +25,21 @@ class RigidBody {
   const Vec3& center_of_mass() const { return c_; }
   /// Principal axes in the reference frame (columns), a proper rotation: x_ref = c + U x_b.
   const Mat3& U() const { return U_; }
+  /// U as a unit quaternion, converted once: every conversion between the reference and the principal
+  /// frame's pose needs it (for each body of each output row).
+  const Quat& q_U() const { return q_U_; }
   /// The mass properties in the reference frame: I = U Λ Uᵀ about c.
   MassProperties mass_properties() const;
 
  private:
   RigidBody(std::string name, double m, const Vec3& Lambda, const Vec3& c, const Mat3& U)
-      : name_(std::move(name)), m_(m), Lambda_(Lambda), c_(c), U_(U) {}
+      : name_(std::move(name)), m_(m), Lambda_(Lambda), c_(c), U_(U), q_U_(U) {}
   std::string name_;
   double m_;
   Vec3 Lambda_;
   Vec3 c_;
   Mat3 U_;
+  Quat q_U_;
 };
 
 }  // namespace tumble
