@@ -1,6 +1,7 @@
 // `tumble run --checkpoint` and `tumble resume`: a run stopped by SIGTERM (or killed) and resumed writes
 // the same files, byte for byte, as a run that was never stopped.
 #include <fcntl.h>
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <spawn.h>
@@ -146,6 +147,45 @@ TEST(ResumeCli, KilledBeforeItsFilesWereCommittedIsResumedFromTheTemporaries) {
   EXPECT_TRUE(test::read_text(part.dir / "out.csv") == test::read_text(whole.dir / "out.csv"));
   EXPECT_TRUE(test::read_text(part.dir / "out.diagnostics.csv") ==
               test::read_text(whole.dir / "out.diagnostics.csv"));
+}
+
+TEST(ResumeCli, ARunOfThousandsOfBodiesWrittenOnASecondThreadResumesToTheSameFiles) {
+  // 1200 boxes from a body table: enough rows that `tumble run` formats its CSV samples on a thread of
+  // their own (run_command.cpp). SIGKILL lands while a sample is in flight; every checkpoint must count
+  // only rows that were in the temporary files when it was written, and the resumed files equal an
+  // uninterrupted run's.
+  std::string table = "mass,I1,I2,I3,px,py,pz,wx,wy,wz\n";
+  for (int i = 0; i < 1200; ++i) {
+    table += fmt::format("6,0.065,0.05,0.025,{},0,0,{},-3,{}\n", i, 1 + i % 7, i % 5);
+  }
+  const std::string scene =
+      "[simulation]\nduration = 4.0\ntimestep = 1e-3\noutput_interval = 0.02\nintegrator = \"rk4\"\n"
+      "[world]\ngravity = [0, 0, -9.81]\n[[body_tables]]\nfile = \"boxes.csv\"\n";
+  test::TempDir whole("resume_big_whole"), part("resume_big_part");
+  for (const test::TempDir* d : {&whole, &part}) {
+    d->write("boxes.csv", table);
+    d->write("s.toml", scene);
+  }
+  const auto full =
+      test::run_tumble("run " + (whole / "s.toml").string() + " -o " + (whole / "out.csv").string() + " -q");
+  ASSERT_EQ(full.status, 0) << full.output;
+
+  const pid_t pid =
+      spawn({"run", (part / "s.toml").string(), "-o", (part / "out.csv").string(), "--checkpoint",
+             (part / "run.ckpt").string(), "--checkpoint-every", "0", "--quiet"},
+            part / "stderr.txt");
+  ASSERT_GT(pid, 0);
+  EXPECT_TRUE(wait_for([&] { return lines_of_temporary(part.path(), "out.csv") >= 30 * 1200; }));
+  kill(pid, SIGKILL);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFSIGNALED(status)) << test::read_text(part / "stderr.txt");
+  ASSERT_FALSE(fs::exists(part / "out.csv")) << "killed mid-way, before its files were committed";
+  const auto resumed = test::run_tumble("resume " + (part / "run.ckpt").string() + " -q");
+  ASSERT_EQ(resumed.status, 0) << resumed.output;
+  EXPECT_TRUE(test::read_text(part / "out.csv") == test::read_text(whole / "out.csv"));
+  EXPECT_TRUE(test::read_text(part / "out.diagnostics.csv") ==
+              test::read_text(whole / "out.diagnostics.csv"));
 }
 
 TEST(ResumeCli, CorruptTruncatedAndForeignCheckpointsAndChangedMeshesAreRefused) {

@@ -1,6 +1,6 @@
 // The trajectory writers on their own: what is written reads back bit for bit (CSV from its text,
-// HDF5 through the C API), the files appear under their final names only when committed, and an
-// abandoned run leaves nothing behind.
+// HDF5 through the C API), the files appear under their final names only when committed, an abandoned
+// run leaves nothing behind, and a writer on a thread of its own writes the same bytes.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <hdf5.h>
@@ -129,6 +129,102 @@ TEST(CsvTrajectory, AbandonedRunLeavesNothing) {
   }  // destroyed without commit: an error happened
   EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
   EXPECT_THROW(make_csv_writer(dir / "same.csv", dir / "same.csv", f.model, {}), InvalidArgument);
+}
+
+TEST(BackgroundWriter, WritesTheSameBytesAsTheWriterItWraps) {
+  // Samples, crossings between them and a sync (a checkpoint) in the order a run makes them; the
+  // caller's state changes right after write() returns, as the run's does when it steps on.
+  const Fixture f;
+  test::TempDir dir("csv_background");
+  TrajectoryInfo info;
+  info.events = true;
+  auto direct = make_csv_writer(dir / "direct.csv", dir / "direct.diagnostics.csv", f.model, info);
+  auto background =
+      write_in_background(make_csv_writer(dir / "thread.csv", dir / "thread.diagnostics.csv", f.model, info));
+  for (size_t k = 0; k < f.states.size(); ++k) {
+    for (TrajectoryWriter* w : {direct.get(), background.get()}) {
+      SystemState sample = f.states[k];
+      w->write(f.model, sample, f.drift(sample));
+      sample.bodies[0].o.setConstant(std::nan(""));  // the writer holds its own copy
+      if (k % 2 == 1) w->event("crossing", 1, sample.t + 0.05);
+      if (k == 2) w->sync();
+    }
+  }
+  EXPECT_EQ(background->samples(), static_cast<long>(f.states.size()));
+  direct->commit(true);
+  background->commit(true);
+  EXPECT_EQ(background->outputs(),
+            (std::vector<std::filesystem::path>{dir / "thread.csv", dir / "thread.diagnostics.csv",
+                                                dir / "thread.events.csv"}));
+  for (const char* file : {".csv", ".diagnostics.csv", ".events.csv"}) {
+    const std::string a = test::read_text(dir / (std::string("direct") + file));
+    EXPECT_GT(a.size(), 20u) << file;
+    EXPECT_EQ(a, test::read_text(dir / (std::string("thread") + file))) << file;
+  }
+  EXPECT_FALSE(has_temporaries(dir.path()));
+}
+
+/// A writer that records the calls it gets, and fails the sample `fail_at` (0: never) as a full disk
+/// would.
+class RecordingWriter final : public TrajectoryWriter {
+ public:
+  RecordingWriter(std::vector<std::string>& calls, long fail_at) : calls_(calls), fail_at_(fail_at) {}
+  void write(const Model&, const SystemState& s, const DriftSample&) override {
+    calls_.push_back(fmt::format("write {}", s.t));
+    if (++samples_ == fail_at_) throw FileError("disk full");
+  }
+  void event(std::string_view name, size_t, double t) override {
+    calls_.push_back(fmt::format("{} {}", name, t));
+  }
+  void outcome(double, const std::vector<std::string>&) override { calls_.push_back("outcome"); }
+  void commit(bool) override { calls_.push_back("commit"); }
+  std::vector<std::filesystem::path> outputs() const override { return {}; }
+  long samples() const override { return samples_; }
+  void sync() override { calls_.push_back("sync"); }
+
+ private:
+  std::vector<std::string>& calls_;
+  long fail_at_;
+  long samples_ = 0;
+};
+
+TEST(BackgroundWriter, CallsArriveInOrderAndAFailedWriteStopsEverythingAfterIt) {
+  const Fixture f;
+  std::vector<std::string> calls;
+  {
+    auto w = write_in_background(std::make_unique<RecordingWriter>(calls, 0));
+    w->write(f.model, f.states[0], {});
+    w->event("a", 0, 0.05);
+    w->write(f.model, f.states[1], {});
+    w->sync();
+    w->write(f.model, f.states[2], {});
+    w->outcome(0.0, {});
+    w->commit(true);
+  }
+  EXPECT_EQ(calls, (std::vector<std::string>{"write 0", "a 0.05", "write 0.1", "sync", "write 0.2", "outcome",
+                                             "commit"}));
+
+  // The second sample fails on the thread: the next call throws that error, and so does every call
+  // after it; nothing more reaches the writer, which is destroyed uncommitted (its temporaries go).
+  calls.clear();
+  {
+    auto w = write_in_background(std::make_unique<RecordingWriter>(calls, 2));
+    w->write(f.model, f.states[0], {});
+    w->write(f.model, f.states[1], {});
+    EXPECT_THROW(w->write(f.model, f.states[2], {}), FileError);
+    EXPECT_THROW(w->event("a", 0, 0.25), FileError);
+    EXPECT_THROW(w->commit(true), FileError);
+  }
+  EXPECT_EQ(calls, (std::vector<std::string>{"write 0", "write 0.1"}));
+
+  // Destroyed while a sample is in flight (an error elsewhere in the run): it waits for the sample and
+  // ends its thread.
+  calls.clear();
+  {
+    auto w = write_in_background(std::make_unique<RecordingWriter>(calls, 0));
+    w->write(f.model, f.states[0], {});
+  }
+  EXPECT_EQ(calls, (std::vector<std::string>{"write 0"}));
 }
 
 /// Reads a whole double dataset and its dimensions.

@@ -93,6 +93,13 @@ std::unique_ptr<TrajectoryWriter> make_csv_writer(const std::filesystem::path& t
 std::unique_ptr<TrajectoryWriter> make_hdf5_writer(const std::filesystem::path& path, const Model& model,
                                                    const TrajectoryInfo& info);
 
+/// `inner`, its samples formatted and written on a thread of its own while the run steps on
+/// (background_writer.cpp): the same files, byte for byte. write() copies the sample and returns once
+/// the previous one is written; every other call waits for that too, and a write error is thrown by the
+/// next call. Pays where a sample takes long to write (a CSV sample of thousands of bodies); the inner
+/// writer must not share a library with the calling thread that is not thread-safe (HDF5 is not).
+std::unique_ptr<TrajectoryWriter> write_in_background(std::unique_ptr<TrajectoryWriter> inner);
+
 /// True if the two paths name the same file: the same device and inode when both exist (so hard
 /// links, symlinks and "./x/../f" spellings count), else the same path once "." and ".." and symlinked
 /// directories are resolved. "-" (standard output) is only the same as "-".
