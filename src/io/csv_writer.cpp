@@ -239,6 +239,7 @@ class CsvWriter final : public TrajectoryWriter {
   }
 
   void write(const Model& model, const SystemState& state, const DriftSample& d) override {
+    begin_facts();  // here, not at commit: a writer on a thread of its own writes it while the run steps
     buffer_.clear();
     row_.resize(width_);
     const io::NumberText t(state.t);
@@ -281,10 +282,8 @@ class CsvWriter final : public TrajectoryWriter {
   void outcome(double, const std::vector<std::string>& warnings) override { warnings_ = warnings; }
 
   void commit(bool) override {
-    if (info_.geometry && trajectory_.staged().kind() == io::OutputKind::staged) {
-      facts_.emplace(run_facts_path(trajectory_.path()), std::string(), "run facts");
-      io::run_facts(info_, names_, warnings_, [this](std::string_view text) { facts_->write(text); });
-    }
+    begin_facts();
+    if (facts_) io::run_facts_tail(warnings_, [this](std::string_view text) { facts_->write(text); });
     // Every file is complete before any gets its final name, and they get them together.
     std::vector<io::StagedFile*> staged;
     for (CsvFile* f : files()) {
@@ -300,6 +299,13 @@ class CsvWriter final : public TrajectoryWriter {
     if (events_) out.push_back(&*events_);
     if (facts_) out.push_back(&*facts_);
     return out;
+  }
+
+  /// OUT.run.json up to its warnings, once, beside a regular trajectory file when there is geometry.
+  void begin_facts() {
+    if (facts_ || !info_.geometry || trajectory_.staged().kind() != io::OutputKind::staged) return;
+    facts_.emplace(run_facts_path(trajectory_.path()), std::string(), "run facts");
+    io::run_facts_head(info_, names_, [this](std::string_view text) { facts_->write(text); });
   }
 
   static std::optional<Kept> kept(const std::optional<CsvContinuation>& c, size_t lines_per_sample) {

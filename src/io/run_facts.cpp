@@ -155,8 +155,8 @@ std::vector<size_t> distinct_kinds(const std::vector<BodyGeometry>& bodies,
 
 }  // namespace
 
-void run_facts(const TrajectoryInfo& info, const std::vector<std::string>& names,
-               const std::vector<std::string>& warnings, const std::function<void(std::string_view)>& write) {
+void run_facts_head(const TrajectoryInfo& info, const std::vector<std::string>& names,
+                    const std::function<void(std::string_view)>& write) {
   static const SceneGeometry none;
   const SceneGeometry& g = info.geometry ? *info.geometry : none;
   std::vector<const BodyGeometry*> kinds;
@@ -169,7 +169,7 @@ void run_facts(const TrajectoryInfo& info, const std::vector<std::string>& names
   j.key("formulation").text(formulation_name(info.settings.formulation)).raw(",\n");
   j.key("timestep").number(info.settings.timestep).raw(",\n").key("duration").number(info.settings.duration);
   j.raw(",\n").key("output_interval").number(info.settings.output_interval).raw(",\n");
-  j.key("warnings").texts(warnings).raw(",\n").key("names").texts(names).raw(",\n");
+  j.key("names").texts(names).raw(",\n");
   j.key("kinds").raw("[");
   for (size_t k = 0; k < kinds.size(); ++k) {
     const BodyGeometry& b = *kinds[k];
@@ -208,7 +208,14 @@ void run_facts(const TrajectoryInfo& info, const std::vector<std::string>& names
     (k ? j.raw(",\n") : j.raw("\n")).raw("{").key("a").integer(s.a).raw(",").key("b").integer(s.b);
     j.raw(",").key("point_a").vec(s.point_a).raw(",").key("point_b").vec(s.point_b).raw("}");
   }
-  j.raw("]\n}\n");
+  j.raw("],\n");
+  j.flush();
+}
+
+void run_facts_tail(const std::vector<std::string>& warnings,
+                    const std::function<void(std::string_view)>& write) {
+  JsonText j(write);
+  j.key("warnings").texts(warnings).raw("\n}\n");
   j.flush();
 }
 

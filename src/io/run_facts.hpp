@@ -13,12 +13,16 @@
 
 namespace tumble::io {
 
-/// The run.json text, handed to `write` in pieces of about a megabyte. Format version 2: the distinct display meshes once, in "meshes", each body naming
-/// its own by index ("mesh", −1 for none: a report draws the box of its principal moments), so 10⁵
-/// identical boxes hold one mesh; written straight to text, numbers shortest round trip (std::to_chars),
-/// with no document tree (which cost a quarter of a 10⁵-body run and most of its memory).
-void run_facts(const TrajectoryInfo& info, const std::vector<std::string>& names,
-               const std::vector<std::string>& warnings, const std::function<void(std::string_view)>& write);
+/// The run.json text, handed to `write` in pieces of about a megabyte: run_facts_head() all of it but
+/// the warnings, run_facts_tail() those and the end. The head is written while the run goes on (it
+/// holds nothing the run finds), the tail when it has ended. Format version 2: the distinct display
+/// meshes once, in "kinds", each body naming its own by index, so 10⁵ identical boxes hold one mesh;
+/// written straight to text, numbers shortest round trip (std::to_chars), with no document tree (which
+/// cost a quarter of a 10⁵-body run and most of its memory).
+void run_facts_head(const TrajectoryInfo& info, const std::vector<std::string>& names,
+                    const std::function<void(std::string_view)>& write);
+void run_facts_tail(const std::vector<std::string>& warnings,
+                    const std::function<void(std::string_view)>& write);
 
 /// Fills the facts, names and geometry of `report` from a run.json (format version 1, each body with its
 /// mesh, or 2); InvalidArgument naming `file` and what is missing or malformed.

@@ -13,6 +13,7 @@
 
 #include "../support/run.hpp"
 #include "../support/scene_files.hpp"
+#include "tumble/io/report.hpp"
 #include "tumble/io/scene.hpp"
 #include "tumble/math/rotations.hpp"
 
@@ -218,6 +219,10 @@ TEST(RunCli, DriftWarningOnceWithAdvice) {
   EXPECT_NE(r.output.find("tumble: warning: the results carry integration error past the drift threshold"),
             std::string::npos)
       << r.output;
+  // The file keeps the warning (OUT.run.json, written at the end of the run) for `tumble report`.
+  const std::vector<std::string> kept = read_report(dir / "t.csv").warnings;
+  ASSERT_EQ(kept.size(), 1u);
+  EXPECT_EQ(kept[0].rfind("angular momentum drifted by", 0), 0u) << kept[0];
   const auto strict = run_tumble("run " + example("t_handle.toml") + " -o " + (dir / "s.csv").string() +
                                  " --integrator euler --duration 2 --drift-threshold 1e-6 --strict --quiet");
   EXPECT_EQ(strict.status, 3) << strict.output;
