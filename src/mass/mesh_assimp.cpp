@@ -10,7 +10,9 @@
 // there, indices are checked against their part, coordinates for being finite after scaling.
 #include "mesh_assimp.hpp"
 
+#include <algorithm>
 #include <array>
+#include <assimp/DefaultIOSystem.h>
 #include <assimp/Importer.hpp>
 #include <assimp/MemoryIOWrapper.h>
 #include <assimp/postprocess.h>
@@ -18,6 +20,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fmt/format.h>
 #include <string>
 #include <vector>
@@ -111,6 +114,55 @@ struct Writer {
                               scale == 1.0 ? "" : fmt::format(" after scaling by {}", scale)));
 }
 
+/// The files a mesh may make assimp open besides itself: those in its own directory or below it. A
+/// received glTF whose buffer is "/home/u/.ssh/id_rsa" or "../secret.txt" would otherwise have that file
+/// read as vertices, and the vertices end up in reports and run files made to be shared (and the same
+/// holds for any format with external files: Collada images, a .glb's external buffer read from
+/// memory). Paths are compared once symbolic links and ".." are resolved; a refused name is kept for
+/// the message, and nothing is ever written, created or deleted.
+class ConfinedIOSystem final : public Assimp::DefaultIOSystem {
+ public:
+  explicit ConfinedIOSystem(const std::filesystem::path& mesh)
+      : mesh_(std::filesystem::absolute(mesh)),
+        directory_(std::filesystem::weakly_canonical(mesh_.parent_path())) {}
+
+  bool Exists(const char* file) const override {
+    const std::string p = resolve(file);
+    return !p.empty() && DefaultIOSystem::Exists(p.c_str());
+  }
+  Assimp::IOStream* Open(const char* file, const char* mode) override {
+    if (std::string_view(mode).find_first_of("wa+") != std::string_view::npos) return nullptr;
+    const std::string p = resolve(file);
+    return p.empty() ? nullptr : DefaultIOSystem::Open(p.c_str(), mode);
+  }
+  bool CreateDirectory(const std::string&) override { return false; }
+  bool ChangeDirectory(const std::string&) override { return false; }
+  bool DeleteFile(const std::string&) override { return false; }
+
+  /// The first name refused, empty if none.
+  const std::string& refused() const { return refused_; }
+  const std::filesystem::path& directory() const { return directory_; }
+
+ private:
+  /// The path to open for `file`, empty if it is outside the directory. A relative name is the mesh's
+  /// own (a buffer named in a .glb, read from memory without a directory): beside the mesh.
+  std::string resolve(const char* file) const {
+    std::filesystem::path p(file);
+    if (p == mesh_) return p.string();  // the mesh itself, wherever a symbolic link to it leads
+    if (p.is_relative()) p = directory_ / p;
+    std::error_code ec;
+    const std::filesystem::path resolved = std::filesystem::weakly_canonical(p, ec);
+    const auto [d, r] = std::mismatch(directory_.begin(), directory_.end(), resolved.begin(), resolved.end());
+    if (!ec && d == directory_.end()) return p.string();
+    if (refused_.empty()) refused_ = file;
+    return {};
+  }
+
+  std::filesystem::path mesh_;       // absolute, as given
+  std::filesystem::path directory_;  // the mesh's, symbolic links and ".." resolved
+  mutable std::string refused_;
+};
+
 /// The child's work: parse, check, send.
 void parse_and_send(int fd, const std::filesystem::path& path, double scale, std::string_view memory,
                     const char* hint) {
@@ -120,12 +172,20 @@ void parse_and_send(int fd, const std::filesystem::path& path, double scale, std
     // Never destroyed: the child ends with _exit, and freeing a scene that a parser left inconsistent
     // could crash after the answer is sent.
     Assimp::Importer& importer = *new Assimp::Importer;
+    auto* files = new ConfinedIOSystem(path);  // the importer owns it
+    importer.SetIOHandler(files);
     // Points and lines carry no surface: SortByPType splits them off and this drops them.
     importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
     const unsigned flags = aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_SortByPType;
-    const aiScene* scene = memory.empty()
-                               ? importer.ReadFile(path.string(), flags)
-                               : importer.ReadFileFromMemory(memory.data(), memory.size(), flags, hint);
+    const aiScene* scene =
+        memory.empty() ? importer.ReadFile(std::filesystem::absolute(path).string(), flags)  // as mesh_
+                       : importer.ReadFileFromMemory(memory.data(), memory.size(), flags, hint);
+    if (!files->refused().empty()) {
+      throw FileError(fmt::format(
+          "{}: the mesh refers to the file {}, outside its directory {}: tumble reads only the files "
+          "beside a mesh or below its directory; copy that file there and name it relative to the mesh",
+          path.string(), files->refused(), files->directory().string()));
+    }
     if (scene == nullptr) {
       // A parser that met a failed allocation may say anything (or "std::bad_alloc").
       if (child_process::near_memory_limit()) child_process::exit_out_of_memory();

@@ -590,6 +590,16 @@ const std::vector<Case>& catalogue() {
        "{t} check s.toml",
        1,
        "tumble: error: b.csv:2:1: body 'b_0': mass is -1 kg but must be positive"},
+      {"mesh: glTF buffer outside the mesh's directory (never read: it would leak into outputs)",
+       {{"model/up.gltf",
+         R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+         R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
+         R"("buffers":[{"byteLength":96,"uri":"../secret.bin"}],"bufferViews":[{"buffer":0,"byteLength":96}],)"
+         R"("accessors":[{"bufferView":0,"componentType":5126,"count":8,"type":"VEC3"}]})"},
+        {"secret.bin", std::string(96, '\0')}},
+       "{t} inertia model/up.gltf --density 1",
+       1,
+       "tumble: error: model/up.gltf: the mesh refers to the file …"},
       {"mesh: empty OBJ",
        {{"m.obj", std::string()}},
        "{t} inertia m.obj --density 1",

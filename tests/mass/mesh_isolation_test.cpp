@@ -155,7 +155,8 @@ void put_u16(std::string& s, std::uint32_t v) {
 }
 
 /// A binary glTF 2.0 file of the unit cube: float32 positions, uint16 indices.
-std::string cube_glb() {
+/// The unit cube's glTF buffer: 8 float32 corners, then 36 uint16 indices.
+std::string cube_gltf_buffer() {
   std::string bin;
   for (int i = 0; i < 8; ++i) {
     for (int k = 0; k < 3; ++k) {
@@ -169,13 +170,36 @@ std::string cube_glb() {
     for (int v : t) put_u16(bin, static_cast<std::uint32_t>(v));
   }
   while (bin.size() % 4 != 0) bin += '\0';
-  std::string json = fmt::format(
+  return bin;
+}
+
+/// The unit cube's glTF document with these buffers (JSON objects), its vertices and indices in
+/// buffer `cube`.
+std::string cube_gltf_json(const std::string& buffers, int cube) {
+  return fmt::format(
       R"({{"asset":{{"version":"2.0"}},"scene":0,"scenes":[{{"nodes":[0]}}],"nodes":[{{"mesh":0,"name":"cube"}}],)"
-      R"("meshes":[{{"primitives":[{{"attributes":{{"POSITION":0}},"indices":1}}]}}],"buffers":[{{"byteLength":{}}}],)"
-      R"("bufferViews":[{{"buffer":0,"byteOffset":0,"byteLength":96}},{{"buffer":0,"byteOffset":96,"byteLength":72}}],)"
+      R"("meshes":[{{"primitives":[{{"attributes":{{"POSITION":0}},"indices":1}}]}}],"buffers":[{}],)"
+      R"("bufferViews":[{{"buffer":{},"byteOffset":0,"byteLength":96}},{{"buffer":{},"byteOffset":96,"byteLength":72}}],)"
       R"("accessors":[{{"bufferView":0,"componentType":5126,"count":8,"type":"VEC3","min":[0,0,0],"max":[1,1,1]}},)"
       R"({{"bufferView":1,"componentType":5123,"count":36,"type":"SCALAR"}}]}})",
-      bin.size());
+      buffers, cube, cube);
+}
+
+/// The JSON of a buffer of the cube's bytes, in the file (`uri` empty: a .glb's BIN chunk) or at `uri`.
+std::string cube_buffer(const std::string& uri = "") {
+  return fmt::format(R"({{"byteLength":{}{}}})", cube_gltf_buffer().size(),
+                     uri.empty() ? "" : fmt::format(R"(,"uri":"{}")", uri));
+}
+
+/// A glTF text file of the unit cube whose buffer is the file at `uri`.
+std::string cube_gltf(const std::string& uri) { return cube_gltf_json(cube_buffer(uri), 0); }
+
+/// A binary glTF of the unit cube: its buffer in the file's BIN chunk, or (`uri` given) the file at
+/// `uri`, beside a BIN chunk of 4 bytes that nothing uses (buffer 0 of a .glb is always its chunk).
+std::string cube_glb(const std::string& uri = "") {
+  const std::string bin = uri.empty() ? cube_gltf_buffer() : std::string(4, '\0');
+  std::string json = uri.empty() ? cube_gltf_json(cube_buffer(), 0)
+                                 : cube_gltf_json(R"({"byteLength":4},)" + cube_buffer(uri), 1);
   while (json.size() % 4 != 0) json += ' ';
   std::string glb;
   put_u32(glb, 0x46546C67);  // "glTF"
@@ -303,6 +327,42 @@ TEST(MeshIsolation, ValidDaeGlb3mfAndXGiveTheUnitCube) {
   // Scaled as before: every coordinate times the factor.
   const LoadedMesh mm = load_mesh(dir / "cube.glb", {.scale = 0.001});
   EXPECT_NEAR(solid_mass_properties(mm.mesh, MassSpec::density(1.0)).properties.volume, 1e-9, 1e-24);
+}
+
+TEST(MeshIsolation, AMeshReadsNoFileOutsideItsDirectory) {
+  // A glTF's buffer is another file. Beside the mesh or below it, it is read; anywhere else ("../", a
+  // symbolic link out, an absolute path) it is refused by name, though the file there holds a valid
+  // buffer: its bytes would become vertices in reports and run files made to be shared.
+  TestDir dir;
+  std::filesystem::create_directories(dir / "model/data");
+  write_bytes(dir / "model/data/cube.bin", cube_gltf_buffer());
+  write_bytes(dir / "secret.bin", cube_gltf_buffer());
+  std::filesystem::create_symlink(dir / "secret.bin", dir / "model/link.bin");
+  write_bytes(dir / "model/inside.gltf", cube_gltf("data/cube.bin"));
+  EXPECT_EQ(load_mesh(dir / "model/inside.gltf").mesh.triangles.size(), 12U);
+  // A link to a mesh elsewhere: the mesh is read, and its buffer beside the link.
+  std::filesystem::create_directories(dir / "scene/data");
+  std::filesystem::create_symlink(dir / "model/inside.gltf", dir / "scene/cube.gltf");
+  write_bytes(dir / "scene/data/cube.bin", cube_gltf_buffer());
+  EXPECT_EQ(load_mesh(dir / "scene/cube.gltf").mesh.triangles.size(), 12U);
+  const std::string secret = (dir / "secret.bin").string();
+  const std::string model = std::filesystem::weakly_canonical(dir / "model").string();
+  for (const auto& [name, uri] : std::vector<std::pair<std::string, std::string>>{
+           {"up.gltf", "../secret.bin"}, {"link.gltf", "link.bin"}}) {
+    write_bytes(dir / "model" / name, cube_gltf(uri));
+    const std::string msg = load_error(dir / "model" / name);
+    EXPECT_HAS(msg, (dir / "model" / name).string() + ": the mesh refers to the file ");
+    EXPECT_HAS(msg, ", outside its directory " + model + ": tumble reads only the files beside a mesh");
+  }
+  // assimp 5.2 puts the glTF's directory before an absolute name: nothing there, nothing read.
+  write_bytes(dir / "model/absolute.gltf", cube_gltf(secret));
+  EXPECT_HAS(load_error(dir / "model/absolute.gltf"), "could not open referenced file");
+  // A .glb is read from memory, where an external buffer's name has no directory before it: an
+  // absolute one is refused, a relative one is taken beside the mesh.
+  write_bytes(dir / "model/outside.glb", cube_glb(secret));
+  EXPECT_HAS(load_error(dir / "model/outside.glb"), "the mesh refers to the file " + secret + ", outside");
+  write_bytes(dir / "model/beside.glb", cube_glb("data/cube.bin"));
+  EXPECT_EQ(load_mesh(dir / "model/beside.glb").mesh.triangles.size(), 12U);
 }
 
 TEST(MeshIsolation, PartsOfAnAssimpFileAreCountedNamedAndPicked) {
