@@ -4,8 +4,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -48,12 +51,31 @@ class Hdf5Reader {
     H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
     file_ = H5Fopen(path_.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
     if (file_ < 0) throw FileError(fmt::format("cannot open {} as HDF5", path_));
+    std::error_code ec;
+    file_bytes_ = std::filesystem::file_size(path, ec);
   }
   ~Hdf5Reader() { H5Fclose(file_); }
   Hdf5Reader(const Hdf5Reader&) = delete;
   Hdf5Reader& operator=(const Hdf5Reader&) = delete;
 
-  bool has(const std::string& name) const { return H5Lexists(file_, name.c_str(), H5P_DEFAULT) > 0; }
+  /// Whether the file has an object at `name` (e.g. "geometry/vertices"), every link on the way a link
+  /// inside this file: an external or soft link is refused, not followed (H5Lexists would follow an
+  /// external link into another file).
+  bool has(const std::string& name) const {
+    for (size_t end = name.find('/');; end = name.find('/', end + 1)) {
+      const std::string prefix = name.substr(0, end);
+      if (H5Lexists(file_, prefix.c_str(), H5P_DEFAULT) <= 0) return false;
+      H5L_info_t link;
+      if (H5Lget_info(file_, prefix.c_str(), &link, H5P_DEFAULT) < 0) return false;
+      if (link.type != H5L_TYPE_HARD) {
+        throw FileError(fmt::format(
+            "{}: '{}' is {} link: tumble reads only data inside the trajectory file (a link may point at "
+            "any file on this machine); refused",
+            path_, prefix, link.type == H5L_TYPE_EXTERNAL ? "an external" : "a soft"));
+      }
+      if (end == std::string::npos) return true;
+    }
+  }
 
   /// A dataset of doubles (or integers, converted) and its shape.
   std::vector<double> doubles(const std::string& name, std::vector<hsize_t>* shape = nullptr) const {
@@ -115,6 +137,14 @@ class Hdf5Reader {
  private:
   hid_t open(const std::string& name) const {
     const hid_t id = has(name) ? H5Dopen2(file_, name.c_str(), H5P_DEFAULT) : -1;
+    if (id >= 0) {
+      try {
+        check_storage(id, name);
+      } catch (...) {
+        H5Dclose(id);
+        throw;
+      }
+    }
     if (id < 0) {
       throw InvalidArgument(
           fmt::format("{} has no dataset '{}': it is not a trajectory that tumble run wrote{}", path_, name,
@@ -124,6 +154,33 @@ class Hdf5Reader {
                           : ""));
     }
     return id;
+  }
+  /// Refuses a dataset whose data is not in this file (external storage, a virtual dataset: either
+  /// reads any file on this machine, and the report would embed it) or that claims more data than the
+  /// file can hold (a 49 KiB file claiming 2·10⁸ samples would exhaust memory). tumble writes chunks
+  /// without filters, so a dataset's data is at most the file's size; a fill value read for chunks never
+  /// written is allowed a few MiB.
+  void check_storage(hid_t set, const std::string& name) const {
+    const Id plist{H5Dget_create_plist(set), H5Pclose};
+    const bool virtual_set = H5Pget_layout(plist.id) == H5D_VIRTUAL;
+    if (virtual_set || H5Pget_external_count(plist.id) > 0) {
+      throw FileError(fmt::format(
+          "{}: dataset '{}' keeps its data in other files (HDF5 {}): tumble reads only data inside the "
+          "trajectory file; refused",
+          path_, name, virtual_set ? "virtual dataset" : "external storage"));
+    }
+    const Id space{H5Dget_space(set), H5Sclose};
+    const Id type{H5Dget_type(set), H5Tclose};
+    const hssize_t points = H5Sget_simple_extent_npoints(space.id);
+    const size_t element = std::max<size_t>(H5Tget_size(type.id), 1);
+    constexpr std::uint64_t kFillAllowance = std::uint64_t{8} << 20;
+    if (points < 0 || static_cast<double>(points) * static_cast<double>(element) >
+                          static_cast<double>(file_bytes_) + static_cast<double>(kFillAllowance)) {
+      throw FileError(fmt::format(
+          "{}: dataset '{}' claims {} values of {} bytes, more than the file's {} bytes hold: the file is "
+          "truncated or forged; refused",
+          path_, name, points, element, file_bytes_));
+    }
   }
   static hid_t string_type() {
     const hid_t t = H5Tcopy(H5T_C_S1);
@@ -137,6 +194,7 @@ class Hdf5Reader {
 
   std::string path_;
   hid_t file_ = -1;
+  std::uintmax_t file_bytes_ = 0;  // bounds what a dataset may claim
 };
 
 /// The names, geometry and text of `scene` in `r`: a report of a file written without them.

@@ -1,13 +1,16 @@
 // Reports: what `tumble run --report` records and what `tumble report` reads back from CSV and HDF5
 // files are the same report; the HTML holds the JSON the viewer decodes; long runs are thinned.
 #include <gtest/gtest.h>
+#include <hdf5.h>
 
 #include <cstring>
 #include <fmt/format.h>
+#include <functional>
 #include <nlohmann/json.hpp>
 
 #include "../support/run.hpp"
 #include "../support/scene_files.hpp"
+#include "tumble/error.hpp"
 #include "tumble/io/report.hpp"
 #include "tumble/io/scene.hpp"
 #include "tumble/math/rotations.hpp"
@@ -240,6 +243,65 @@ TEST(Report, LongRunsAreThinnedToTheBudgetKeepingTheEnds) {
   EXPECT_LT(fs::file_size(dir / "r.html"), 20u * 1000 * 1000) << "the issue's limit";
   const std::string page = test::read_text(dir / "r.html");
   EXPECT_NE(page.find("\"samples_total\":100001"), std::string::npos);
+}
+
+/// Replaces the dataset `name` of the HDF5 file with what `make` creates in its place (given the file
+/// and the name).
+void replace_dataset(const fs::path& file, const char* name,
+                     const std::function<void(hid_t, const char*)>& make) {
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  ASSERT_GE(H5Ldelete(f, name, H5P_DEFAULT), 0);
+  make(f, name);
+  H5Fclose(f);
+}
+
+TEST(Report, AForgedHdf5FileReadsNothingOutsideItselfAndClaimsNoMoreThanItHolds) {
+  // A received trajectory could point its datasets at any file on the machine (external storage, an
+  // external link), and `tumble report` would embed that file's bytes in a page made to be shared; or
+  // claim 2·10⁸ samples in a small file and exhaust memory. Each is refused, naming the dataset.
+  const test::TempDir dir("report_forged");
+  const auto run = test::run_tumble("run " + kTHandle.string() + " -o " + (dir / "t.h5").string() + " -q");
+  ASSERT_EQ(run.status, 0) << run.output;
+  const std::string secret = dir.write("secret.txt", std::string(16008, 'x')).string();
+  const auto refused = [&](const char* file, const std::string& what) {
+    try {
+      read_report(dir / file);
+      ADD_FAILURE() << file << " was read";
+    } catch (const FileError& e) {
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  };
+  fs::copy_file(dir / "t.h5", dir / "external.h5");
+  replace_dataset(dir / "external.h5", "t", [&](hid_t f, const char* name) {
+    const hsize_t n = 2001;
+    const hid_t space = H5Screate_simple(1, &n, nullptr);
+    const hid_t plist = H5Pcreate(H5P_DATASET_CREATE);
+    H5Pset_external(plist, secret.c_str(), 0, n * 8);
+    H5Dclose(H5Dcreate2(f, name, H5T_IEEE_F64LE, space, H5P_DEFAULT, plist, H5P_DEFAULT));
+    H5Pclose(plist);
+    H5Sclose(space);
+  });
+  refused("external.h5", "external.h5: dataset 't' keeps its data in other files (HDF5 external storage)");
+
+  fs::copy_file(dir / "t.h5", dir / "link.h5");
+  replace_dataset(dir / "link.h5", "position", [&](hid_t f, const char* name) {
+    H5Lcreate_external((dir / "t.h5").c_str(), "/position", f, name, H5P_DEFAULT, H5P_DEFAULT);
+  });
+  refused("link.h5", "link.h5: 'position' is an external link");
+
+  fs::copy_file(dir / "t.h5", dir / "huge.h5");
+  replace_dataset(dir / "huge.h5", "t", [&](hid_t f, const char* name) {
+    const hsize_t n = 200000000, chunk = 4096;
+    const hid_t space = H5Screate_simple(1, &n, nullptr);
+    const hid_t plist = H5Pcreate(H5P_DATASET_CREATE);
+    H5Pset_chunk(plist, 1, &chunk);
+    H5Dclose(H5Dcreate2(f, name, H5T_IEEE_F64LE, space, H5P_DEFAULT, plist, H5P_DEFAULT));
+    H5Pclose(plist);
+    H5Sclose(space);
+  });
+  refused("huge.h5", "huge.h5: dataset 't' claims 200000000 values of 8 bytes, more than the file's");
+  EXPECT_EQ(read_report(dir / "t.h5").t.size(), 2001u) << "the file they were made from is read";
 }
 
 TEST(Report, MissingPiecesAreNamed) {
