@@ -153,7 +153,7 @@ class ConfinedIOSystem final : public Assimp::DefaultIOSystem {
     std::error_code ec;
     const std::filesystem::path resolved = std::filesystem::weakly_canonical(p, ec);
     const auto [d, r] = std::mismatch(directory_.begin(), directory_.end(), resolved.begin(), resolved.end());
-    if (!ec && d == directory_.end()) return p.string();
+    if (!ec && d == directory_.end()) return resolved.string();  // opened as checked
     if (refused_.empty()) refused_ = file;
     return {};
   }
