@@ -115,11 +115,11 @@ struct Writer {
 }
 
 /// The files a mesh may make assimp open besides itself: those in its own directory or below it. A
-/// received glTF whose buffer is "/home/u/.ssh/id_rsa" or "../secret.txt" would otherwise have that file
-/// read as vertices, and the vertices end up in reports and run files made to be shared (and the same
-/// holds for any format with external files: Collada images, a .glb's external buffer read from
-/// memory). Paths are compared once symbolic links and ".." are resolved; a refused name is kept for
-/// the message, and nothing is ever written, created or deleted.
+/// received glTF whose buffer is "../secret.txt" or the absolute path of a private key would otherwise
+/// have that file read as vertices, and the vertices end up in reports and run files made to be shared
+/// (and the same holds for any format with external files: Collada images, a .glb's external buffer
+/// read from memory). Paths are compared once symbolic links and ".." are resolved; a refused name is
+/// kept for the message, and nothing is ever written, created or deleted.
 class ConfinedIOSystem final : public Assimp::DefaultIOSystem {
  public:
   explicit ConfinedIOSystem(const std::filesystem::path& mesh)
