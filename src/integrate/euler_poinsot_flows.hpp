@@ -150,12 +150,14 @@ TUMBLE_INLINE QuatT<T> triaxial_body_part(const TriaxialConstants<T>& k, T phi, 
   //   cos(α/2) = √((r + x)/(2r)),  sin(α/2) = y/√(2r(r + x))                  (x ≥ 0),
   //   sin(α/2) = ±√((r − x)/(2r)), cos(α/2) = |y|/√(2r(r − x)), ± the sign of y  (x < 0),
   // each a sum of non-negative terms (no cancellation); cos(α/2) ≥ 0 and the sign of sin(α/2) is
-  // that of y, as with the angle from atan2 (its branch cut included). Both forms are computed and one
-  // is kept per lane (the other may divide by zero, and is discarded).
+  // that of y, as with the angle from atan2 (its branch cut included). For ψ the two forms share
+  // r ± x = Tn + |T₂| (> 0), so one square root and the numerators are chosen per lane: the same bits
+  // as computing both, at a third of the divider's work (the flow on packs is bound by it).
   const auto upper = T2 >= T(0);
-  const T w_upper = sqrt(T(2) * Tn * (Tn + T2)), w_lower = sqrt(T(2) * Tn * (Tn - T2));
-  const T c_psi = select(upper, (Tn + T2) / w_upper, abs(T1) / w_lower);
-  const T s_psi = select(upper, T1 / w_upper, copysign((Tn - T2) / w_lower, T1));
+  const T Tn_plus = Tn + abs(T2);  // Tn + T₂ where upper, Tn − T₂ where not
+  const T w_psi = sqrt(T(2) * Tn * Tn_plus);
+  const T c_psi = select(upper, Tn_plus, abs(T1)) / w_psi;
+  const T s_psi = select(upper, T1, copysign(Tn_plus, T1)) / w_psi;
   const T y = k.rho * Tn, x = k.c * f.dn, r = hypot(y, x);
   const T w = sqrt(T(2) * r * (r + x));
   return quat_zxz<T>(phi, (r + x) / w, y / w, c_psi, s_psi);

@@ -79,6 +79,26 @@ TEST(JacobiElliptic, KeepsFullAccuracyNearTheSeparatrixWhereTheModulusRouteLoses
   }
 }
 
+TEST(JacobiElliptic, DeepLandenRecursionKeepsTheSeparatrixLimit) {
+  // The deepest Landen recursions of normal doubles (a dozen levels), where landen_point's common
+  // denominator D grows most (jacobi_elliptic.hpp). There
+  // sn u = tanh u + O(k′² u cosh²u), cn, dn = sech u + O(k′² …) (DLMF 22.10.2): for |u| ≤ 3 the
+  // corrections are below 1e-90, so tanh and sech are the exact values to double precision. Bounds: a
+  // few ulps, as KeepsFullAccuracyNearTheSeparatrix… (the recursion halves errors; cn, dn are small
+  // here, so relative to their size).
+  for (double m1 : {1e-100, 1e-300}) {
+    const JacobiElliptic f(1.0 - m1, m1);
+    EXPECT_GT(f.constants().steps, 8) << m1;
+    for (double u : {-2.0, 0.5, 1.7, 3.0}) {
+      const JacobiValues v = f(u);
+      const double sech = 1.0 / std::cosh(u);
+      EXPECT_NEAR(v.sn, std::tanh(u), 4 * kEps) << m1 << " " << u;
+      EXPECT_NEAR(v.cn, sech, 8 * kEps * sech) << m1 << " " << u;
+      EXPECT_NEAR(v.dn, sech, 8 * kEps * sech) << m1 << " " << u;
+    }
+  }
+}
+
 TEST(JacobiElliptic, SeparatrixLimitIsTanhAndSech) {
   const JacobiElliptic f(1.0, 0.0);
   EXPECT_TRUE(std::isinf(f.K()));

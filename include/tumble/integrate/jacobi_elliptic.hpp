@@ -70,20 +70,27 @@ TUMBLE_INLINE LandenPoint<T> landen_point(const JacobiConstants<T>& J, T u) {
   p.arg = select(p.reflected, J.K - r_abs, p.r);
   const T z = J.a_N * p.arg;
   const auto [sin_z, cos_z] = sincos(z);
-  T s = sin_z, c = cos_z, d = T(1);
+  // The levels keep s, c, d as S/D, C/D, E/D over one denominator D, so that a level takes no
+  // division (on packs the divider bounds the flow): with ks² = kS²/D²,
+  //   S ← (1 + k) S D,  C ← C E,  E ← D² − kS²,  D ← D² + kS².
+  // D = D²(1 + k s²) squares what the levels above left, but those have the small k (they come first),
+  // and the levels of k near 1 are squared least: D stays below 1e81 even at k′² = 5e-324 with s = 1
+  // (the largest D), far from overflow. A level of k = 0 (a lane's padding above its own count) leaves
+  // S, C and E = D = 1 as they are, bit for bit.
+  T S = sin_z, C = cos_z, E = T(1), D = T(1);
   for (int n = J.steps; n >= 1; --n) {
-    const T k = J.ratio[n - 1], ks2 = k * s * s, inv = T(1) / (T(1) + ks2);
-    const T s_up = (T(1) + k) * s * inv;
-    c = c * d * inv;
-    d = (T(1) - ks2) * inv;
-    s = s_up;
+    const T k = J.ratio[n - 1], D2 = D * D, kS2 = k * S * S;
+    S = (T(1) + k) * S * D;
+    C = C * E;
+    E = D2 - kS2;
+    D = D2 + kS2;
   }
-  // Each level rounds s and c apart, so sn² + cn² strays from 1 by about an ε a level; dividing by
-  // their norm puts the pair back on the circle (and dn² + m sn² = 1 with it), to ~2ε as sin and cos
-  // of one angle are.
-  const T norm = sqrt(s * s + c * c);
-  p.s = s / norm;
-  p.c = c / norm;
+  // Each level rounds S and C apart, so sn² + cn² strays from 1 by about an ε a level; dividing by
+  // their norm (D cancels) puts the pair back on the circle (and dn² + m sn² = 1 with it), to ~2ε as
+  // sin and cos of one angle are.
+  const T inv_norm = T(1) / sqrt(S * S + C * C);
+  p.s = S * inv_norm;
+  p.c = C * inv_norm;
   // dn = √(1 − m sn²) = √(cn² + k′² sn²): a sum of squares, no cancellation.
   p.d = sqrt(p.c * p.c + J.m1 * p.s * p.s);
   return p;
@@ -100,9 +107,10 @@ struct SnCnDn {
 template <class T>
 TUMBLE_INLINE SnCnDn<T> jacobi_sn_cn_dn(const JacobiConstants<T>& J, const LandenPoint<T>& p) {
   using std::copysign, std::floor;
-  const T sn_r = select(p.reflected, copysign(p.c / p.d, p.r), p.s);
-  const T cn_r = select(p.reflected, J.k1 * p.s / p.d, p.c);
-  const T dn = select(p.reflected, J.k1 / p.d, p.d);
+  const T inv_d = T(1) / p.d;  // one division for the three (on packs the divider bounds the flow)
+  const T sn_r = select(p.reflected, copysign(p.c * inv_d, p.r), p.s);
+  const T cn_r = select(p.reflected, J.k1 * p.s * inv_d, p.c);
+  const T dn = select(p.reflected, J.k1 * inv_d, p.d);
   const T half_j = T(0.5) * p.j;
   const T sign = select(floor(half_j) != half_j, T(-1), T(1));  // (−1)ʲ
   return {sign * sn_r, sign * cn_r, dn};
@@ -138,8 +146,9 @@ TUMBLE_INLINE T elliptic_pi(const PiConstants<T>& P, const LandenPoint<T>& p) {
   using std::copysign;
   const T n = select(p.reflected, P.n_reflected, P.n);
   const T c2 = p.c * p.c, d2 = p.d * p.d, s2 = p.s * p.s;
-  const T incomplete = p.arg + n / T(3) * p.s * s2 *
-                                   carlson_rj<T>(c2, d2, T(1), T(1) - n * s2, P.rj_steps, P.rj_max_steps);
+  const T incomplete = p.arg + n * T(1.0 / 3) * p.s * s2 *
+                                   carlson_rj_with_roots<T>(c2, d2, T(1), p.c, p.d, T(1), T(1) - n * s2,
+                                                            P.rj_steps, P.rj_max_steps);
   const T periods = T(2) * p.j * P.complete;
   return periods + select(p.reflected, copysign(P.complete - (P.c_linear * p.arg + P.c_Pi * incomplete), p.r),
                           incomplete);

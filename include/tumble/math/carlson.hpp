@@ -79,8 +79,11 @@ TUMBLE_INLINE T rc_one(T e) {
 /// δ ≥ 0: every e_m ≥ 0, so R_C(1, 1 + e_m) is the atan form), with `steps` duplication steps
 /// (carlson_rj_steps). On a pack each lane has its own count: the loop runs `max_steps`, the largest,
 /// and a lane past its own count keeps its values (so it computes the bits of its own count).
+/// Given also √x, √y, √z (≥ 0), the first duplication step takes one square root (√p) instead of four:
+/// the exact flow has them (x = cn², y = dn², z = 1: jacobi_elliptic.hpp), and its drift on packs is
+/// bound by the divider, which takes the square roots.
 template <class T>
-TUMBLE_INLINE T carlson_rj(T x, T y, T z, T p, T steps, int max_steps) {
+TUMBLE_INLINE T carlson_rj_with_roots(T x, T y, T z, T sx, T sy, T sz, T p, T steps, int max_steps) {
   using std::sqrt;
   // A₀ = (x + y + z + 2p)/5. Each duplication maps x ← (x + λ)/4 (likewise y, z, A, p) with
   // λ = √x√y + √x√z + √y√z; A_m − x_m = 4⁻ᵐ(A₀ − x), so the deviations are taken once at step 0 (no
@@ -100,11 +103,13 @@ TUMBLE_INLINE T carlson_rj(T x, T y, T z, T p, T steps, int max_steps) {
   double scale_cubed = 1.0;  // 4⁻³ᵐ
   for (int m = 0; m < max_steps; ++m) {
     const auto active = T(static_cast<double>(m)) < steps;
-    const T sx = sqrt(x), sy = sqrt(y), sz = sqrt(z), sp = sqrt(p);
+    const T sp = sqrt(p);
     const T lambda = sx * sy + sx * sz + sy * sz;
     const T d = (sp + sx) * (sp + sy) * (sp + sz);
-    const T e = delta * T(scale_cubed) / (d * d);
-    const T term = select(active, scale * carlson_detail::rc_one(e) / d, T(0));  // + 0 changes nothing
+    // One division a step (the divider bounds this loop on packs): 1/d serves e_m and the term.
+    const T inv_d = T(1) / d;
+    const T e = delta * T(scale_cubed) * inv_d * inv_d;
+    const T term = select(active, scale * carlson_detail::rc_one(e) * inv_d, T(0));  // + 0 changes nothing
     // Compensated sum (Knuth's TwoSum: carry collects what sum + term rounds off). Several terms are of
     // the same size, and plain summation was R_J's largest rounding error (measured over the domain:
     // worst 5.8ε → 4.1ε, mean 0.9ε → 0.6ε).
@@ -118,11 +123,13 @@ TUMBLE_INLINE T carlson_rj(T x, T y, T z, T p, T steps, int max_steps) {
     scale = select(active, scale * T(0.25), scale);
     scale_cubed *= 1.0 / 64;
     p = x + scale * p_minus_x;
+    if (m + 1 < max_steps) sx = sqrt(x), sy = sqrt(y), sz = sqrt(z);
   }
   // Now scale = 4⁻ᴹ. X, Y, Z = (A₀ − ·)/(4ᴹ A_M), P = (−X − Y − Z)/2;
   // E₂ = XY + XZ + YZ − 3P², E₃ = XYZ + 2E₂P + 4P³, E₄ = (2XYZ + E₂P + 3P³)P, E₅ = XYZP²;
   // R_J ≈ 4⁻ᴹ A_M^{−3/2} (1 − 3E₂/14 + E₃/6 + 9E₂²/88 − 3E₄/22 − 9E₂E₃/52 + 3E₅/26) + 6 Σ.
-  const T X = dx * scale / A, Y = dy * scale / A, Z = dz * scale / A;
+  const T inv_A = T(1) / A;
+  const T X = dx * scale * inv_A, Y = dy * scale * inv_A, Z = dz * scale * inv_A;
   const T P = -(X + Y + Z) * T(0.5);
   const T XYZ = X * Y * Z, P2 = P * P;
   const T E2 = X * Y + X * Z + Y * Z - T(3) * P2;
@@ -131,7 +138,14 @@ TUMBLE_INLINE T carlson_rj(T x, T y, T z, T p, T steps, int max_steps) {
   const T E5 = XYZ * P2;
   const T series = T(1) - T(3.0 / 14) * E2 + T(1.0 / 6) * E3 + T(9.0 / 88) * E2 * E2 - T(3.0 / 22) * E4 -
                    T(9.0 / 52) * E2 * E3 + T(3.0 / 26) * E5;
-  return scale * series / (A * sqrt(A)) + T(6) * (sum + carry);
+  return scale * series * inv_A / sqrt(A) + T(6) * (sum + carry);
+}
+
+/// R_J(x, y, z, p) from the arguments alone.
+template <class T>
+TUMBLE_INLINE T carlson_rj(T x, T y, T z, T p, T steps, int max_steps) {
+  using std::sqrt;
+  return carlson_rj_with_roots<T>(x, y, z, sqrt(x), sqrt(y), sqrt(z), p, steps, max_steps);
 }
 
 }  // namespace tumble
