@@ -115,6 +115,33 @@ TEST(Carlson, RJIsAccurateOverTheTunedDomain) {
       points.size(), worst_rj, worst_rj_reflected, worst_simd);
 }
 
+TEST(Carlson, SeriesTruncationIsOfEighthOrder) {
+  // With no duplication step carlson_rj is its series alone, at arguments spread by δ about 1: the 7th-
+  // order series (carlson.hpp) leaves O(δ⁸), so halving δ divides the error by 2⁸ = 256 (a 5th-order
+  // series: 2⁶ = 64; a wrong 7th-order term: 2⁷ = 128). carlson_rj_steps counts the steps for this
+  // order. At these δ the truncation (≥ 1e3 ε) dwarfs rounding, so the ratios are the order's, up to
+  // the next order's share (±15 % here). Three directions of spread, so that every E_k takes part.
+  struct Direction {
+    double x, y, p;  // x = 1 + δ·x etc., z = 1; p ≥ x, y, z keeps δ ≥ 0
+  };
+  for (const Direction d : {Direction{-1.0, 0.5, 0.8}, Direction{-1.0, -0.3, 1.0}, Direction{-0.2, -1.0, 0.4}}) {
+    const auto truncation = [&](double delta) {
+      const double x = 1.0 + d.x * delta, y = 1.0 + d.y * delta, p = 1.0 + d.p * delta;
+      const long double reference = boost::math::ellint_rj(
+          static_cast<long double>(x), static_cast<long double>(y), 1.0L, static_cast<long double>(p));
+      return relative_error(carlson_rj(x, y, 1.0, p, 0.0, 0), reference);
+    };
+    const double e1 = truncation(0.2), e2 = truncation(0.1), e3 = truncation(0.05);
+    std::printf("[ measured ] series alone: relative error %.3g, %.3g, %.3g eps at delta = 0.2, 0.1, 0.05\n",
+                e1, e2, e3);
+    EXPECT_GT(e3, 1e3);  // truncation, not rounding
+    for (const double ratio : {e1 / e2, e2 / e3}) {
+      EXPECT_GT(ratio, 200.0) << d.x << " " << d.y << " " << d.p;
+      EXPECT_LT(ratio, 330.0) << d.x << " " << d.y << " " << d.p;
+    }
+  }
+}
+
 TEST(Carlson, ClosedForms) {
   using L = long double;
   for (double x : {1e-8, 0.3, 1.0, 7.0}) {

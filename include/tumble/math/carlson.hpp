@@ -34,14 +34,15 @@ namespace tumble {
 /// like log₄ N; small x, y (x ≥ k′/(1 + k′)) need a few more. The smallest counts whose truncation is
 /// ≤ 0.05ε over x ∈ [k′/(1 + k′), 1] (and the reflected p) were measured by evaluating carlson_rj in
 /// long double against Boost's in long double (bench/carlson_rj_steps.cpp), for 65 values of m₁ from
-/// 1e-16 to 1 and 40 of N from 0 to 1e12: they are base(m₁) + ⌈log₄(1 + N)⌉ at most, with base 4 for m₁ ≥ 0.056, 5 down to 1e-4,
-/// 6 down to 5.6e-10 and 7 below (e.g. 10 for N = 1e2 at m₁ = 1e-16, 27 for N = 1e12). The count
-/// below is that with the thresholds moved up (0.1, 1e-3, 1e-8) and one step of margin; the error is
-/// then rounding alone (tests/integrate/carlson_test.cpp: ≤ 6ε over the domain). The usual bodies
-/// (N ≲ 15, m₁ ≥ 0.1) take 6 or 7 steps, where a count from N alone (the m₁ = 1e-16 one) took 9 or 10,
-/// and the 28 that N = 1e12 needs would be 4× the cost.
+/// 1e-16 to 1 and 40 of N from 0 to 1e12: they are base(m₁) + ⌈log₄(1 + N)⌉ at most, with base 3 for
+/// m₁ ≥ 0.056, 4 down to 3.2e-4, 5 down to 5.6e-9 and 6 below (one step fewer than the 5th-order series
+/// needed: 4, 5 down to 1e-4, 6 down to 5.6e-10, 7). The count below is that with the thresholds moved
+/// up (0.1, 1e-3, 1e-8) and one step of margin; the error is then rounding alone
+/// (tests/integrate/carlson_test.cpp: ≤ 6ε over the domain). The usual bodies (N ≲ 15, m₁ ≥ 0.1) take 5
+/// or 6 steps, where a count from N alone (the m₁ = 1e-16 one) took 8 or 9, and the 27 that N = 1e12
+/// needs would be 5× the cost.
 inline int carlson_rj_steps(double N, double m1) {
-  int steps = m1 >= 0.1 ? 5 : m1 >= 1e-3 ? 6 : m1 >= 1e-8 ? 7 : 8;
+  int steps = m1 >= 0.1 ? 4 : m1 >= 1e-3 ? 5 : m1 >= 1e-8 ? 6 : 7;
   for (double power = 1.0; power < 1.0 + N && steps < 64; power *= 4.0) ++steps;
   return steps;
 }
@@ -127,7 +128,11 @@ TUMBLE_INLINE T carlson_rj_with_roots(T x, T y, T z, T sx, T sy, T sz, T p, T st
   }
   // Now scale = 4⁻ᴹ. X, Y, Z = (A₀ − ·)/(4ᴹ A_M), P = (−X − Y − Z)/2;
   // E₂ = XY + XZ + YZ − 3P², E₃ = XYZ + 2E₂P + 4P³, E₄ = (2XYZ + E₂P + 3P³)P, E₅ = XYZP²;
-  // R_J ≈ 4⁻ᴹ A_M^{−3/2} (1 − 3E₂/14 + E₃/6 + 9E₂²/88 − 3E₄/22 − 9E₂E₃/52 + 3E₅/26) + 6 Σ.
+  // R_J ≈ 4⁻ᴹ A_M^{−3/2} (1 − 3E₂/14 + E₃/6 + 9E₂²/88 − 3E₄/22 − 9E₂E₃/52 + 3E₅/26 − E₂³/16 + 3E₃²/40
+  //                       + 3E₂E₄/20 + 45E₂²E₃/272 − 9(E₃E₄ + E₂E₅)/68) + 6 Σ,
+  // the series to 7th order (DLMF 19.36.2; Carlson 1995): its truncation is O(|X|⁸), and |X| shrinks
+  // 4× a duplication step, so each step gains 2¹⁶ (2¹² to 5th order) and fewer steps reach the same
+  // truncation (carlson_rj_steps). The six terms cost a dozen products; a step costs four square roots.
   const T inv_A = T(1) / A;
   const T X = dx * scale * inv_A, Y = dy * scale * inv_A, Z = dz * scale * inv_A;
   const T P = -(X + Y + Z) * T(0.5);
@@ -136,8 +141,10 @@ TUMBLE_INLINE T carlson_rj_with_roots(T x, T y, T z, T sx, T sy, T sz, T p, T st
   const T E3 = XYZ + T(2) * E2 * P + T(4) * P2 * P;
   const T E4 = (T(2) * XYZ + E2 * P + T(3) * P2 * P) * P;
   const T E5 = XYZ * P2;
-  const T series = T(1) - T(3.0 / 14) * E2 + T(1.0 / 6) * E3 + T(9.0 / 88) * E2 * E2 - T(3.0 / 22) * E4 -
-                   T(9.0 / 52) * E2 * E3 + T(3.0 / 26) * E5;
+  const T E2E2 = E2 * E2;
+  const T series = T(1) - T(3.0 / 14) * E2 + T(1.0 / 6) * E3 + T(9.0 / 88) * E2E2 - T(3.0 / 22) * E4 -
+                   T(9.0 / 52) * E2 * E3 + T(3.0 / 26) * E5 - T(1.0 / 16) * E2E2 * E2 + T(3.0 / 40) * E3 * E3 +
+                   T(3.0 / 20) * E2 * E4 + T(45.0 / 272) * E2E2 * E3 - T(9.0 / 68) * (E3 * E4 + E2 * E5);
   return scale * series * inv_A / sqrt(A) + T(6) * (sum + carry);
 }
 
