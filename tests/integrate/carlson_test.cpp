@@ -124,7 +124,8 @@ TEST(Carlson, SeriesTruncationIsOfEighthOrder) {
   struct Direction {
     double x, y, p;  // x = 1 + δ·x etc., z = 1; p ≥ x, y, z keeps δ ≥ 0
   };
-  for (const Direction d : {Direction{-1.0, 0.5, 0.8}, Direction{-1.0, -0.3, 1.0}, Direction{-0.2, -1.0, 0.4}}) {
+  for (const Direction d :
+       {Direction{-1.0, 0.5, 0.8}, Direction{-1.0, -0.3, 1.0}, Direction{-0.2, -1.0, 0.4}}) {
     const auto truncation = [&](double delta) {
       const double x = 1.0 + d.x * delta, y = 1.0 + d.y * delta, p = 1.0 + d.p * delta;
       const long double reference = boost::math::ellint_rj(

@@ -143,8 +143,9 @@ TUMBLE_INLINE T carlson_rj_with_roots(T x, T y, T z, T sx, T sy, T sz, T p, T st
   const T E5 = XYZ * P2;
   const T E2E2 = E2 * E2;
   const T series = T(1) - T(3.0 / 14) * E2 + T(1.0 / 6) * E3 + T(9.0 / 88) * E2E2 - T(3.0 / 22) * E4 -
-                   T(9.0 / 52) * E2 * E3 + T(3.0 / 26) * E5 - T(1.0 / 16) * E2E2 * E2 + T(3.0 / 40) * E3 * E3 +
-                   T(3.0 / 20) * E2 * E4 + T(45.0 / 272) * E2E2 * E3 - T(9.0 / 68) * (E3 * E4 + E2 * E5);
+                   T(9.0 / 52) * E2 * E3 + T(3.0 / 26) * E5 - T(1.0 / 16) * E2E2 * E2 +
+                   T(3.0 / 40) * E3 * E3 + T(3.0 / 20) * E2 * E4 + T(45.0 / 272) * E2E2 * E3 -
+                   T(9.0 / 68) * (E3 * E4 + E2 * E5);
   return scale * series * inv_A / sqrt(A) + T(6) * (sum + carry);
 }
 
