@@ -69,19 +69,14 @@ const tumble::detail::TriaxialConstants<Pack>& generic_pack() {
     tumble::detail::TriaxialConstants<Pack> p;
     const tumble::detail::TriaxialRotation* flow = generic_body().free_rotation().triaxial();
     if (!flow) return p;  // the generic body is triaxial: 1.5 < 2.5 < 4
-    const auto& d = flow->constants();
-    p.jacobi.K = d.jacobi.K, p.jacobi.a_N = d.jacobi.a_N, p.jacobi.m1 = d.jacobi.m1,
-    p.jacobi.k1 = d.jacobi.k1;
+    // Every constant, in visit_constants' order (as the splitting drift's columns are filled).
+    tumble::detail::TriaxialConstants<double> d = flow->constants();
+    std::vector<double> values;
+    tumble::detail::visit_constants(d, d.jacobi.steps, [&](double& v) { values.push_back(v); });
+    size_t next = 0;
+    tumble::detail::visit_constants(p, d.jacobi.steps, [&](Pack& v) { v = Pack(values[next++]); });
     p.jacobi.steps = d.jacobi.steps;
-    for (int n = 0; n < d.jacobi.steps; ++n) p.jacobi.ratio[n] = d.jacobi.ratio[n];
-    p.pi.n = d.pi.n, p.pi.n_reflected = d.pi.n_reflected, p.pi.c_linear = d.pi.c_linear,
-    p.pi.c_Pi = d.pi.c_Pi;
-    p.pi.complete = d.pi.complete;
-    p.pi.rj_steps = d.pi.rj_steps, p.pi.rj_max_steps = d.pi.rj_max_steps;
-    p.lambda = d.lambda, p.u0 = d.u0, p.pole = d.pole, p.h1 = d.h1, p.h2 = d.h2, p.rho = d.rho, p.c = d.c;
-    p.kappa = d.kappa, p.rate = d.rate, p.Pi0 = d.Pi0;
-    p.A = d.A.cast<Pack>(), p.P = d.P.cast<Pack>();
-    p.G = d.G.cast<Pack>(), p.CP = d.CP.cast<Pack>();
+    p.pi.rj_max_steps = d.pi.rj_max_steps;
     return p;
   }();
   return k;

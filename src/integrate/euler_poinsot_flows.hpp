@@ -91,10 +91,10 @@ template <class T, class F>
 void visit_constants(TriaxialConstants<T>& k, int ratios, F&& f) {
   JacobiConstants<T>& J = k.jacobi;
   PiConstants<T>& P = k.pi;
-  for (T* x : {&J.K,     &J.a_N,      &J.m1,       &J.k1,     &P.n,      &P.n_reflected, &P.c_linear,
-               &P.c_Pi,  &P.complete, &P.rj_steps, &k.lambda, &k.u0,     &k.pole,        &k.h1,
-               &k.h2,    &k.rho,      &k.c,        &k.kappa,  &k.rate,   &k.Pi0,         &k.G.w(),
-               &k.G.x(), &k.G.y(),    &k.G.z(),    &k.CP.w(), &k.CP.x(), &k.CP.y(),      &k.CP.z()}) {
+  for (T* x : {&J.K,     &J.inv_2K,   &J.a_N,      &J.m1,     &J.k1,    &P.n,     &P.n_reflected, &P.c_linear,
+               &P.c_Pi,  &P.complete, &P.rj_steps, &k.lambda, &k.u0,    &k.pole,  &k.h1,          &k.h2,
+               &k.rho,   &k.c,        &k.kappa,    &k.rate,   &k.Pi0,   &k.G.w(), &k.G.x(),       &k.G.y(),
+               &k.G.z(), &k.CP.w(),   &k.CP.x(),   &k.CP.y(), &k.CP.z()}) {
     f(*x);
   }
   for (int r = 0; r < 3; ++r) f(k.A(r));
@@ -151,16 +151,16 @@ TUMBLE_INLINE QuatT<T> triaxial_body_part(const TriaxialConstants<T>& k, T phi, 
   //   sin(α/2) = ±√((r − x)/(2r)), cos(α/2) = |y|/√(2r(r − x)), ± the sign of y  (x < 0),
   // each a sum of non-negative terms (no cancellation); cos(α/2) ≥ 0 and the sign of sin(α/2) is
   // that of y, as with the angle from atan2 (its branch cut included). For ψ the two forms share
-  // r ± x = Tn + |T₂| (> 0), so one square root and the numerators are chosen per lane: the same bits
-  // as computing both, at a third of the divider's work (the flow on packs is bound by it).
+  // r ± x = Tn + |T₂| (> 0), so one square root serves and the numerators are chosen per lane. Each
+  // angle takes one division (1/w): the flow on packs is bound by the divider.
   const auto upper = T2 >= T(0);
   const T Tn_plus = Tn + abs(T2);  // Tn + T₂ where upper, Tn − T₂ where not
-  const T w_psi = sqrt(T(2) * Tn * Tn_plus);
-  const T c_psi = select(upper, Tn_plus, abs(T1)) / w_psi;
-  const T s_psi = select(upper, T1, copysign(Tn_plus, T1)) / w_psi;
+  const T inv_w_psi = T(1) / sqrt(T(2) * Tn * Tn_plus);
+  const T c_psi = select(upper, Tn_plus, abs(T1)) * inv_w_psi;
+  const T s_psi = select(upper, T1, copysign(Tn_plus, T1)) * inv_w_psi;
   const T y = k.rho * Tn, x = k.c * f.dn, r = hypot(y, x);
-  const T w = sqrt(T(2) * r * (r + x));
-  return quat_zxz<T>(phi, (r + x) / w, y / w, c_psi, s_psi);
+  const T inv_w = T(1) / sqrt(T(2) * r * (r + x));
+  return quat_zxz<T>(phi, (r + x) * inv_w, y * inv_w, c_psi, s_psi);
 }
 
 /// q(t) from sn, cn, dn and Π(−N; am u | m) at u = λt + u₀:

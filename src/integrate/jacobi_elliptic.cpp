@@ -23,6 +23,7 @@ JacobiElliptic::JacobiElliptic(double m, double m1) : m_(m), m1_(m1) {
     return;
   }
   c_.K = boost::math::ellint_rf(0.0, m1, 1.0);
+  c_.inv_2K = 0.5 / c_.K;
   c_.m1 = m1;
   c_.k1 = std::sqrt(m1);
   // AGM: a₀ = 1, b₀ = k′, c₀ = k; aₙ = (aₙ₋₁ + bₙ₋₁)/2, bₙ = √(aₙ₋₁bₙ₋₁), and cₙ = (aₙ₋₁ − bₙ₋₁)/2

@@ -30,6 +30,7 @@ inline constexpr int kMaxLandenSteps = 40;
 template <class T>
 struct JacobiConstants {
   T K = T(0);                ///< K(m)
+  T inv_2K = T(0);           ///< 1/(2K): the half-periods in u, by a product (0 where K = ∞)
   T a_N = T(1);              ///< the arithmetic–geometric mean of 1 and k′
   T m1 = T(1), k1 = T(1);    ///< k′² and k′
   int steps = 0;             ///< AGM steps N: for a pack, the largest of its lanes'
@@ -63,7 +64,7 @@ template <class T>
 TUMBLE_INLINE LandenPoint<T> landen_point(const JacobiConstants<T>& J, T u) {
   using std::abs, std::fma, std::nearbyint, std::sqrt;
   LandenPoint<T> p;
-  p.j = nearbyint(u / (T(2) * J.K));
+  p.j = nearbyint(u * J.inv_2K);   // where u/(2K) is within its rounding of j + ½, either j serves
   p.r = fma(-T(2) * J.K, p.j, u);  // rounds 2Kj − u once
   const T r_abs = abs(p.r);
   p.reflected = r_abs > T(0.5) * J.K;

@@ -135,7 +135,7 @@ TUMBLE_INLINE T carlson_rj_with_roots(T x, T y, T z, T sx, T sy, T sz, T p, T st
   // the series to 7th order (DLMF 19.36.2; Carlson 1995): its truncation is O(|X|⁸), and |X| shrinks
   // 4× a duplication step, so each step gains 2¹⁶ (2¹² to 5th order) and fewer steps reach the same
   // truncation (carlson_rj_steps). The six terms cost a dozen products; a step costs four square roots.
-  const T inv_A = T(1) / A;
+  const T sqrt_A = sqrt(A), inv_A_3_2 = T(1) / (A * sqrt_A), inv_A = inv_A_3_2 * sqrt_A;  // one division
   const T X = dx * scale * inv_A, Y = dy * scale * inv_A, Z = dz * scale * inv_A;
   const T P = -(X + Y + Z) * T(0.5);
   const T XYZ = X * Y * Z, P2 = P * P;
@@ -148,7 +148,7 @@ TUMBLE_INLINE T carlson_rj_with_roots(T x, T y, T z, T sx, T sy, T sz, T p, T st
                    T(9.0 / 52) * E2 * E3 + T(3.0 / 26) * E5 - T(1.0 / 16) * E2E2 * E2 +
                    T(3.0 / 40) * E3 * E3 + T(3.0 / 20) * E2 * E4 + T(45.0 / 272) * E2E2 * E3 -
                    T(9.0 / 68) * (E3 * E4 + E2 * E5);
-  return scale * series * inv_A / sqrt(A) + T(6) * (sum + carry);
+  return scale * series * inv_A_3_2 + T(6) * (sum + carry);
 }
 
 /// R_J(x, y, z, p) from the arguments alone.
