@@ -44,6 +44,10 @@
 //    body-step) with a scalar flow per body; 2.2e7 on packs, flat from 10² to 10⁶ bodies, 2.8× an rk4
 //    body-step (bench/results/amd-epyc-avx512/batch_throughput.txt, rk4_splitting_ab.txt). A flow
 //    costs 25 ns a body on packs (euler_poinsot_bench: BM_StatePackPair), 0.28 µs on double.
+//    On an Intel Xeon the flow is bound by the divider (≈ 40 square roots and divisions a pack, each
+//    16+ cycles on 8 lanes): every one saved counts, which is why the Landen levels, R_J's steps and
+//    the half-angles are written to take as few as they do (75 → 50 ns a body there,
+//    bench/results/intel-xeon-avx512/flow_ab.txt).
 //  - Accuracy: nothing is rounded between steps. A fresh flow every step rounds q and ω every step, and
 //    the flips of a tumbling body amplify it: 5e-10–1e-9 rad after 1e5 steps of the T-handle, against 0 for
 //    the kept flow, which is the exact flow from the first state evaluated at the summed time. Its own

@@ -1,10 +1,13 @@
 // An ensemble's results on disk: the table and its summary (CSV or HDF5), and the partial rows that let
 // an interrupted study resume without recomputing what it finished.
+#include <boost/crc.hpp>
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 
 #include "hdf5_util.hpp"
 #include "number_text.hpp"
@@ -121,12 +124,61 @@ void write_hdf5(const std::filesystem::path& path, const EnsembleStudy& study,
   staged.commit();
 }
 
-constexpr char kMagic[8] = {'T', 'M', 'B', 'L', 'P', 'A', 'R', 'T'};
+// PATH.partial-RANK: a head (magic, the study's fingerprint, the row width), then one record per
+// finished run: the run's number (int64), its values (double × width) and the CRC-32 of those bytes
+// (uint64). A kill can tear the last record (stdio flushes whole buffers, not records), and a power loss
+// can leave zeros or stale bytes after the last good one; the checksum tells a whole record from both.
+// The file is only ever appended to after its last whole record (open_partial cuts anything after it),
+// so a torn record is never followed by good ones.
+constexpr char kMagic[8] = {'T', 'M', 'B', 'L', 'P', 'R', 'T', '2'};
+constexpr std::uintmax_t kHeadBytes = 8 + 2 * 8;
 
 std::filesystem::path partial_name(const std::filesystem::path& path, int rank) {
   std::filesystem::path p = path;
   p += fmt::format(".partial-{}", rank);
   return p;
+}
+
+std::uint64_t record_checksum(std::int64_t run, const double* values, size_t width) {
+  boost::crc_32_type crc;
+  crc.process_bytes(&run, sizeof run);
+  crc.process_bytes(values, sizeof(double) * width);
+  return crc.checksum();
+}
+
+/// The whole records of a partial file of this study, and where the last one ends (0 if the file is
+/// not this study's: another fingerprint or width, another format, or no head at all).
+struct PartialScan {
+  std::vector<EnsembleRow> rows;
+  std::uintmax_t end = 0;
+};
+PartialScan scan_partial(const std::filesystem::path& file, const EnsembleStudy& study) {
+  PartialScan scan;
+  std::ifstream in(file, std::ios::binary);
+  const std::uint64_t width = study.columns().size() - 1;
+  char magic[8];
+  std::uint64_t head[2];
+  if (!in.read(magic, 8) || std::memcmp(magic, kMagic, 8) != 0 ||
+      !in.read(reinterpret_cast<char*>(head), 16) || head[0] != study.fingerprint() || head[1] != width) {
+    return scan;
+  }
+  scan.end = kHeadBytes;
+  for (;;) {
+    std::int64_t run = 0;
+    std::uint64_t checksum = 0;
+    EnsembleRow row;
+    row.values.resize(width);
+    if (!in.read(reinterpret_cast<char*>(&run), 8) ||
+        !in.read(reinterpret_cast<char*>(row.values.data()), static_cast<std::streamsize>(8 * width)) ||
+        !in.read(reinterpret_cast<char*>(&checksum), 8)) {
+      break;  // the end, or a torn last record
+    }
+    if (checksum != record_checksum(run, row.values.data(), width) || run < 0 || run >= study.runs()) break;
+    row.run = run;
+    scan.rows.push_back(std::move(row));
+    scan.end += 8 * (width + 2);
+  }
+  return scan;
 }
 
 }  // namespace
@@ -146,14 +198,17 @@ PartialRows::PartialRows(const std::filesystem::path& path, int rank, const Ense
       width_(study.columns().size() - 1),
       last_flush_(std::chrono::steady_clock::now()) {
   const std::uint64_t head[2] = {study.fingerprint(), width_};
-  // Keep a file of this study (its rows are read by read_all), replace anything else.
-  bool ours = false;
-  if (std::FILE* in = std::fopen(name_.c_str(), "rb")) {
-    char magic[8];
-    std::uint64_t h[2];
-    ours = std::fread(magic, 1, 8, in) == 8 && std::memcmp(magic, kMagic, 8) == 0 &&
-           std::fread(h, 8, 2, in) == 2 && h[0] == head[0] && h[1] == head[1];
-    std::fclose(in);
+  // Keep the whole records of a file of this study (read_all reads them), cutting off a torn last one so
+  // that new records follow whole ones; replace anything else.
+  const PartialScan kept = scan_partial(name_, study);
+  const bool ours = kept.end > 0;
+  if (ours) {
+    std::error_code ec;
+    if (std::filesystem::file_size(name_, ec) != kept.end) std::filesystem::resize_file(name_, kept.end, ec);
+    if (ec) {
+      throw FileError(fmt::format("cannot cut the torn last row off {}: {}; remove the file and run again",
+                                  name_.string(), ec.message()));
+    }
   }
   if (const auto dir = name_.parent_path(); !dir.empty()) {  // -o out/study.csv: out/ may not exist yet
     std::error_code ec;
@@ -175,7 +230,9 @@ PartialRows::~PartialRows() {
 
 void PartialRows::add(const EnsembleRow& row) {
   const auto run = static_cast<std::int64_t>(row.run);
-  if (std::fwrite(&run, 8, 1, file_) != 1 || std::fwrite(row.values.data(), 8, width_, file_) != width_) {
+  const std::uint64_t checksum = record_checksum(run, row.values.data(), width_);
+  if (std::fwrite(&run, 8, 1, file_) != 1 || std::fwrite(row.values.data(), 8, width_, file_) != width_ ||
+      std::fwrite(&checksum, 8, 1, file_) != 1) {
     throw FileError(fmt::format("writing {} failed: {}", name_.string(), std::strerror(errno)));
   }
   if (std::chrono::steady_clock::now() - last_flush_ > std::chrono::milliseconds(500)) flush();
@@ -192,28 +249,12 @@ std::vector<EnsembleRow> PartialRows::read_all(const std::filesystem::path& path
   const std::filesystem::path dir = path.parent_path().empty() ? "." : path.parent_path();
   const std::string prefix = path.filename().string() + ".partial-";
   std::error_code ec;
-  const size_t width = study.columns().size() - 1;
   for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
     if (entry.path().filename().string().rfind(prefix, 0) != 0) continue;
-    std::ifstream in(entry.path(), std::ios::binary);
-    char magic[8];
-    std::uint64_t head[2];
-    if (!in.read(magic, 8) || std::memcmp(magic, kMagic, 8) != 0 ||
-        !in.read(reinterpret_cast<char*>(head), 16) || head[0] != study.fingerprint() || head[1] != width) {
-      continue;  // another study's, or torn: its runs are computed again
-    }
-    for (;;) {
-      std::int64_t run = 0;
-      EnsembleRow row;
-      row.values.resize(width);
-      if (!in.read(reinterpret_cast<char*>(&run), 8) ||
-          !in.read(reinterpret_cast<char*>(row.values.data()), static_cast<std::streamsize>(8 * width))) {
-        break;
-      }
-      if (run < 0 || run >= study.runs()) break;
-      row.run = run;
-      rows.push_back(std::move(row));
-    }
+    // Another study's file, or a torn head, gives no rows: those runs are computed again.
+    PartialScan scan = scan_partial(entry.path(), study);
+    rows.insert(rows.end(), std::make_move_iterator(scan.rows.begin()),
+                std::make_move_iterator(scan.rows.end()));
   }
   return rows;
 }

@@ -5,6 +5,8 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <numbers>
 #include <set>
 
@@ -222,6 +224,66 @@ std = 1.0
         << e.what();
     EXPECT_NE(std::string(e.what()).find("it must be positive"), std::string::npos) << e.what();
   }
+}
+
+TEST(PartialRows, ATornOrDamagedRecordIsDroppedAndNewRowsFollowWholeOnes) {
+  // What a kill (a record torn at any byte: stdio flushes buffers, not records) or a power loss (bytes
+  // changed after the last good record) leaves in OUT.partial-RANK. Reading keeps the whole records
+  // before the damage; opening the file again cuts it there, so rows added next are read back too and
+  // nothing after the damage is ever taken for a row.
+  const EnsembleStudy s = study("[ensemble]\nruns = 20\n[ensemble.outputs]\nextrema = [\"w2\"]\n");
+  const test::TempDir dir("partial_rows");
+  const std::filesystem::path out = dir / "t.csv", file = dir / "t.csv.partial-0";
+  const size_t width = s.columns().size() - 1;
+  const auto row = [&](long run) {
+    EnsembleRow r;
+    r.run = run;
+    for (size_t k = 0; k < width; ++k)
+      r.values.push_back(static_cast<double>(run) + 0.125 * static_cast<double>(k));
+    return r;
+  };
+  const auto runs_read = [&] {
+    std::vector<long> runs;
+    for (const EnsembleRow& r : PartialRows::read_all(out, s)) {
+      EXPECT_EQ(r.values, row(r.run).values) << "run " << r.run;
+      runs.push_back(r.run);
+    }
+    return runs;
+  };
+  const auto add = [&](std::initializer_list<long> runs) {
+    PartialRows partial(out, 0, s);
+    for (long run : runs) partial.add(row(run));
+  };
+  add({0, 1, 2, 3, 4});
+  ASSERT_EQ(runs_read(), (std::vector<long>{0, 1, 2, 3, 4}));
+  const std::uintmax_t whole = std::filesystem::file_size(file), record = 8 * (width + 2);
+  ASSERT_EQ((whole - 24) % record, 0u);
+
+  // The last record torn at every byte: four rows read; reopened, the fifth place takes run 7.
+  for (std::uintmax_t kept = 1; kept < record; ++kept) {
+    std::filesystem::resize_file(file, whole - record + kept);
+    EXPECT_EQ(runs_read(), (std::vector<long>{0, 1, 2, 3})) << kept << " bytes of the last record";
+    add({7});
+    EXPECT_EQ(runs_read(), (std::vector<long>{0, 1, 2, 3, 7})) << kept << " bytes of the last record";
+    EXPECT_EQ(std::filesystem::file_size(file), whole);
+  }
+
+  // A byte of run 2's values changed: runs 0 and 1 stand, and rows added next follow them.
+  {
+    std::fstream f(file, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(static_cast<std::streamoff>(24 + 2 * record + 8 + 3));
+    f.put('\x5a');
+  }
+  EXPECT_EQ(runs_read(), (std::vector<long>{0, 1}));
+  add({9});
+  EXPECT_EQ(runs_read(), (std::vector<long>{0, 1, 9}));
+
+  // Zeros after the last record (a file extended, its data never written) are not a row of run 0.
+  {
+    std::ofstream f(file, std::ios::app | std::ios::binary);
+    f << std::string(3 * record, '\0');
+  }
+  EXPECT_EQ(runs_read(), (std::vector<long>{0, 1, 9}));
 }
 
 }  // namespace
