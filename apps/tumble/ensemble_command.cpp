@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <regex>
 #include <set>
 
 #include "commands.hpp"
@@ -34,6 +35,56 @@ struct EnsembleOptions {
 bool is_hdf5_name(const std::filesystem::path& p) {
   const std::string e = p.extension().string();
   return e == ".h5" || e == ".hdf5";
+}
+
+/// Whether a study writing its table to `out` may write `file`: the table, its summary, a rank's partial
+/// rows, or a chosen run's trajectory and the files beside it (which runs are chosen is known only
+/// once the table is: `worst`).
+bool written_by_study(const std::filesystem::path& file, const std::filesystem::path& out) {
+  if (same_file(file, out)) return true;
+  std::error_code ec;
+  const auto dir_of = [](const std::filesystem::path& p) {
+    return p.parent_path().empty() ? std::filesystem::path(".") : p.parent_path();
+  };
+  if (!std::filesystem::equivalent(dir_of(file), dir_of(out), ec)) return false;
+  const std::string name = file.filename().string(), stem = out.stem().string();
+  static const std::regex beside_table(
+      R"(\.summary\.csv|\.run-[0-9]+(\.h5|\.csv|\.diagnostics\.csv|\.events\.csv|\.run\.json))");
+  return (name.rfind(stem, 0) == 0 && std::regex_match(name.substr(stem.size()), beside_table)) ||
+         name.rfind(out.filename().string() + ".partial-", 0) == 0;
+}
+
+/// Refuses an -o the study cannot write its files beside, or whose files would replace an input.
+void check_output(const std::filesystem::path& out, bool named, const EnsembleStudy& study,
+                  const std::string& example) {
+  const std::string given = named ? fmt::format("-o {}", out.string())
+                                  : fmt::format("the output {} (the scene's name)", out.string());
+  if (out == "-") {
+    throw InvalidArgument(
+        fmt::format("-o -: a study writes a table and files beside it (OUT.summary.csv, OUT.run-I.csv, "
+                    "OUT.partial-RANK), not a stream: give a file name, e.g. -o {}",
+                    example));
+  }
+  std::error_code ec;
+  const auto status = std::filesystem::status(out, ec);
+  if (std::filesystem::is_directory(status)) {
+    throw InvalidArgument(fmt::format("{} is a directory: give a file name, e.g. -o {}", given,
+                                      (out / std::filesystem::path(example).filename()).string()));
+  }
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+    throw InvalidArgument(fmt::format(
+        "{} is not a regular file (a device, FIFO or socket): a study writes files beside its table, which "
+        "must not go beside it; give a file name, e.g. -o {}",
+        given, example));
+  }
+  for (const auto& input : study.base().input_files) {
+    if (!written_by_study(input, out)) continue;
+    throw InvalidArgument(fmt::format(
+        "{} would overwrite the study's input {} (a study writes OUT, OUT.summary.csv, OUT.run-I.csv "
+        "with their .diagnostics.csv, .events.csv and .run.json, and OUT.partial-RANK): give another "
+        "output name, e.g. -o {}",
+        given, input.string(), example));
+  }
 }
 
 /// The runs whose full trajectories are written: every k-th, and the worst by a column.
@@ -90,15 +141,10 @@ std::filesystem::path write_trajectory(const EnsembleStudy& study, long i, const
 int ensemble(const EnsembleOptions& o, const Ranks& ranks) {
   const EnsembleStudy study = EnsembleStudy::load(o.scene);
   const bool hdf5 = o.format.empty() ? is_hdf5_name(o.output) : o.format == "hdf5";
-  std::filesystem::path out = o.output;
-  if (out.empty())
-    out = std::filesystem::path(o.scene).stem().string() + (hdf5 ? "_ensemble.h5" : "_ensemble.csv");
-  for (const auto& input : study.base().input_files) {
-    if (same_file(out, input)) {
-      throw InvalidArgument(
-          fmt::format("-o {} is the scene's input {}: give another file", out.string(), input.string()));
-    }
-  }
+  const std::string example = std::filesystem::path(o.scene).stem().string() +
+                              (hdf5 ? "_ensemble.h5" : "_ensemble.csv");
+  const std::filesystem::path out = o.output.empty() ? example : o.output;
+  check_output(out, !o.output.empty(), study, example);
   const bool root = ranks.rank == 0;
   std::FILE* const human = stdout;
 

@@ -892,6 +892,49 @@ const std::vector<Case>& catalogue() {
        "tumble: warning: m.obj: shell thickness 2 m is at least the mesh's shortest edge, 1 m (triangle 0): "
        "the thin-wall model needs the wall thin against every feature of the surface; for a thick wall "
        "subtract an inner solid as a hole"},
+      {"ensemble: -o whose summary would replace the study's own scene",
+       {{"t.summary.csv",
+         "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"b\"\nshape = { type = \"sphere\", radius = 0.1 "
+         "}\nmass = 1\n[ensemble]\nruns = 3\n[[ensemble.vary]]\npath = \"bodies.b.mass\"\ndistribution = "
+         "\"uniform\"\nlow = 1\nhigh = 2\n"}},
+       "{t} ensemble t.summary.csv -o t.csv",
+       1,
+       "tumble: error: -o t.csv would overwrite the study's input t.summary.csv (a study writes OUT, …"},
+      {"ensemble: -o whose chosen run's run.json would replace an input",
+       {{"t.run-2.run.json",
+         "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"b\"\nshape = { type = \"sphere\", radius = 0.1 "
+         "}\nmass = 1\n[ensemble]\nruns = 3\n[[ensemble.vary]]\npath = \"bodies.b.mass\"\ndistribution = "
+         "\"uniform\"\nlow = 1\nhigh = 2\n"}},
+       "{t} ensemble t.run-2.run.json -o t.h5",
+       1,
+       "tumble: error: -o t.h5 would overwrite the study's input t.run-2.run.json (a study writes OUT, …"},
+      {"ensemble: -o - (a study is files, not a stream)",
+       {{"s.toml",
+         "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"b\"\nshape = { type = \"sphere\", radius = 0.1 "
+         "}\nmass = 1\n[ensemble]\nruns = 3\n[[ensemble.vary]]\npath = \"bodies.b.mass\"\ndistribution = "
+         "\"uniform\"\nlow = 1\nhigh = 2\n"}},
+       "{t} ensemble s.toml -o -",
+       1,
+       "tumble: error: -o -: a study writes a table and files beside it (OUT.summary.csv, OUT.run-I.csv, "
+       "OUT.partial-RANK), not a stream: give a file name, e.g. -o s_ensemble.csv"},
+      {"ensemble: -o a device (no companions beside /dev/null)",
+       {{"s.toml",
+         "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"b\"\nshape = { type = \"sphere\", radius = 0.1 "
+         "}\nmass = 1\n[ensemble]\nruns = 3\n[[ensemble.vary]]\npath = \"bodies.b.mass\"\ndistribution = "
+         "\"uniform\"\nlow = 1\nhigh = 2\n"}},
+       "{t} ensemble s.toml -o /dev/null",
+       1,
+       "tumble: error: -o /dev/null is not a regular file (a device, FIFO or socket): a study writes files "
+       "beside its table, which must not go beside it; give a file name, e.g. -o s_ensemble.csv"},
+      {"ensemble: -o a directory",
+       {{"s.toml",
+         "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"b\"\nshape = { type = \"sphere\", radius = 0.1 "
+         "}\nmass = 1\n[ensemble]\nruns = 3\n[[ensemble.vary]]\npath = \"bodies.b.mass\"\ndistribution = "
+         "\"uniform\"\nlow = 1\nhigh = 2\n"},
+        {"out/keep", "x"}},
+       "{t} ensemble s.toml -o out",
+       1,
+       "tumble: error: -o out is a directory: give a file name, e.g. -o out/s_ensemble.csv"},
       {"cli: unknown command",
        {},
        "{t} simulate x.toml",
