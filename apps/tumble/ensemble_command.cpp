@@ -12,6 +12,7 @@
 #include "commands.hpp"
 #include "interrupt.hpp"
 #include "mpi_ranks.hpp"
+#include "output_format.hpp"
 #include "progress.hpp"
 #include "tumble/error.hpp"
 #include "tumble/io/ensemble.hpp"
@@ -31,11 +32,6 @@ struct EnsembleOptions {
   bool progress = false;
   bool fresh = false;
 };
-
-bool is_hdf5_name(const std::filesystem::path& p) {
-  const std::string e = p.extension().string();
-  return e == ".h5" || e == ".hdf5";
-}
 
 /// Whether a study writing its table to `out` may write `file`: the table, its summary, a rank's partial
 /// rows, or a chosen run's trajectory and the files beside it (which runs are chosen is known only
@@ -140,11 +136,12 @@ std::filesystem::path write_trajectory(const EnsembleStudy& study, long i, const
 
 int ensemble(const EnsembleOptions& o, const Ranks& ranks) {
   const EnsembleStudy study = EnsembleStudy::load(o.scene);
-  const bool hdf5 = o.format.empty() ? is_hdf5_name(o.output) : o.format == "hdf5";
+  const bool hdf5 = hdf5_output(o.output, o.format);
   const std::string example = std::filesystem::path(o.scene).stem().string() +
                               (hdf5 ? "_ensemble.h5" : "_ensemble.csv");
   const std::filesystem::path out = o.output.empty() ? example : o.output;
   check_output(out, !o.output.empty(), study, example);
+  require_known_extension(out, o.format);
   const bool root = ranks.rank == 0;
   std::FILE* const human = stdout;
 
@@ -263,8 +260,9 @@ Runner add_ensemble_command(CLI::App& app) {
       "  mpirun -np 4 tumble ensemble examples/t_handle_ensemble.toml -o out/flips.h5");
   cmd->add_option("scene", o->scene, "scene file with an [ensemble] table")->required();
   cmd->add_option("-o,--output", o->output,
-                  "results: a table with a row per run; .h5/.hdf5 means HDF5 unless --format says otherwise "
-                  "(default: SCENE_ensemble.csv); CSV adds OUTPUT.summary.csv");
+                  "results: a table with a row per run; .h5/.hdf5 (any case) means HDF5 and .csv CSV unless "
+                  "--format says otherwise; another extension needs --format (default: SCENE_ensemble.csv); "
+                  "CSV adds OUTPUT.summary.csv. A regular file, never one of the study's inputs");
   cmd->add_option("--format", o->format, "csv or hdf5")->check(CLI::IsMember({"csv", "hdf5"}));
   cmd->add_option("--threads", o->threads, "threads per process (default 0: one per core)")
       ->check(CLI::NonNegativeNumber);

@@ -54,6 +54,24 @@ int usage_error(const CLI::App& app, const CLI::ParseError& e, int argc, char** 
   return kExitUsage;
 }
 
+/// An empty argument ('' or --name=) is never a value tumble can use, and CLI11 takes it for "not
+/// given": --density '' would silently mean the default. Returns the message for the first one, or "".
+std::string empty_argument(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg.size() > 2 && arg.rfind("--", 0) == 0 && arg.back() == '=') {
+      return fmt::format("{} was given an empty value: give one after the '=', or leave the option out",
+                         arg.substr(0, arg.size() - 1));
+    }
+    if (!arg.empty()) continue;
+    const std::string before = i > 1 ? argv[i - 1] : "";
+    return before.size() > 1 && before[0] == '-'
+               ? fmt::format("{} was given an empty value (''): give one, or leave the option out", before)
+               : fmt::format("argument {} is empty (''): give a value or a file name", i);
+  }
+  return {};
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -73,6 +91,11 @@ int main(int argc, char** argv) {
   const tumble::cli::Runner ensemble = tumble::cli::add_ensemble_command(app);
 
   try {
+    if (const std::string empty = empty_argument(argc, argv); !empty.empty()) {
+      say("tumble: error: " + empty + "; see tumble " +
+          (argc > 1 && argv[1][0] != '-' ? std::string(argv[1]) + " " : std::string()) + "--help");
+      return kExitUsage;
+    }
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version

@@ -13,6 +13,7 @@
 
 #include "commands.hpp"
 #include "interrupt.hpp"
+#include "output_format.hpp"
 #include "plural.hpp"
 #include "progress.hpp"
 #include "run_plan_report.hpp"
@@ -75,11 +76,6 @@ struct Job {
   double checkpoint_every = 60.0;
   std::optional<Checkpoint> resumed;  // the checkpoint this run continues
 };
-
-bool is_hdf5_name(const std::filesystem::path& p) {
-  const std::string ext = p.extension().string();
-  return ext == ".h5" || ext == ".hdf5" || ext == ".hdf";
-}
 
 /// An output file and how the command line named it, for messages.
 struct NamedOutput {
@@ -442,7 +438,7 @@ int run(const RunOptions& o) {
                o.scene, o.scene);
   }
 
-  const bool hdf5 = o.format.empty() ? is_hdf5_name(o.output) : o.format == "hdf5";
+  const bool hdf5 = hdf5_output(o.output, o.format);
   // Runs of a day or 100 GB are refused before anything is written; timing a few steps costs little
   // beside a run of 10⁹ body-steps, and is skipped for shorter ones.
   const RunPlan plan = plan_of(scene, settings, o.fields);
@@ -507,6 +503,7 @@ int run(const RunOptions& o) {
                        fmt::format("give another file, e.g. --report {}.html", stem)});
   }
   refuse_inputs_as_outputs(outputs, scene);
+  require_known_extension(out, o.format);
   if (!o.checkpoint.empty()) {
     if (hdf5) {
       throw InvalidArgument(
@@ -534,6 +531,7 @@ int run(const RunOptions& o) {
             fmt::format("--checkpoint {} is {}: give another file", o.checkpoint, other.label));
       }
     }
+    check_checkpoint_path(o.checkpoint);
   }
   j.scene_arg = o.scene;
   j.settings = settings;
@@ -652,7 +650,8 @@ Runner add_run_command(CLI::App& app) {
       "out/t.ckpt)");
   cmd->add_option("scene", o->scene, "scene file (TOML; see docs/scene-format.md)")->required();
   cmd->add_option("-o,--output", o->output,
-                  "trajectory file; .h5/.hdf5 means HDF5 unless --format says otherwise (default: the "
+                  "trajectory file; .h5/.hdf5 (any case) means HDF5 and .csv CSV unless --format says "
+                  "otherwise; another extension needs --format (default: the "
                   "scene's name with .csv or .h5, in the current directory); directories are created. "
                   "- is standard output (CSV); a symlink's target is replaced, the link kept; a device or "
                   "FIFO is written through (CSV). Never one of the run's inputs");

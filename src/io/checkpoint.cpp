@@ -211,6 +211,42 @@ void recover_outputs(const Checkpoint& c) {
   }
 }
 
+namespace {
+/// Where write_checkpoint stages PATH: PATH.tmp-PID.
+std::filesystem::path checkpoint_temporary(const std::filesystem::path& path) {
+  std::filesystem::path temporary = path;
+  temporary += fmt::format(".tmp-{}", static_cast<long>(::getpid()));
+  return temporary;
+}
+}  // namespace
+
+void check_checkpoint_path(const std::filesystem::path& path) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+    throw InvalidArgument(
+        fmt::format("--checkpoint {} is not a regular file: give a file name, e.g. "
+                    "--checkpoint run.checkpoint",
+                    path.string()));
+  }
+  if (const auto dir = path.parent_path(); !dir.empty()) {
+    std::filesystem::create_directories(dir, ec);
+    if (ec) {
+      throw FileError(
+          fmt::format("cannot create the checkpoint's directory {}: {}; give another --checkpoint",
+                      dir.string(), ec.message()));
+    }
+  }
+  const std::filesystem::path probe = checkpoint_temporary(path);
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) {
+    throw FileError(fmt::format("cannot write the checkpoint {}: {}; give another --checkpoint",
+                                path.string(), std::strerror(errno)));
+  }
+  ::close(fd);
+  std::filesystem::remove(probe, ec);
+}
+
 void write_checkpoint(const std::filesystem::path& path, const Checkpoint& c) {
   Out o;
   o.raw(kMagic, sizeof kMagic);
@@ -251,8 +287,7 @@ void write_checkpoint(const std::filesystem::path& path, const Checkpoint& c) {
   put_point(o, c.point);
   o.u64(fnv1a64(o.bytes));
 
-  std::filesystem::path temporary = path;
-  temporary += fmt::format(".tmp-{}", static_cast<long>(::getpid()));
+  const std::filesystem::path temporary = checkpoint_temporary(path);
   auto fail = [&](int error) {
     std::error_code ec;
     std::filesystem::remove(temporary, ec);

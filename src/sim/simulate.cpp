@@ -134,6 +134,13 @@ double locate(const Event& e, Formulation F, double g0, double g1, double h, dou
 }
 
 }  // namespace
+void require_thread_count(int threads) {
+  if (threads < 0 || threads > 4096) {
+    throw InvalidArgument(
+        fmt::format("threads = {} is invalid: give a count from 1 to 4096, or 0 for one per core", threads));
+  }
+}
+
 void validate(const RunSettings& s) {
   require(std::isfinite(s.duration) && s.duration >= 0,
           fmt::format("duration {} s is invalid: give a finite time >= 0", s.duration));
@@ -157,9 +164,7 @@ void validate(const RunSettings& s) {
   require(std::isfinite(s.drift_threshold) && s.drift_threshold >= 0,
           fmt::format("drift threshold {} is invalid: give a number >= 0 (0 turns the warning off)",
                       s.drift_threshold));
-  require(s.threads >= 0 && s.threads <= 4096,
-          fmt::format("threads = {} is invalid: give a count from 1 to 4096, or 0 for one per core",
-                      s.threads));
+  require_thread_count(s.threads);
   if (is_adaptive(s.integrator)) {
     make_adaptive_integrator(s.integrator, s.tolerances);  // validates the tolerances
   } else {

@@ -18,6 +18,7 @@
 #include "tumble/forces/stack.hpp"
 #include "tumble/sim/event_specs.hpp"
 #include "tumble/sim/output_fields.hpp"
+#include "tumble/sim/simulate.hpp"
 
 namespace tumble {
 namespace {
@@ -239,6 +240,7 @@ std::vector<EnsembleRow> run_batch(const EnsembleStudy& study, std::span<const l
 std::vector<EnsembleRow> run_ensemble(const EnsembleStudy& study, const std::vector<long>& runs, int threads,
                                       const std::function<void(const EnsembleRow&)>& done,
                                       const std::function<bool()>& stop) {
+  require_thread_count(threads);
   const unsigned n = threads > 0 ? static_cast<unsigned>(threads)
                                  : std::max(1u, std::thread::hardware_concurrency());
   // Batches of consecutive runs, stepped together (run_batch): large enough to fill the

@@ -935,6 +935,59 @@ const std::vector<Case>& catalogue() {
        "{t} ensemble s.toml -o out",
        1,
        "tumble: error: -o out is a directory: give a file name, e.g. -o out/s_ensemble.csv"},
+      {"cli: an empty value ('') is not the default",
+       {},
+       "{t} inertia --shape sphere --radius 1 --density ''",
+       2,
+       "tumble: error: --density was given an empty value (''): give one, or leave the option out; see "
+       "tumble inertia --help"},
+      {"cli: an empty value after '='",
+       {{"s.toml", std::string("[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = "
+                               "\"box\", size = [1, 2, 3] }\ndensity = 1000\n")}},
+       "{t} run s.toml --timestep=",
+       2,
+       "tumble: error: --timestep was given an empty value: give one after the '=', or leave the option "
+       "out; see tumble run --help"},
+      {"cli: output with an unknown extension (not silently CSV)",
+       {{"s.toml", std::string("[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = "
+                               "\"box\", size = [1, 2, 3] }\ndensity = 1000\n")}},
+       "{t} run s.toml -o out.xyz",
+       1,
+       "tumble: error: -o out.xyz: unknown extension .xyz; tumble writes CSV (.csv) or HDF5 (.h5, .hdf5): "
+       "name the file so, or give --format csv or --format hdf5"},
+      {"cli: output extension in capitals is HDF5",
+       {{"s.toml", std::string("[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = "
+                               "\"box\", size = [1, 2, 3] }\ndensity = 1000\n")}},
+       "{t} run s.toml -o OUT.H5 -q && head -c 8 OUT.H5 | od -c | grep -q 'H   D   F'",
+       0,
+       ""},
+      {"cli: checkpoint into a directory that does not exist yet (created before the run)",
+       {{"s.toml", std::string("[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = "
+                               "\"box\", size = [1, 2, 3] }\ndensity = 1000\n")}},
+       "{t} run s.toml -o r.csv --checkpoint later/r.ckpt -q && test -d later",
+       0,
+       ""},
+      {"cli: checkpoint that cannot be written (refused before the run)",
+       {{"s.toml", std::string("[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = "
+                               "\"box\", size = [1, 2, 3] }\ndensity = 1000\n")}},
+       "{t} run s.toml -o r.csv --checkpoint /proc/r.ckpt",
+       1,
+       "tumble: error: cannot write the checkpoint /proc/r.ckpt: …"},
+      {"cli: checkpoint onto a device",
+       {{"s.toml", std::string("[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = "
+                               "\"box\", size = [1, 2, 3] }\ndensity = 1000\n")}},
+       "{t} run s.toml -o r.csv --checkpoint /dev/null",
+       1,
+       "tumble: error: --checkpoint /dev/null is not a regular file: give a file name, e.g. --checkpoint "
+       "run.checkpoint"},
+      {"ensemble: too many threads",
+       {{"s.toml",
+         "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"b\"\nshape = { type = \"sphere\", radius = 0.1 "
+         "}\nmass = 1\n[ensemble]\nruns = 3\n[[ensemble.vary]]\npath = \"bodies.b.mass\"\ndistribution = "
+         "\"uniform\"\nlow = 1\nhigh = 2\n"}},
+       "{t} ensemble s.toml -o t.csv --threads 100000",
+       1,
+       "tumble: error: threads = 100000 is invalid: give a count from 1 to 4096, or 0 for one per core"},
       {"cli: unknown command",
        {},
        "{t} simulate x.toml",

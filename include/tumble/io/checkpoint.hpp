@@ -58,6 +58,11 @@ struct Checkpoint {
 
 /// Writes `c` to `path` atomically (a temporary beside it, fsync, rename). Throws FileError.
 void write_checkpoint(const std::filesystem::path& path, const Checkpoint& c);
+/// Before a run that will checkpoint to `path`: creates its directory and writes and removes the
+/// temporary write_checkpoint will use, so that a path that cannot be written is refused now, not at
+/// the first checkpoint hours into the run. Throws FileError (InvalidArgument for a path that is not a
+/// regular file) naming the path.
+void check_checkpoint_path(const std::filesystem::path& path);
 /// Reads a checkpoint; throws InvalidArgument with one line naming the file and what is wrong (not a
 /// checkpoint, another format version, truncated or corrupt), FileError if it cannot be read.
 Checkpoint read_checkpoint(const std::filesystem::path& path);

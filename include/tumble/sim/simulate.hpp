@@ -30,6 +30,9 @@ struct RunSettings {
 /// all finite, threads in 0 … 4096, and the integrator and formulation exist (sim/run_settings.hpp
 /// describes each setting).
 void validate(const RunSettings& settings);
+/// Throws InvalidArgument unless 0 ≤ threads ≤ 4096 (0: one per core), naming the range: a run's
+/// settings and a study's --threads.
+void require_thread_count(int threads);
 
 /// Called with every sample (the initial state first); return false to stop the run early (Ctrl-C).
 using SampleSink = std::function<bool(const SystemState&)>;
