@@ -191,7 +191,11 @@ int ensemble(const EnsembleOptions& o, const Ranks& ranks) {
         },
         [&] { return interrupt.requested(); });
   } catch (...) {
-    partial.flush();
+    try {
+      partial.flush();  // the rows done so far, for a rerun
+    } catch (const FileError&) {
+      // The run's own error says more; the rows kept before the flush still count.
+    }
     throw;
   }
   partial.flush();

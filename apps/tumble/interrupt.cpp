@@ -3,6 +3,7 @@
 #include <atomic>
 #include <csignal>
 #include <exception>
+#include <iterator>
 
 namespace tumble::cli {
 namespace {
@@ -15,8 +16,11 @@ std::atomic<bool> g_deferring{false};  // a Deferral exists
 std::atomic<int> g_deferred{0};        // the second signal, held by a Deferral
 static_assert(std::atomic<int>::is_always_lock_free && std::atomic<bool>::is_always_lock_free);
 
-constexpr int kSignals[] = {SIGINT, SIGTERM, SIGHUP};
-struct sigaction g_previous[3];
+// SIGXCPU: a batch system's warning that the CPU-time limit is near (before SIGKILL), answered as
+// SIGTERM is (a checkpoint, a valid file).
+constexpr int kSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGXCPU};
+constexpr size_t kSignalCount = std::size(kSignals);
+struct sigaction g_previous[kSignalCount];
 
 /// Ends the process as the signal's default action does (the shell sees "killed by SIGINT").
 void terminate_by(int sig) {
@@ -51,11 +55,11 @@ InterruptGuard::InterruptGuard() {
   sigemptyset(&action.sa_mask);
   for (int s : kSignals) sigaddset(&action.sa_mask, s);  // one handler at a time per thread
   action.sa_flags = SA_RESTART;
-  for (int i = 0; i < 3; ++i) sigaction(kSignals[i], &action, &g_previous[i]);
+  for (size_t i = 0; i < kSignalCount; ++i) sigaction(kSignals[i], &action, &g_previous[i]);
 }
 
 InterruptGuard::~InterruptGuard() {
-  for (int i = 0; i < 3; ++i) sigaction(kSignals[i], &g_previous[i], nullptr);
+  for (size_t i = 0; i < kSignalCount; ++i) sigaction(kSignals[i], &g_previous[i], nullptr);
 }
 
 bool InterruptGuard::requested() const { return g_count.load() != 0; }

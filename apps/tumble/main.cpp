@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -75,6 +76,10 @@ std::string empty_argument(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // A file size limit (ulimit -f) must end in a write error that tumble reports and cleans up after
+  // (one line, exit 1, no temporaries), not in SIGXFSZ's silent death. Children (the mesh reader)
+  // inherit the disposition.
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{
       "tumble: rigid-body dynamics after Jia's Tutorial on Rigid Body Dynamics.\n"
       "Run 'tumble COMMAND --help' for the options and an example of each command. The documentation "

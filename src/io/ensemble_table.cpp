@@ -3,6 +3,7 @@
 #include <boost/crc.hpp>
 #include <fmt/format.h>
 
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -233,14 +234,21 @@ void PartialRows::add(const EnsembleRow& row) {
   const std::uint64_t checksum = record_checksum(run, row.values.data(), width_);
   if (std::fwrite(&run, 8, 1, file_) != 1 || std::fwrite(row.values.data(), 8, width_, file_) != width_ ||
       std::fwrite(&checksum, 8, 1, file_) != 1) {
-    throw FileError(fmt::format("writing {} failed: {}", name_.string(), std::strerror(errno)));
+    fail(errno);
   }
   if (std::chrono::steady_clock::now() - last_flush_ > std::chrono::milliseconds(500)) flush();
 }
 
 void PartialRows::flush() {
-  std::fflush(file_);
+  if (std::fflush(file_) != 0) fail(errno);
   last_flush_ = std::chrono::steady_clock::now();
+}
+
+void PartialRows::fail(int error) const {
+  throw FileError(fmt::format(
+      "writing the finished rows to {} failed: {}; the rows written before are kept there: free some space "
+      "(or raise the file size limit) and run the same command again to go on",
+      name_.string(), std::strerror(error != 0 ? error : EIO)));
 }
 
 std::vector<EnsembleRow> PartialRows::read_all(const std::filesystem::path& path,

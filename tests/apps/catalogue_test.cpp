@@ -1246,6 +1246,41 @@ const std::vector<Case>& catalogue() {
        "ls x.csv.tmp-* && exit $s",
        129,
        "tumble: interrupted at t = …"},
+      {"signal: SIGXCPU (a batch system's CPU-time warning) mid-run keeps a valid file",
+       {{"s.toml", std::string("[simulation]\nduration = 1e4\ntimestep = 1e-4\noutput_interval = "
+                               "1\n[[bodies]]\nname = \"a\"\nshape = { type = \"box\", size = [1, 2, 3] "
+                               "}\ndensity = 1000\n")}},
+       "set -m; {t} run s.toml -o x.csv --quiet & sleep 1; kill -XCPU $!; wait $!; s=$?; test -s x.csv && ! "
+       "ls x.csv.tmp-* && exit $s",
+       152,
+       "tumble: interrupted at t = …"},
+      {"limit: ulimit -f during run (SIGXFSZ as the shell leaves it): one line, no file",
+       {{"s.toml", std::string("[simulation]\nduration = 100\ntimestep = 1e-3\noutput_interval = "
+                               "0.01\n[[bodies]]\nname = \"a\"\nshape = { type = \"box\", size = [1, 2, 3] "
+                               "}\ndensity = 1000\n")}},
+       "ulimit -f 20; {t} run s.toml -o x.csv; s=$?; ! ls x.csv* && exit $s",
+       1,
+       "tumble: error: writing the trajectory to x.csv failed: File too large; nothing was kept under that "
+       "name: free some space or write elsewhere"},
+      {"limit: ulimit -f during report: one line, no file",
+       {{"s.toml", std::string("[simulation]\nduration = 100\ntimestep = 1e-3\noutput_interval = "
+                               "0.01\n[[bodies]]\nname = \"a\"\nshape = { type = \"box\", size = [1, 2, 3] "
+                               "}\ndensity = 1000\n")}},
+       "{t} run s.toml -o x.csv -q --duration 1 && (ulimit -f 4; {t} report x.csv -o x.html); s=$?; ! ls "
+       "x.html* && exit $s",
+       1,
+       "tumble: error: writing the report x.html failed: File too large; nothing was kept under that name"},
+      {"limit: ulimit -f during ensemble: the rows done are kept for the rerun",
+       {{"s.toml",
+         "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"b\"\nshape = { type = \"sphere\", radius = 0.1 "
+         "}\nmass = 1\n[ensemble]\nruns = 3000\n[[ensemble.vary]]\npath = \"bodies.b.mass\"\ndistribution = "
+         "\"uniform\"\nlow = 1\nhigh = 2\n"}},
+       "(ulimit -f 20; {t} ensemble s.toml -o e.csv -q); s=$?; {t} ensemble s.toml -o e.csv | grep -q "
+       "'resuming: 5' && exit $s",
+       1,
+       "tumble: error: writing the finished rows to e.csv.partial-0 failed: File too large; the rows written "
+       "before are kept there: free some space (or raise the file size limit) and run the same command again "
+       "to go on"},
   };
   return cases;
 }

@@ -148,7 +148,9 @@ class PartialRows {
   ~PartialRows();
   PartialRows(const PartialRows&) = delete;
   PartialRows& operator=(const PartialRows&) = delete;
-  void add(const EnsembleRow& row);  ///< flushed to the file every half second, and by flush()
+  /// Flushed to the file every half second, and by flush(). Both throw FileError if the file cannot
+  /// take the rows (a full disk, a file size limit), saying that the rows before are kept.
+  void add(const EnsembleRow& row);
   void flush();
   /// Every row that any rank's partial file beside PATH holds for this study (torn records ignored).
   static std::vector<EnsembleRow> read_all(const std::filesystem::path& path, const EnsembleStudy& study);
@@ -160,6 +162,7 @@ class PartialRows {
   std::filesystem::path name_;
   size_t width_ = 0;
   std::chrono::steady_clock::time_point last_flush_;
+  [[noreturn]] void fail(int error) const;
 };
 
 }  // namespace tumble
