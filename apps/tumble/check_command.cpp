@@ -36,7 +36,9 @@ Runner add_check_command(CLI::App& app) {
     if (scene.text.find("[ensemble") != std::string::npos) {
       const EnsembleStudy study = EnsembleStudy::load(*file);
       (void)study.scene_of_run(0);
-      fmt::print("ensemble: {} runs, seed {}\n", study.runs(), study.seed());
+      require_table_fits_in_memory(study);
+      fmt::print("ensemble: {} runs, seed {}; the table about {:.3g} MB in memory\n", study.runs(),
+                 study.seed(), ensemble_table_bytes(study) / 1e6);
       for (const Variation& v : study.variations()) fmt::print("  varies       {}\n", v.path);
       fmt::print("  columns      {}\n", fmt::join(study.columns(), ", "));
     }

@@ -140,6 +140,7 @@ int ensemble(const EnsembleOptions& o, const Ranks& ranks) {
   const std::string example = std::filesystem::path(o.scene).stem().string() +
                               (hdf5 ? "_ensemble.h5" : "_ensemble.csv");
   const std::filesystem::path out = o.output.empty() ? example : o.output;
+  require_table_fits_in_memory(study);
   check_output(out, !o.output.empty(), study, example);
   require_known_extension(out, o.format);
   const bool root = ranks.rank == 0;

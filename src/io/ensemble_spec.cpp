@@ -198,6 +198,11 @@ Study read_study(const toml::table& root, const scene::TomlFile& file) {
     }
     // The path must name a number (or, for a rotation or direction, an array of 4 or 3 numbers).
     std::string error;
+    if (x.path == "ensemble" || x.path.rfind("ensemble.", 0) == 0 || x.path.rfind("ensemble[", 0) == 0) {
+      v.fail_at("path", fmt::format("path {}: a study cannot vary its own [ensemble] table; vary a value of "
+                                    "the scene (simulation, bodies, forces, …)",
+                                    x.path));
+    }
     toml::node* target = resolve(mutable_root, x.path, error);
     if (target == nullptr) v.fail_at("path", fmt::format("path {}: {}", x.path, error));
     if (x.width == 1) {
@@ -257,8 +262,19 @@ Study read_study(const toml::table& root, const scene::TomlFile& file) {
     s.outputs.drift = o->boolean("drift").value_or(true);
     if (const auto t =
             o->table("trajectories", o->context().child(" trajectories"), {"every", "worst", "by"})) {
-      s.outputs.every = static_cast<long>(t->number("every", 0.0, "", scene::Domain::non_negative));
-      s.outputs.worst = static_cast<long>(t->number("worst", 0.0, "", scene::Domain::non_negative));
+      // Whole counts from 1 (a value past the runs is as good as the runs; a cast of 1e30 or 0.5 is not).
+      const auto count = [&](const char* key, const char* meaning) -> long {
+        if (!t->has(key)) return 0;
+        const double n = t->required_number(key, "", scene::Domain::positive);
+        if (n != std::floor(n) || n > 0x1p40) {
+          t->fail_at(key,
+                     fmt::format("{} = {} must be a whole number from 1 to 2^40 ({}); leave it out for none",
+                                 key, n, meaning));
+        }
+        return static_cast<long>(std::min<double>(n, static_cast<double>(s.runs)));
+      };
+      s.outputs.every = count("every", "every = N writes the trajectories of runs 0, N, 2N, …");
+      s.outputs.worst = count("worst", "worst = N writes those of the N worst runs by the column `by`");
       if (s.outputs.worst > 0) {
         s.outputs.worst_by = std::string(
             t->required_string("by", "the column that ranks the runs, e.g. by = \"energy_drift_max\""));

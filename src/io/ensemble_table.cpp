@@ -2,6 +2,7 @@
 // an interrupted study resume without recomputing what it finished.
 #include <boost/crc.hpp>
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include <cerrno>
 #include <cmath>
@@ -9,6 +10,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <unistd.h>
 
 #include "hdf5_util.hpp"
 #include "number_text.hpp"
@@ -183,6 +185,25 @@ PartialScan scan_partial(const std::filesystem::path& file, const EnsembleStudy&
 }
 
 }  // namespace
+
+double ensemble_table_bytes(const EnsembleStudy& study) {
+  // A row: its vector's values, the row itself and the allocator's header; the runs' done flags.
+  const double width = static_cast<double>(study.columns().size() - 1);
+  return static_cast<double>(study.runs()) *
+         (8.0 * width + static_cast<double>(sizeof(EnsembleRow)) + 16.0 + 1.0);
+}
+
+void require_table_fits_in_memory(const EnsembleStudy& study) {
+  const double need = ensemble_table_bytes(study);
+  const double have = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) *
+                      static_cast<double>(::sysconf(_SC_PAGESIZE));
+  if (have > 0 && need > have) {
+    throw InvalidArgument(fmt::format(
+        "runs = {}: the table is gathered in memory to be written, about {:.3g} GB, more than this machine's "
+        "{:.3g} GB; give fewer runs (several studies with different seeds cover the same ground)",
+        study.runs(), need / 1e9, have / 1e9));
+  }
+}
 
 void write_ensemble_table(const std::filesystem::path& path, bool hdf5, const EnsembleStudy& study,
                           const std::vector<EnsembleRow>& rows, const std::string& tumble_version) {

@@ -988,6 +988,60 @@ const std::vector<Case>& catalogue() {
        "{t} ensemble s.toml -o t.csv --threads 100000",
        1,
        "tumble: error: threads = 100000 is invalid: give a count from 1 to 4096, or 0 for one per core"},
+      {"ensemble: trajectories every = 0.5 (not a whole number)",
+       {{"s.toml",
+         "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"b\"\nshape = { type = \"sphere\", radius = 0.1 "
+         "}\nmass = 1\n[ensemble]\nruns = 3\n[[ensemble.vary]]\npath = \"bodies.b.mass\"\ndistribution = "
+         "\"uniform\"\nlow = 1\nhigh = 2\n[ensemble.outputs]\ntrajectories = { every = 0.5 }\n"}},
+       "{t} check s.toml",
+       1,
+       "tumble: error: s.toml:15:26: [ensemble] outputs trajectories: every = 0.5 must be a whole number "
+       "from 1 to 2^40 (every = N writes the trajectories of runs 0, N, 2N, …); leave it out for none"},
+      {"ensemble: trajectories every = 1e30 (past any count)",
+       {{"s.toml",
+         "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"b\"\nshape = { type = \"sphere\", radius = 0.1 "
+         "}\nmass = 1\n[ensemble]\nruns = 3\n[[ensemble.vary]]\npath = \"bodies.b.mass\"\ndistribution = "
+         "\"uniform\"\nlow = 1\nhigh = 2\n[ensemble.outputs]\ntrajectories = { every = 1e30 }\n"}},
+       "{t} ensemble s.toml -o t.csv",
+       1,
+       "tumble: error: s.toml:15:26: [ensemble] outputs trajectories: every = 1e+30 must be a whole number "
+       "…"},
+      {"ensemble: trajectories worst = 2.5",
+       {{"s.toml",
+         "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"b\"\nshape = { type = \"sphere\", radius = 0.1 "
+         "}\nmass = 1\n[ensemble]\nruns = 3\n[[ensemble.vary]]\npath = \"bodies.b.mass\"\ndistribution = "
+         "\"uniform\"\nlow = 1\nhigh = 2\n[ensemble.outputs]\ntrajectories = { worst = 2.5, by = "
+         "\"energy_drift_max\" }\n"}},
+       "{t} check s.toml",
+       1,
+       "tumble: error: s.toml:15:26: [ensemble] outputs trajectories: worst = 2.5 must be a whole number …"},
+      {"ensemble: a path into [ensemble] itself",
+       {{"s.toml",
+         "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"b\"\nshape = { type = \"sphere\", radius = 0.1 "
+         "}\nmass = 1\n[ensemble]\nruns = 3\n[[ensemble.vary]]\npath = \"ensemble.runs\"\ndistribution = "
+         "\"uniform\"\nlow = 1\nhigh = 2\n"}},
+       "{t} check s.toml",
+       1,
+       "tumble: error: s.toml:10:8: [ensemble] vary #1: path ensemble.runs: a study cannot vary its own "
+       "[ensemble] table; vary a value of the scene (simulation, bodies, forces, …)"},
+      {"ensemble: runs = 2^40 (a table no machine holds): check says so",
+       {{"s.toml",
+         "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"b\"\nshape = { type = \"sphere\", radius = 0.1 "
+         "}\nmass = 1\n[ensemble]\nruns = 1099511627776\n[[ensemble.vary]]\npath = "
+         "\"bodies.b.mass\"\ndistribution = \"uniform\"\nlow = 1\nhigh = 2\n"}},
+       "{t} check s.toml",
+       1,
+       "tumble: error: runs = 1099511627776: the table is gathered in memory to be written, about 8.03e+04 "
+       "GB, more than this machine's …"},
+      {"ensemble: runs = 2^40: ensemble refuses before any run",
+       {{"s.toml",
+         "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"b\"\nshape = { type = \"sphere\", radius = 0.1 "
+         "}\nmass = 1\n[ensemble]\nruns = 1099511627776\n[[ensemble.vary]]\npath = "
+         "\"bodies.b.mass\"\ndistribution = \"uniform\"\nlow = 1\nhigh = 2\n"}},
+       "{t} ensemble s.toml -o t.csv; s=$?; ! ls t.csv* && exit $s",
+       1,
+       "tumble: error: runs = 1099511627776: the table is gathered in memory to be written, about 8.03e+04 "
+       "GB, more than this machine's …"},
       {"cli: unknown command",
        {},
        "{t} simulate x.toml",

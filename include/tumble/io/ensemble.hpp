@@ -136,6 +136,12 @@ namespace tumble {
 /// group `runs` with a dataset (R) per column, `columns` (their order), group `summary` with one dataset
 /// per statistic, and the
 /// attributes scene (text), scene_file, seed, runs, tumble_version.
+/// Bytes the study's table takes in memory, where its rows are gathered to be written: a row per run.
+double ensemble_table_bytes(const EnsembleStudy& study);
+/// Throws InvalidArgument, with the figures, when the table would not fit in this machine's memory:
+/// better at the start (and in `tumble check`) than std::bad_alloc after hours of runs.
+void require_table_fits_in_memory(const EnsembleStudy& study);
+
 void write_ensemble_table(const std::filesystem::path& path, bool hdf5, const EnsembleStudy& study,
                           const std::vector<EnsembleRow>& rows, const std::string& tumble_version);
 
