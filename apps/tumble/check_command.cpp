@@ -1,12 +1,16 @@
 // `tumble check`: read and validate a scene, print what it contains, simulate nothing.
 #include <fmt/format.h>
 
+#include <cstdio>
+#include <optional>
+
 #include "commands.hpp"
 #include "run_plan_report.hpp"
 #include "scene_summary.hpp"
 #include "tumble/integrate/integrator.hpp"
 #include "tumble/io/ensemble.hpp"
 #include "tumble/io/scene.hpp"
+#include "tumble/sim/simulate.hpp"
 
 namespace tumble::cli {
 
@@ -24,14 +28,26 @@ Runner add_check_command(CLI::App& app) {
   cmd->add_option("scene", *file, "scene file (TOML; see docs/scene-format.md)")->required();
   return [file] {
     const Scene scene = load_scene(*file);
-    // What `tumble run` would refuse (e.g. integrator exact with a torque) is refused here too.
+    // What `tumble run` would refuse (e.g. integrator exact with a torque, a step too small to advance
+    // the clock) is refused here too, with the same message.
+    validate(scene.settings);
     if (!is_adaptive(scene.settings.integrator))
       make_integrator(scene.settings.integrator)->check(scene.model);
     print_scene_warnings(scene);
     print_scene_summary(stdout, scene);
     const RunPlan plan = plan_of(scene, scene.settings, {});
-    fmt::print("  plan         {}\n", describe(plan, estimate_seconds(scene, scene.settings, plan),
-                                               scene.model.bodies.size() + scene.model.particles.size()));
+    const std::optional<double> seconds = estimate_seconds(scene, scene.settings, plan);
+    fmt::print("  plan         {}\n",
+               describe(plan, seconds, scene.model.bodies.size() + scene.model.particles.size()));
+    // What run refuses without --force (more than a day, more than 100 GB) or warns of, said as run says
+    // it (CSV; HDF5 is smaller): valid, so a warning here.
+    std::optional<std::string> warning;
+    try {
+      warning = enforce(plan, seconds, false, false);
+    } catch (const InvalidArgument& e) {
+      warning = fmt::format("tumble run would refuse it: {}", e.what());
+    }
+    if (warning) std::fprintf(stderr, "tumble: warning: %s\n", warning->c_str());
     // An [ensemble] table is checked as `tumble ensemble` reads it, with its first run's scene.
     if (scene.text.find("[ensemble") != std::string::npos) {
       const EnsembleStudy study = EnsembleStudy::load(*file);

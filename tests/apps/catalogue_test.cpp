@@ -1042,6 +1042,21 @@ const std::vector<Case>& catalogue() {
        1,
        "tumble: error: runs = 1099511627776: the table is gathered in memory to be written, about 8.03e+04 "
        "GB, more than this machine's …"},
+      {"check: a duration run refuses (the clock would not advance) is refused by check too",
+       {{"s.toml",
+         "[simulation]\nduration = 1e300\n[[bodies]]\nname = \"a\"\nshape = { type = \"box\", size = [1, 2, "
+         "3] }\ndensity = 1000\n"}},
+       "{t} check s.toml",
+       1,
+       "tumble: error: timestep 0.001 s is too small for duration 1e+300 s: 1e+303 steps, more than 2^53, "
+       "where a step no longer advances the clock; give a larger timestep or a shorter duration"},
+      {"check: a run that run refuses without --force (days) is a warning",
+       {{"s.toml",
+         "[simulation]\nduration = 1e5\ntimestep = 1e-6\n[[bodies]]\nname = \"a\"\nshape = { type = \"box\", "
+         "size = [1, 2, 3] }\ndensity = 1000\n"}},
+       "{t} check s.toml",
+       0,
+       "tumble: warning: tumble run would refuse it: this run would take about …"},
       {"cli: unknown command",
        {},
        "{t} simulate x.toml",
