@@ -5,6 +5,7 @@
 #include <string_view>
 
 #include "scene_sections.hpp"
+#include "tumble/dynamics/quantities.hpp"
 #include "tumble/forces/forces.hpp"
 
 namespace tumble::scene {
@@ -154,8 +155,32 @@ void read_forces(const TableReader& root, const NameTable& names, Scene& scene) 
       };
       if (is_anchor(a) && is_anchor(b))
         t.fail_here("both ends are anchors: attach one to a body or a particle");
+      // Within one rigid body the pair of forces cancels: a spring that does nothing is a mistake.
+      if (a.body != all_bodies && a.body == b.body) {
+        t.fail_at("b", fmt::format("both ends are on body '{}': within one rigid body the spring's forces "
+                                   "cancel and it does nothing; attach b to another body, a particle or "
+                                   "an anchor",
+                                   scene.model.bodies[a.body].name()));
+      }
+      if (a.particle != all_bodies && a.particle == b.particle)
+        t.fail_at("b", "both ends are the same particle: attach b to another particle, a body or an anchor");
       const double k = t.required_number("stiffness", "N/m", Domain::positive);
       const double rest = t.number("rest_length", 0.0, "m", Domain::non_negative);
+      // Ends that coincide give the spring no direction to push in: at rest length 0 that is its rest,
+      // at any other it would be a compressed spring exerting nothing (Spring::accumulate).
+      const auto start = [&](const Spring::End& e) -> Vec3 {
+        if (e.particle != all_bodies) return scene.initial.particles[e.particle].x;
+        if (e.body == all_bodies) return e.point;
+        return point_position(scene.model.bodies[e.body], scene.initial.bodies[e.body], e.point);
+      };
+      if (rest > 0 && start(a) == start(b)) {
+        const Vec3 x = start(a);
+        t.fail_at("rest_length",
+                  fmt::format("the ends coincide at the start (both at ({:g}, {:g}, {:g}) m) while the rest "
+                              "length is {:g} m: the spring has no direction to push in; move an end apart "
+                              "or give rest_length = 0",
+                              x.x(), x.y(), x.z(), rest));
+      }
       const double damping = t.number("damping", 0.0, "N*s/m", Domain::non_negative);
       scene.model.add_force<Spring>(a, b, k, rest, damping);
       if (damping > 0) c.energy = false;

@@ -1057,6 +1057,27 @@ const std::vector<Case>& catalogue() {
        "{t} check s.toml",
        0,
        "tumble: warning: tumble run would refuse it: this run would take about …"},
+      {"scene: a spring from a body to itself",
+       {{"s.toml",
+         "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = \"box\", size = [1, 2, "
+         "3] }\ndensity = 1000\n[[bodies]]\nname = \"c\"\nshape = { type = \"box\", size = [1, 2, 3] "
+         "}\ndensity = 1000\n[[forces]]\ntype = \"spring\"\na = { body = \"a\", point = [0.5, 0, 0] }\nb = { "
+         "body = \"a\" }\nstiffness = 10\n"}},
+       "{t} check s.toml",
+       1,
+       "tumble: error: s.toml:14:5: [[forces]] #1 (spring): both ends are on body 'a': within one rigid body "
+       "the spring's forces cancel and it does nothing; attach b to another body, a particle or an anchor"},
+      {"scene: a spring of non-zero rest length between coincident points",
+       {{"s.toml",
+         "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = \"box\", size = [1, 2, "
+         "3] }\ndensity = 1000\n[[bodies]]\nname = \"c\"\nshape = { type = \"box\", size = [1, 2, 3] "
+         "}\ndensity = 1000\n[[forces]]\ntype = \"spring\"\na = { body = \"a\" }\nb = { body = \"c\" "
+         "}\nrest_length = 0.2\nstiffness = 10\n"}},
+       "{t} check s.toml",
+       1,
+       "tumble: error: s.toml:15:15: [[forces]] #1 (spring): the ends coincide at the start (both at (0, 0, "
+       "0) m) while the rest length is 0.2 m: the spring has no direction to push in; move an end apart or "
+       "give rest_length = 0"},
       {"cli: unknown command",
        {},
        "{t} simulate x.toml",
