@@ -1,6 +1,9 @@
 #include "engine.hpp"
 
+#include <pthread.h>
+
 #include <algorithm>
+#include <atomic>
 
 #include "tumble/integrate/integrator.hpp"
 
@@ -16,6 +19,22 @@ int omp_thread() {
 #else
   return 0;
 #endif
+}
+
+namespace {
+std::atomic<bool> g_threads_started{false};  // this process (or the one it was forked from) ran a region
+std::atomic<bool> g_forked_after_threads{false};
+extern "C" void note_fork_in_child() {
+  if (g_threads_started.load()) g_forked_after_threads.store(true);
+}
+const int g_atfork_registered = ::pthread_atfork(nullptr, nullptr, note_fork_in_child);
+}  // namespace
+
+bool parallel_region_allowed() {
+  (void)g_atfork_registered;
+  if (g_forked_after_threads.load()) return false;
+  g_threads_started.store(true);
+  return true;
 }
 
 int max_threads() {

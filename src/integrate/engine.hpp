@@ -32,6 +32,11 @@ namespace tumble::engine {
 int omp_thread();
 /// Hardware threads available to OpenMP.
 int max_threads();
+/// Whether OpenMP can start threads in this process, noting that it is about to. libgomp is not fork-
+/// safe: in a child forked after the parent's threads started (Python multiprocessing's default start
+/// method), a parallel region waits forever for threads that do not exist. There the engine steps on
+/// the calling thread alone (the same numbers: a body's step does not depend on the thread count).
+bool parallel_region_allowed();
 
 /// The pack the build's instruction set offers (AVX-512: 8 doubles, AVX2: 4, SSE2: 2).
 using Pack = xsimd::batch<double>;
@@ -221,7 +226,7 @@ void Engine::parallel_blocks(size_t n, F&& f) {
     }
   };
   const int threads = static_cast<int>(std::min<size_t>(static_cast<size_t>(threads_), blocks));
-  if (threads <= 1) {
+  if (threads <= 1 || !parallel_region_allowed()) {
     for (size_t b = 0; b < blocks; ++b) run(b, scratch_[0]);
   } else {
 #pragma omp parallel for num_threads(threads) schedule(static)

@@ -5,6 +5,7 @@ import signal
 import subprocess
 import sys
 import textwrap
+import time
 
 import numpy as np
 import pytest
@@ -372,3 +373,33 @@ def test_a_report_of_a_tampered_file_is_an_error_not_a_crash(tmp_path):
     done = subprocess.run([cli, "report", str(out)], capture_output=True, text=True)
     assert done.returncode == 1, done.stdout + done.stderr
     assert "offsets are not ascending whole numbers from 0" in done.stderr
+
+
+def test_a_process_forked_after_threaded_runs_still_runs_threaded_scenes():
+    # multiprocessing's default start method on Linux forks. libgomp's threads do not survive a fork and
+    # its next parallel region in the child waited for them forever; the engine now steps the child on
+    # one thread. The child's trajectory must be the parent's, bit for bit (a body's step does not
+    # depend on the thread count); a hang fails by the timeout.
+    n = 2000
+    rng = np.random.default_rng(1)
+    scene = tumble.bodies(mass=np.ones(n), moments=np.tile([1.0, 2.0, 3.0], (n, 1)),
+                          omega=rng.normal(size=(n, 3)), duration=0.05, timestep=1e-3, output_interval=0.05)
+    parent = tumble.simulate(scene, integrator="rk4", threads=2)
+    pid = os.fork()
+    if pid == 0:  # the child: no pytest machinery, only an exit status
+        same = False
+        try:
+            child = tumble.simulate(scene, integrator="rk4", threads=2)
+            same = np.array_equal(child.orientation, parent.orientation)
+        finally:
+            os._exit(0 if same else 1)
+    deadline = time.monotonic() + 30.0
+    while time.monotonic() < deadline:
+        done, status = os.waitpid(pid, os.WNOHANG)
+        if done == pid:
+            assert os.waitstatus_to_exitcode(status) == 0, "the child's trajectory differs from the parent's"
+            return
+        time.sleep(0.02)
+    os.kill(pid, signal.SIGKILL)
+    os.waitpid(pid, 0)
+    pytest.fail("a threaded run in a forked child hangs")
