@@ -555,6 +555,15 @@ int resume(const ResumeOptions& o) {
   Job j;
   Checkpoint c = read_checkpoint(o.checkpoint);
   check_inputs_unchanged(c.inputs);  // a changed mesh would build another model
+  if (c.tumble_version != TUMBLE_VERSION) {
+    std::fputs(
+        fmt::format("tumble: warning: checkpoint {} was written by tumble {}, and this is tumble {}: the "
+                    "run goes on, but the files are byte for byte those of an uninterrupted run only "
+                    "when one version writes them all\n",
+                    o.checkpoint, c.tumble_version, TUMBLE_VERSION)
+            .c_str(),
+        stderr);
+  }
   j.scene = parse_scene(c.scene_text, c.scene_absolute);
   {
     std::vector<std::string> now;

@@ -196,6 +196,16 @@ def mesh_mass_properties(vertices, faces, density: float | Callable | None = Non
     """Mass properties of a closed mesh given as arrays: vertices (V, 3) in m and faces (F, 3) of
     vertex indices from 0, counter-clockwise seen from outside."""
     V = _np.ascontiguousarray(vertices, dtype=_np.float64)
+    faces = _np.asarray(faces)
+    # Indices given as floats must be whole: a cast would truncate 0.7 to vertex 0 without a word.
+    if faces.dtype.kind == "f":
+        bad = ~_np.isfinite(faces) | (faces != _np.floor(faces))
+        if bad.any():
+            where = tuple(int(k) for k in _np.argwhere(bad)[0])
+            raise ValueError(f"faces{list(where)} = {faces[where]!r} is not a whole vertex index: faces hold "
+                             "indices into vertices, from 0")
+    elif faces.dtype.kind not in "iu":
+        raise ValueError(f"faces must hold integer vertex indices; got an array of {faces.dtype}")
     F = _np.ascontiguousarray(faces, dtype=_np.int64)
     if V.ndim != 2 or V.shape[1] != 3 or F.ndim != 2 or F.shape[1] != 3:
         raise ValueError(f"vertices must be (V, 3) and faces (F, 3); got {V.shape} and {F.shape}")

@@ -58,9 +58,23 @@ def ensemble(scene, ensemble=None, threads=0):
     return EnsembleResult(raw["columns"], raw["summary"])
 
 
+def _check_runs(path, columns):
+    """A table tumble ensemble wrote has the runs 0, 1, …, R − 1 in order: anything else was edited or
+    is another file, and its rows would be taken for runs they are not."""
+    if "run" not in columns:
+        raise ValueError(f"{path}: no 'run' column: not a table that tumble ensemble wrote")
+    run = columns["run"]
+    expected = np.arange(len(run))
+    wrong = np.flatnonzero(run != expected)
+    if wrong.size:
+        k = int(wrong[0])
+        raise ValueError(f"{path}: row {k} holds run {run[k]:g} where run {k} belongs (the runs are 0, 1, 2, … "
+                         "in order): the table was edited or is not one tumble ensemble wrote")
+
+
 def read_ensemble(path):
     """Read a table that `tumble ensemble` wrote: CSV (with PATH.summary.csv beside it when present) or
-    HDF5 (needs h5py). Returns an EnsembleResult."""
+    HDF5 (needs h5py). Returns an EnsembleResult; ValueError if its run column is not 0, 1, 2, …"""
     path = os.fspath(path)
     with open(path, "rb") as f:
         hdf5 = f.read(8) == b"\x89HDF\r\n\x1a\n"
@@ -70,6 +84,7 @@ def read_ensemble(path):
             runs = f["runs"]
             order = [c.decode() if isinstance(c, bytes) else c for c in f["columns"][:]]
             columns = {c: runs[c][:] for c in order}
+            _check_runs(path, columns)
             s = f["summary"]
             names = [n.decode() if isinstance(n, bytes) else n for n in s["column"][:]]
             summary = [{"column": n, **{k: float(s[k][i]) for k in ("count", "mean", "std", "min", "q05", "q25", "q50",
@@ -81,6 +96,7 @@ def read_ensemble(path):
     header = rows[0]
     data = np.array([[float(x) if x != "" else np.nan for x in r] for r in rows[1:]]).reshape(-1, len(header))
     columns = {name: data[:, k].copy() for k, name in enumerate(header)}
+    _check_runs(path, columns)
     summary = []
     stem, _ = os.path.splitext(path)
     if os.path.isfile(stem + ".summary.csv"):

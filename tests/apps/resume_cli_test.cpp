@@ -19,6 +19,7 @@
 
 #include "../support/run.hpp"
 #include "../support/scene_files.hpp"
+#include "tumble/io/checkpoint.hpp"
 
 extern char** environ;
 
@@ -220,7 +221,8 @@ TEST(ResumeCli, CorruptTruncatedAndForeignCheckpointsAndChangedMeshesAreRefused)
   EXPECT_NE(r.output.find("has format version 7"), std::string::npos) << r.output;
 
   // The mesh changed under the checkpoint: one byte of the STL's header.
-  std::string mesh = test::read_text(d.dir / "t_handle.stl");
+  const std::string original_mesh = test::read_text(d.dir / "t_handle.stl");
+  std::string mesh = original_mesh;
   mesh[0] = mesh[0] == 'x' ? 'y' : 'x';
   d.dir.write("t_handle.stl", mesh);
   r = test::run_tumble("resume " + ckpt.string());
@@ -239,6 +241,19 @@ TEST(ResumeCli, CorruptTruncatedAndForeignCheckpointsAndChangedMeshesAreRefused)
   r = test::run_tumble("run " + scene.string() + " -o - --checkpoint " + (d.dir / "x.ckpt").string());
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.output.find("--checkpoint needs the trajectory in a file"), std::string::npos) << r.output;
+
+  // A checkpoint of another tumble version resumes, with a warning naming both versions.
+  d.dir.write("t_handle.stl", original_mesh);
+  Checkpoint old = read_checkpoint(ckpt);
+  old.tumble_version = "0.0.1";
+  write_checkpoint(d.dir / "old.ckpt", old);
+  r = test::run_tumble("resume " + (d.dir / "old.ckpt").string() + " --quiet");
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find(
+                fmt::format("tumble: warning: checkpoint {} was written by tumble 0.0.1, and this is tumble ",
+                            (d.dir / "old.ckpt").string())),
+            std::string::npos)
+      << r.output;
 }
 
 }  // namespace

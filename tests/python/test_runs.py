@@ -344,6 +344,14 @@ def test_an_ensemble_from_python_is_the_command_lines_table(tmp_path, suffix):
         if one["flip.count"][k] >= 2:
             assert one["flip.mean_interval"][k] == pytest.approx(T, abs=1e-6)
     assert {s["column"] for s in read.summary} >= {"flip.first_t", "energy_drift_max"}
+    # A CSV table whose run column is not 0, 1, 2, … (edited, or another file) is refused by name.
+    if suffix == ".csv":
+        lines = out.read_text().splitlines()
+        lines[3] = "0" + lines[3][lines[3].index(","):]  # row 2 says run 0
+        edited = tmp_path / "edited.csv"
+        edited.write_text("\n".join(lines) + "\n")
+        with pytest.raises(ValueError, match="row 2 holds run 0 where run 2 belongs"):
+            tumble.read_ensemble(edited)
 
 
 def test_a_report_of_a_tampered_file_is_an_error_not_a_crash(tmp_path):

@@ -106,6 +106,12 @@ def test_box_and_mesh_arrays_have_the_closed_form():
     assert cube.inertia_about([0, 0, 0])[0, 0] == pytest.approx(1000 / 6 + 1000 * 0.5, rel=1e-14)
     with pytest.raises(ValueError, match="faces\\[0, 1\\] = 9 is not a vertex index"):
         tumble.mesh_mass_properties(V, [[0, 9, 1]], density=1)
+    # Whole indices given as floats are indices; a fraction is a mistake, not vertex 0 (a cast truncated).
+    assert tumble.mesh_mass_properties(V, F.astype(float), density=1000).mass == pytest.approx(1000, rel=1e-15)
+    with pytest.raises(ValueError, match="faces\\[0, 0\\] = 0.7 is not a whole vertex index"):
+        tumble.mesh_mass_properties(V, F + 0.7, density=1)
+    with pytest.raises(ValueError, match="integer vertex indices"):
+        tumble.mesh_mass_properties(V, F.astype(str), density=1)
 
 
 def test_energy_is_conserved_and_reported():
