@@ -47,10 +47,27 @@ std::vector<double> draw(const Study& study, size_t v, long i) {
       return {std::exp(x.mu + x.sigma * standard_normal(r.u[0], r.u[1]))};
     case K::truncated_normal: {
       // Inverse CDF between the bounds' probabilities: exact truncation, one draw, no rejection.
-      const boost::math::normal_distribution<double> n(x.mean, x.std);
-      const double a = boost::math::cdf(n, x.low), b = boost::math::cdf(n, x.high);
-      const double p = a + (b - a) * r.u[0];
-      return {std::clamp(boost::math::quantile(n, std::clamp(p, 1e-300, 1.0 - 0x1p-53)), x.low, x.high)};
+      const double alpha = (x.low - x.mean) / x.std, beta = (x.high - x.mean) / x.std;
+      if (alpha <= 0.0 && beta >= 0.0) {  // the interval holds the mean: Φ is accurate at both ends
+        const boost::math::normal_distribution<double> n(x.mean, x.std);
+        const double a = boost::math::cdf(n, x.low), b = boost::math::cdf(n, x.high);
+        const double p = a + (b - a) * r.u[0];
+        return {std::clamp(boost::math::quantile(n, std::clamp(p, 1e-300, 1.0 - 0x1p-53)), x.low, x.high)};
+      }
+      // A tail: Φ(α) and Φ(β) both round to 1 (mean 1000, std 1, [1010, 1020]: every draw was `low`).
+      // Drawn by the upper tail's probability Q(z) = 1 − Φ(z), which keeps its relative accuracy, in long
+      // double (Q(40) ≈ 4e-350 is below double's range; the spec refuses intervals past 150σ). A lower
+      // tail is the upper one mirrored.
+      const bool upper = alpha > 0.0;
+      const long double from = upper ? alpha : -beta, to = upper ? beta : -alpha;  // from < to, from > 0
+      const boost::math::normal_distribution<long double> unit;
+      const long double q_from = boost::math::cdf(boost::math::complement(unit, from));
+      const long double q_to = boost::math::cdf(boost::math::complement(unit, to));
+      const long double q = q_from -
+                            (q_from - q_to) * static_cast<long double>(r.u[0]);  // in (Q(to), Q(from)]
+      const long double z = boost::math::quantile(boost::math::complement(unit, q));
+      const double value = x.mean + x.std * static_cast<double>(upper ? z : -z);
+      return {std::clamp(value, x.low, x.high)};
     }
     case K::rotation: {
       // Uniform on SO(3) (Shoemake 1992): a uniform point on the unit 3-sphere.

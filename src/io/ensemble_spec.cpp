@@ -146,6 +146,14 @@ Study read_study(const toml::table& root, const scene::TomlFile& file) {
         x.high = *v.number("high", "");
         if (!(x.low < x.high))
           v.fail_at("high", fmt::format("high ({}) must be above low ({})", x.high, x.low));
+        // The draw inverts the tail's probability in long double (ensemble_draws.cpp), which holds it to
+        // about 150 standard deviations (Q(150) ≈ 1e-4888); beyond, nothing is left to draw from.
+        if (const double sigmas = std::max(x.low - x.mean, x.mean - x.high) / x.std; sigmas > 150.0) {
+          v.fail_at("low", fmt::format("[low, high] = [{}, {}] lies {:.4g} standard deviations from the mean "
+                                       "{}: too far in the tail to draw from (at most 150); move the mean or "
+                                       "the bounds",
+                                       x.low, x.high, sigmas, x.mean));
+        }
         break;
       case K::normal:
         need("mean");
@@ -170,6 +178,14 @@ Study read_study(const toml::table& root, const scene::TomlFile& file) {
         x.high = *v.number("high", "");
         if (!(x.low < x.high))
           v.fail_at("high", fmt::format("high ({}) must be above low ({})", x.high, x.low));
+        // The draw inverts the tail's probability in long double (ensemble_draws.cpp), which holds it to
+        // about 150 standard deviations (Q(150) ≈ 1e-4888); beyond, nothing is left to draw from.
+        if (const double sigmas = std::max(x.low - x.mean, x.mean - x.high) / x.std; sigmas > 150.0) {
+          v.fail_at("low", fmt::format("[low, high] = [{}, {}] lies {:.4g} standard deviations from the mean "
+                                       "{}: too far in the tail to draw from (at most 150); move the mean or "
+                                       "the bounds",
+                                       x.low, x.high, sigmas, x.mean));
+        }
         break;
       case K::rotation:
         x.width = 4;

@@ -1078,6 +1078,15 @@ const std::vector<Case>& catalogue() {
        "tumble: error: s.toml:15:15: [[forces]] #1 (spring): the ends coincide at the start (both at (0, 0, "
        "0) m) while the rest length is 0.2 m: the spring has no direction to push in; move an end apart or "
        "give rest_length = 0"},
+      {"ensemble: truncated_normal beyond 150 standard deviations",
+       {{"s.toml",
+         "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"b\"\nshape = { type = \"sphere\", radius = 0.1 "
+         "}\nmass = 1\n[ensemble]\nruns = 3\n[[ensemble.vary]]\npath = \"bodies.b.mass\"\ndistribution = "
+         "\"truncated_normal\"\nmean = 1\nstd = 0.001\nlow = 2\nhigh = 3\n"}},
+       "{t} check s.toml",
+       1,
+       "tumble: error: s.toml:14:7: [ensemble] vary #1: [low, high] = [2, 3] lies 1000 standard deviations "
+       "from the mean 1: too far in the tail to draw from (at most 150); move the mean or the bounds"},
       {"cli: unknown command",
        {},
        "{t} simulate x.toml",

@@ -2,8 +2,10 @@
 // depend on threads, per-run physics against the closed form, and clear errors for bad studies.
 #include <gtest/gtest.h>
 
+#include <boost/math/distributions/normal.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -106,6 +108,72 @@ high = 3.0
   // The drawn value is what the run's scene holds.
   EXPECT_EQ(s.scene_of_run(5).model.bodies[0].mass(), s.draws(5)[2]);
   EXPECT_EQ(s.scene_of_run(5).settings.duration, s.draws(5)[3]);
+}
+
+TEST(Ensemble, TruncatedNormalsFarInATailFollowTheExactDistribution) {
+  // Φ(α) and Φ(β) round to 1 at α = 10 (mean 1000, std 1, [1010, 1020]), where an inverse CDF of Φ
+  // drew `low` every time. The exact truncated distribution, by the upper tail Q = 1 − Φ in long double:
+  //   F(x) = (Q(α) − Q(z))/(Q(α) − Q(β)),  z = (x − μ)/σ,  mean μ + σ (φ(α) − φ(β))/(Q(α) − Q(β)).
+  // Checked by the mean (kSigmas standard errors) and by Kolmogorov–Smirnov: D ≤ 2.7/√n fails a correct
+  // sampler with probability ~1e-6. A lower tail (mirrored) and a moderate one (α = 0.5) too.
+  const EnsembleStudy s = study(R"([ensemble]
+runs = 20000
+seed = 3
+[[ensemble.vary]]
+path = "bodies.racket.mass"
+distribution = "truncated_normal"
+mean = 1000.0
+std = 1.0
+low = 1010.0
+high = 1020.0
+[[ensemble.vary]]
+path = "bodies.racket.angular_velocity[0]"
+distribution = "truncated_normal"
+mean = 0.0
+std = 2.0
+low = -50.0
+high = -40.0
+[[ensemble.vary]]
+path = "bodies.racket.angular_velocity[2]"
+distribution = "truncated_normal"
+mean = 0.0
+std = 1.0
+low = 0.5
+high = 3.0
+)");
+  using L = long double;
+  const boost::math::normal_distribution<L> unit;
+  const auto Q = [&](L z) { return boost::math::cdf(boost::math::complement(unit, z)); };
+  const auto phi = [](L z) { return std::exp(-z * z / 2) / std::sqrt(2 * std::numbers::pi_v<L>); };
+  struct Case {
+    size_t column;
+    double mu, sigma, low, high;
+  };
+  for (const Case c :
+       {Case{0, 1000.0, 1.0, 1010.0, 1020.0}, Case{1, 0.0, 2.0, -50.0, -40.0}, Case{2, 0.0, 1.0, 0.5, 3.0}}) {
+    std::vector<double> x = column(s, c.column);
+    const double n = static_cast<double>(x.size());
+    // The lower tail is the upper one mirrored: z → −z maps [low, high] to [−high, −low].
+    const bool upper = c.low > c.mu;
+    const L alpha = upper ? (c.low - c.mu) / c.sigma : (c.mu - c.high) / c.sigma;
+    const L beta = upper ? (c.high - c.mu) / c.sigma : (c.mu - c.low) / c.sigma;
+    const L Z = Q(alpha) - Q(beta);
+    const L mean_z = (phi(alpha) - phi(beta)) / Z;
+    const double expected = c.mu + (upper ? 1.0 : -1.0) * c.sigma * static_cast<double>(mean_z);
+    for (double v : x) ASSERT_TRUE(v >= c.low && v <= c.high) << v;
+    EXPECT_NEAR(mean(x), expected, kSigmas * std::sqrt(variance(x) / n)) << c.column;
+    EXPECT_GT(variance(x), 0.0) << "not one value drawn every time";
+    std::sort(x.begin(), x.end());
+    double D = 0.0;
+    for (size_t i = 0; i < x.size(); ++i) {
+      const L z = upper ? (x[i] - c.mu) / c.sigma : (c.mu - x[i]) / c.sigma;
+      const double F = static_cast<double>((Q(alpha) - Q(z)) / Z);  // mirrored: 1 − F of the lower tail
+      const double F_x = upper ? F : 1.0 - F;
+      D = std::max(
+          {D, std::abs(F_x - static_cast<double>(i) / n), std::abs(F_x - static_cast<double>(i + 1) / n)});
+    }
+    EXPECT_LE(D, 2.7 / std::sqrt(n)) << "column " << c.column;
+  }
 }
 
 TEST(Ensemble, RandomRotationsAndDirectionsAreUniform) {
