@@ -80,16 +80,22 @@ def read_ensemble(path):
         hdf5 = f.read(8) == b"\x89HDF\r\n\x1a\n"
     if hdf5:
         import h5py
+        from .trajectory import _dataset
+        size = os.path.getsize(path)
         with h5py.File(path, "r") as f:
-            runs = f["runs"]
-            order = [c.decode() if isinstance(c, bytes) else c for c in f["columns"][:]]
-            columns = {c: runs[c][:] for c in order}
+            def need(key):  # links, external storage and oversized claims refused, as for trajectories
+                d = _dataset(h5py, f, key, path, size)
+                if d is None:
+                    raise ValueError(f"{path}: no dataset {key}: not a table that tumble ensemble wrote")
+                return d[:]
+            order = [c.decode() if isinstance(c, bytes) else c for c in need("columns")]
+            columns = {c: need(f"runs/{c}") for c in order}
             _check_runs(path, columns)
-            s = f["summary"]
-            names = [n.decode() if isinstance(n, bytes) else n for n in s["column"][:]]
-            summary = [{"column": n, **{k: float(s[k][i]) for k in ("count", "mean", "std", "min", "q05", "q25", "q50",
-                                                                      "q75", "q95", "max")},
-                        "histogram": s["histogram"][i].tolist()} for i, n in enumerate(names)]
+            keys = ("count", "mean", "std", "min", "q05", "q25", "q50", "q75", "q95", "max")
+            s = {k: need(f"summary/{k}") for k in keys + ("column", "histogram")}
+            names = [n.decode() if isinstance(n, bytes) else n for n in s["column"]]
+            summary = [{"column": n, **{k: float(s[k][i]) for k in keys}, "histogram": s["histogram"][i].tolist()}
+                       for i, n in enumerate(names)]
         return EnsembleResult(columns, summary)
     with open(path, newline="") as f:
         rows = list(csv.reader(f))

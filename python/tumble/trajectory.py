@@ -214,28 +214,64 @@ def _read_csv(path):
                       {f["name"]: f["frame"] for f in fields}, diagnostics, events)
 
 
+def _dataset(h5py, f, key, path, file_size):
+    """The dataset at `key` (None if there is none), refusing what a received file could use to make its
+    reader read other files or memory it does not hold: soft and external links on the way (checked one
+    link at a time, since following one is already the read), external storage, virtual datasets, and a
+    size claimed beyond the file's own (tumble's C++ reader refuses the same: report_reader.cpp)."""
+    node, parts = f, key.split("/")
+    for i, part in enumerate(parts):
+        link = node.get(part, getlink=True)
+        if link is None:
+            return None
+        if not isinstance(link, h5py.HardLink):
+            raise ValueError(f"{path}: {'/'.join(parts[:i + 1])} is a {type(link).__name__}: a trajectory that "
+                             "tumble wrote has no links to follow, and this reader follows none")
+        node = node[part]
+    if not isinstance(node, h5py.Dataset):
+        raise ValueError(f"{path}: {key} is not a dataset: not a trajectory that tumble run wrote")
+    if node.is_virtual or node.id.get_create_plist().get_external_count() > 0:
+        raise ValueError(f"{path}: the dataset {key} keeps its data in other files (external storage or a "
+                         "virtual dataset); this reader reads nothing outside the file it is given")
+    claimed = node.size * node.dtype.itemsize
+    if claimed > file_size + (8 << 20):
+        raise ValueError(f"{path}: the dataset {key} claims {claimed} bytes, more than the file's {file_size}: "
+                         "it is damaged or forged")
+    return node
+
+
 def _read_hdf5(path):
     try:
         import h5py
     except ImportError:
         raise ImportError("reading HDF5 trajectories needs h5py: apt-get install python3-h5py") from None
     body_fields, system_fields = field_table()
+    file_size = os.path.getsize(path)
     with h5py.File(path, "r") as f:
-        names = [n.decode() if isinstance(n, bytes) else n for n in f["names"][:]]
-        t = f["t"][:]
+        def get(key):
+            return _dataset(h5py, f, key, path, file_size)
+
+        def need(key):
+            d = get(key)
+            if d is None:
+                raise ValueError(f"{path}: no dataset {key}: not a trajectory that tumble run wrote")
+            return d
+        names = [n.decode() if isinstance(n, bytes) else n for n in need("names")[:]]
+        t = need("t")[:]
         arrays, units, frames = {}, {}, {}
         for field in body_fields:
-            if field["name"] in f:
-                arrays[field["name"]] = f[field["name"]][:]
+            d = get(field["name"])
+            if d is not None:
+                arrays[field["name"]] = d[:]
                 units[field["name"]] = field["unit"]
                 frames[field["name"]] = field["frame"]
         diagnostics = {}
         for field in system_fields:
-            key = "diagnostics/" + field["name"]
-            diagnostics[field["name"]] = f[key][:] if key in f else np.full((len(t),) + (() if field["width"] == 1 else (field["width"],)), np.nan)
+            d = get("diagnostics/" + field["name"])
+            diagnostics[field["name"]] = d[:] if d is not None else np.full((len(t),) + (() if field["width"] == 1 else (field["width"],)), np.nan)
         events = []
-        if "events" in f:
-            g = f["events"]
+        if get("events/t") is not None:
+            g = {k: need("events/" + k) for k in ("event", "t", "body")}
             for name, time, row in zip(g["event"][:], g["t"][:], g["body"][:]):
                 events.append(EventCrossing(name.decode() if isinstance(name, bytes) else name, float(time), names[row]))
         attrs = f.attrs

@@ -411,3 +411,47 @@ def test_a_process_forked_after_threaded_runs_still_runs_threaded_scenes():
     os.kill(pid, signal.SIGKILL)
     os.waitpid(pid, 0)
     pytest.fail("a threaded run in a forked child hangs")
+
+
+def test_a_forged_hdf5_trajectory_reads_nothing_outside_itself(tmp_path):
+    # A received .h5 could point read_trajectory at any local file: an external link, external storage
+    # (raw bytes of another file as a dataset) or a dataset claiming far more than the file holds. Each
+    # is refused by name; the secret's bytes never reach the arrays.
+    cli = os.environ.get("TUMBLE_CLI")
+    if not cli:
+        pytest.skip("TUMBLE_CLI (the program) not given")
+    import h5py
+    secret = tmp_path / "secret.bin"
+    secret.write_bytes(np.arange(64, dtype=np.float64).tobytes())
+    scene = tmp_path / "s.toml"
+    scene.write_text('[simulation]\nduration = 0.1\n[[bodies]]\nname = "a"\nshape = { type = "box", size = [1, 2, 3] }\n'
+                     'mass = 1.0\n')
+    good = tmp_path / "good.h5"
+    subprocess.run([cli, "run", str(scene), "-o", str(good), "--quiet"], check=True)
+    assert len(tumble.read_trajectory(good).t) == 11
+
+    def forged(name, change):
+        path = tmp_path / name
+        path.write_bytes(good.read_bytes())
+        with h5py.File(path, "r+") as f:
+            change(f)
+        return path
+
+    def external_link(f):
+        del f["t"]
+        f["t"] = h5py.ExternalLink(str(secret), "/anything")
+
+    def external_storage(f):
+        n = len(f["t"])
+        del f["t"]
+        f.create_dataset("t", shape=(n,), dtype="f8", external=[(str(secret), 0, 8 * n)])
+
+    def huge_claim(f):
+        del f["t"]
+        f.create_dataset("t", shape=(10 ** 9,), dtype="f8", chunks=(1024,))  # no chunk written
+
+    for name, change, message in [("link.h5", external_link, "t is a ExternalLink"),
+                                  ("storage.h5", external_storage, "keeps its data in other files"),
+                                  ("claim.h5", huge_claim, "claims 8000000000 bytes")]:
+        with pytest.raises(ValueError, match=message):
+            tumble.read_trajectory(forged(name, change))
