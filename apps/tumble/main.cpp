@@ -5,8 +5,10 @@
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <new>
 #include <string>
 #include <system_error>
 #include <vector>
@@ -73,6 +75,27 @@ std::string empty_argument(int argc, char** argv) {
   return {};
 }
 
+/// Address space held back for the way out of an allocation failure, for `tumble report`, which reads
+/// run.json into a nlohmann::json tree: that tree's destructor allocates (it flattens the tree into a
+/// vector) and is noexcept, so out of memory while reading ended in std::terminate. The first
+/// allocation that fails releases the reserve and throws std::bad_alloc, and the unwinding has room.
+/// Untouched, it costs no memory, only address space (which is why the other commands, which build no
+/// such tree, do not hold it: under ulimit -v it would shrink what they may use).
+constexpr std::size_t kReserveBytes = std::size_t{32} << 20;
+void* g_reserve = nullptr;
+
+void release_reserve_and_throw() {
+  std::free(g_reserve);
+  g_reserve = nullptr;
+  std::set_new_handler(nullptr);
+  throw std::bad_alloc();
+}
+
+void hold_reserve() {
+  g_reserve = std::malloc(kReserveBytes);
+  if (g_reserve != nullptr) std::set_new_handler(release_reserve_and_throw);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -111,8 +134,20 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("resume")) return finish_stdout(resume());
     if (app.got_subcommand("check")) return finish_stdout(check());
     if (app.got_subcommand("inertia")) return finish_stdout(inertia());
-    if (app.got_subcommand("report")) return finish_stdout(report());
+    if (app.got_subcommand("report")) {
+      hold_reserve();
+      return finish_stdout(report());
+    }
     if (app.got_subcommand("ensemble")) return finish_stdout(ensemble());
+  } catch (const std::bad_alloc&) {
+    // No allocation here: the message is a literal (building a string could throw again and end the
+    // process by std::terminate).
+    std::fputs(
+        "tumble: error: out of memory: the command needs more memory than this process may use "
+        "(the machine's, or a limit such as ulimit -v); nothing was kept under the output names: "
+        "free memory, raise the limit, or give a smaller problem\n",
+        stderr);
+    return 1;
   } catch (const tumble::Error& e) {
     say(std::string("tumble: error: ") + e.what());
     return 1;

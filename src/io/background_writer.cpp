@@ -13,6 +13,7 @@
 #include <csignal>
 #include <exception>
 #include <mutex>
+#include <system_error>
 #include <thread>
 
 #include <pthread.h>
@@ -24,8 +25,16 @@ namespace {
 
 class BackgroundWriter final : public TrajectoryWriter {
  public:
-  explicit BackgroundWriter(std::unique_ptr<TrajectoryWriter> inner)
-      : inner_(std::move(inner)), thread_([this] { work(); }) {}
+  /// Takes `inner` once its thread has started; if none can be started (std::system_error: a limit on
+  /// threads or on memory), `inner` is left with the caller.
+  explicit BackgroundWriter(std::unique_ptr<TrajectoryWriter>& inner) : inner_(std::move(inner)) {
+    try {
+      thread_ = std::thread([this] { work(); });
+    } catch (const std::system_error&) {
+      inner = std::move(inner_);
+      throw;
+    }
+  }
 
   ~BackgroundWriter() override {
     {
@@ -115,13 +124,17 @@ class BackgroundWriter final : public TrajectoryWriter {
   std::condition_variable wake_;
   bool pending_ = false, stop_ = false;
   std::exception_ptr error_;
-  std::thread thread_;  // last: started once everything it reads exists
+  std::thread thread_;  // started in the constructor's body, once everything it reads exists
 };
 
 }  // namespace
 
 std::unique_ptr<TrajectoryWriter> write_in_background(std::unique_ptr<TrajectoryWriter> inner) {
-  return std::make_unique<BackgroundWriter>(std::move(inner));
+  try {
+    return std::make_unique<BackgroundWriter>(inner);
+  } catch (const std::system_error&) {
+    return inner;  // no thread to be had: written on the caller's thread, the same bytes, a little later
+  }
 }
 
 }  // namespace tumble

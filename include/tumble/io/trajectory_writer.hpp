@@ -98,6 +98,7 @@ std::unique_ptr<TrajectoryWriter> make_hdf5_writer(const std::filesystem::path& 
 /// the previous one is written; every other call waits for that too, and a write error is thrown by the
 /// next call. Pays where a sample takes long to write (a CSV sample of thousands of bodies); the inner
 /// writer must not share a library with the calling thread that is not thread-safe (HDF5 is not).
+/// Where no thread can be started (a limit on threads or memory), `inner` itself is returned.
 std::unique_ptr<TrajectoryWriter> write_in_background(std::unique_ptr<TrajectoryWriter> inner);
 
 /// True if the two paths name the same file: the same device and inode when both exist (so hard
