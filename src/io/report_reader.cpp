@@ -474,11 +474,32 @@ bool is_hdf5(const std::filesystem::path& path) {
 
 }  // namespace
 
+/// `tumble ensemble`'s table (a row per run) given where a trajectory belongs: said so, with the
+/// trajectories a study writes.
+[[noreturn]] void refuse_ensemble_table(const std::filesystem::path& path, bool hdf5) {
+  std::filesystem::path run = path;
+  run.replace_extension(hdf5 ? ".run-0.h5" : ".run-0.csv");
+  throw InvalidArgument(fmt::format(
+      "{} is the table of a tumble ensemble study (a row per run), not a trajectory: report one of its "
+      "runs' trajectories, e.g. {} (written for the runs that [ensemble.outputs] trajectories chooses: "
+      "every = N, worst = N)",
+      path.string(), run.string()));
+}
+
 Report read_report(const std::filesystem::path& path, const Scene* scene) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) {
     throw FileError(fmt::format("{} is not a file: give a trajectory that tumble run wrote (.csv or .h5)",
                                 path.string()));
+  }
+  if (is_hdf5(path)) {
+    const Hdf5Reader h(path);
+    if (h.has("runs") && !h.has("t")) refuse_ensemble_table(path, true);
+  } else {
+    std::ifstream in(path, std::ios::binary);
+    std::string first;
+    std::getline(in, first);
+    if (first.rfind("run,", 0) == 0) refuse_ensemble_table(path, false);
   }
   Report r;
   const Samples s = is_hdf5(path) ? read_hdf5(path, r, scene) : read_csv_run(path, r, scene);

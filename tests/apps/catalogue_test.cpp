@@ -1107,6 +1107,26 @@ const std::vector<Case>& catalogue() {
        "tumble: error: out of memory: the command needs more memory than this process may use (the "
        "machine's, or a limit such as ulimit -v); nothing was kept under the output names: free memory, "
        "raise the limit, or give a smaller problem"},
+      {"report: an ensemble's table (csv) is not a trajectory",
+       {{"s.toml",
+         "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"b\"\nshape = { type = \"sphere\", radius = 0.1 "
+         "}\nmass = 1\n[ensemble]\nruns = 3\n[[ensemble.vary]]\npath = \"bodies.b.mass\"\ndistribution = "
+         "\"uniform\"\nlow = 1\nhigh = 2\n"}},
+       "{t} ensemble s.toml -o e.csv -q && {t} report e.csv",
+       1,
+       "tumble: error: e.csv is the table of a tumble ensemble study (a row per run), not a trajectory: "
+       "report one of its runs' trajectories, e.g. e.run-0.csv (written for the runs that [ensemble.outputs] "
+       "trajectories chooses: every = N, worst = N)"},
+      {"report: an ensemble's table (h5) is not a trajectory",
+       {{"s.toml",
+         "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"b\"\nshape = { type = \"sphere\", radius = 0.1 "
+         "}\nmass = 1\n[ensemble]\nruns = 3\n[[ensemble.vary]]\npath = \"bodies.b.mass\"\ndistribution = "
+         "\"uniform\"\nlow = 1\nhigh = 2\n"}},
+       "{t} ensemble s.toml -o e.h5 -q && {t} report e.h5",
+       1,
+       "tumble: error: e.h5 is the table of a tumble ensemble study (a row per run), not a trajectory: "
+       "report one of its runs' trajectories, e.g. e.run-0.h5 (written for the runs that [ensemble.outputs] "
+       "trajectories chooses: every = N, worst = N)"},
       {"cli: unknown command",
        {},
        "{t} simulate x.toml",
