@@ -119,8 +119,19 @@ std::shared_ptr<const ForceModel> python_force(py::function f) {
           for (int k = 0; k < 4; ++k) Q(j, k) = b.q[k][j];
         }
         const py::object result = f(b.t, index, o, q, v, w);
-        const auto pair = result.cast<py::tuple>();
-        if (pair.size() != 2) throw InvalidArgument("the force function must return (force, torque)");
+        if (!py::isinstance<py::tuple>(result) && !py::isinstance<py::list>(result)) {
+          throw InvalidArgument(
+              py::str("the force function returned {} (a {}); it must return (force, torque), two (n, 3) "
+                      "arrays for the n = {} bodies it was given (a function without `return` gives None)")
+                  .format(py::repr(result), py::type::of(result).attr("__name__"), n)
+                  .cast<std::string>());
+        }
+        const auto pair = py::tuple(result);
+        if (pair.size() != 2) {
+          throw InvalidArgument(fmt::format(
+              "the force function returned {} values; it must return (force, torque), two (n, 3) arrays",
+              pair.size()));
+        }
         using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
         const auto F = pair[0].cast<Array>();
         const auto T = pair[1].cast<Array>();

@@ -102,6 +102,11 @@ def simulate(scene: Scene | str | _os.PathLike, integrator: str | None = None, f
             specs.append(table)
     if specs:
         specs = _event_specs(scene, specs)
+    if isinstance(fields, (str, bytes)):  # list("position") would be its letters
+        raise ValueError(f"fields={fields!r} must be a list of field names, e.g. fields=[{fields!r}]")
+    if force is not None and not callable(force):
+        raise TypeError(f"force must be a function force(t, index, position, orientation, velocity, omega); "
+                        f"got {type(force).__name__}")
     if fields is None and not scene.output_fields:
         fields = ["position", "orientation", "velocity", "angular_velocity", "angular_velocity_reference",
                   "angular_velocity_principal"]
@@ -239,7 +244,12 @@ def scene_from_dict(scene: dict, path: str | _os.PathLike = "scene.toml") -> Sce
     [0.1, 0.2, 0.3]}, "density": 2700}]}. It is written as TOML (tomli_w) and read by the same
     reader as a file, so every check and message is the file's; `path` anchors mesh paths."""
     import tomli_w
-    return parse_scene(tomli_w.dumps(scene), str(path))
+    try:
+        text = tomli_w.dumps(scene)
+    except RecursionError:
+        raise ValueError("the scene dict contains itself (a table nested in its own value): a scene is a tree "
+                         "of tables, lists and values; give each table once") from None
+    return parse_scene(text, str(path))
 
 
 def save_scene(scene: Scene | dict, path: str | _os.PathLike) -> None:

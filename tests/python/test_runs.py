@@ -455,3 +455,23 @@ def test_a_forged_hdf5_trajectory_reads_nothing_outside_itself(tmp_path):
                                   ("claim.h5", huge_claim, "claims 8000000000 bytes")]:
         with pytest.raises(ValueError, match=message):
             tumble.read_trajectory(forged(name, change))
+
+
+def test_mistaken_arguments_are_named():
+    # Each was an error about something else (a letter 'p' as a field, "'NoneType' object is not
+    # iterable", RecursionError): now the argument and the fix.
+    scene = tumble.make_scene(bodies=[racket()], duration=0.01)
+    with pytest.raises(ValueError, match=r"fields='position' must be a list of field names, e.g. fields=\['position'\]"):
+        tumble.simulate(scene, fields="position")
+    with pytest.raises(ValueError, match="timestep= takes a number"):
+        tumble.simulate(scene, timestep="abc")
+    with pytest.raises(ValueError, match=r"the force function returned None \(a NoneType\); it must return \(force, torque\)"):
+        tumble.simulate(scene, force=lambda *args: None)
+    with pytest.raises(ValueError, match="returned 3 values"):
+        tumble.simulate(scene, force=lambda t, i, *rest: (np.zeros((len(i), 3)),) * 3)
+    with pytest.raises(TypeError, match="force must be a function"):
+        tumble.simulate(scene, force=3.0)
+    d = {"simulation": {"duration": 1.0}}
+    d["simulation"]["again"] = d
+    with pytest.raises(ValueError, match="the scene dict contains itself"):
+        tumble.scene_from_dict(d)
