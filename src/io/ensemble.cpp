@@ -201,7 +201,13 @@ std::vector<Scene> EnsembleStudy::scenes_of_runs(std::span<const long> runs,
     try {
       scenes.push_back(scene::read_scene(root, impl_->text, impl_->path));
     } catch (const SceneError& e) {
-      throw SceneError(fmt::format("{}: {}", run_label(runs[r]), e.what()));
+      // A drawn value is a node the draw made, which has no place in the file (toml++ gives it 0:0):
+      // say so instead of a line 0.
+      std::string what = e.what();
+      const std::string nowhere = impl_->path.string() + ":0:0: ";
+      if (what.rfind(nowhere, 0) == 0)
+        what = impl_->path.string() + ", the drawn value: " + what.substr(nowhere.size());
+      throw SceneError(fmt::format("{}: {}", run_label(runs[r]), what));
     }
   }
   return scenes;

@@ -1,7 +1,15 @@
 // Scene files: parsing (toml++), [simulation], and the order in which the sections are read.
 #include "tumble/io/scene.hpp"
 
+#include <fcntl.h>
 #include <fmt/format.h>
+#include <poll.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdint>
+#include <cstring>
 
 #include "scene_sections.hpp"
 #include "tumble/integrate/integrator.hpp"
@@ -75,8 +83,58 @@ void read_output(const TableReader& root, Scene& scene) {
 
 }  // namespace
 
+namespace {
+/// A scene through a pipe (`tumble check <(generate)`, a named pipe being written): read to its end as a
+/// stream, up to the input limit, waiting for the writer as `cat` would. A pipe that nobody writes (a
+/// named pipe without a writer: the first read finds its end at once) is refused at once, never waited
+/// on; devices stay refused (they may never end: read_input_file).
+std::string read_pipe(const std::filesystem::path& path, const char* what) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0)
+    throw FileError(fmt::format("cannot read {} {}: {}", what, path.string(), std::strerror(errno)));
+  const auto fail = [&](const std::string& why) {
+    ::close(fd);
+    throw FileError(fmt::format("cannot read {} {}: {}", what, path.string(), why));
+  };
+  const std::uint64_t limit = max_input_bytes();
+  std::string text;
+  char buffer[1 << 16];
+  for (;;) {
+    const ssize_t n = ::read(fd, buffer, sizeof buffer);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0 && errno == EAGAIN) {  // the writer is there and has not written yet
+      pollfd p{fd, POLLIN, 0};
+      if (::poll(&p, 1, -1) < 0 && errno != EINTR) fail(std::strerror(errno));
+      continue;
+    }
+    if (n < 0) fail(std::strerror(errno));
+    if (n == 0) {
+      if (text.empty()) {
+        fail(
+            "a FIFO (named pipe) with nothing written into it, which may never end, not a regular file; give "
+            "a scene file, or write the scene into the pipe as tumble reads it (e.g. tumble check "
+            "<(cat s.toml))");
+      }
+      break;
+    }
+    if (text.size() + static_cast<std::size_t>(n) > limit) {
+      fail(
+          fmt::format("the pipe gave more than tumble reads from one input ({} bytes); raise the limit with "
+                      "{}, or save the stream to a file",
+                      limit, kMaxInputBytesVariable));
+    }
+    text.append(buffer, static_cast<std::size_t>(n));
+  }
+  ::close(fd);
+  return text;
+}
+}  // namespace
+
 std::string read_file(const std::filesystem::path& path, const char* what) {
-  // A regular file within the input limit: never a FIFO or a device that could be read forever.
+  // A regular file within the input limit, or a pipe read as a stream: never a device that could be
+  // read forever.
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0 && S_ISFIFO(st.st_mode)) return read_pipe(path, what);
   try {
     return read_input_file(path, what);
   } catch (const FileError& e) {

@@ -1127,6 +1127,22 @@ const std::vector<Case>& catalogue() {
        "tumble: error: e.h5 is the table of a tumble ensemble study (a row per run), not a trajectory: "
        "report one of its runs' trajectories, e.g. e.run-0.h5 (written for the runs that [ensemble.outputs] "
        "trajectories chooses: every = N, worst = N)"},
+      {"scene: through a pipe (process substitution) is read as a stream",
+       {{"s.toml",
+         "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = \"box\", size = [1, 2, "
+         "3] }\ndensity = 1000\n"}},
+       "{t} check <(cat s.toml) > /dev/null",
+       0,
+       ""},
+      {"ensemble: a draw that makes the scene invalid names the run, its values and the drawn value",
+       {{"s.toml",
+         "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"b\"\nshape = { type = \"sphere\", radius = 0.1 "
+         "}\nmass = 1\n[ensemble]\nruns = 30\n[[ensemble.vary]]\npath = \"bodies.b.mass\"\ndistribution = "
+         "\"normal\"\nmean = 0\nstd = 1\n"}},
+       "{t} ensemble s.toml -o t.csv",
+       1,
+       "tumble: error: run 1 (bodies.b.mass = -0.60834419961370922): s.toml, the drawn value: body 'b': mass "
+       "is -0.6083441996137092 kg: it must be positive"},
       {"cli: unknown command",
        {},
        "{t} simulate x.toml",

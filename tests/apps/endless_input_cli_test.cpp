@@ -40,7 +40,9 @@ TEST(EndlessInputCli, DevZeroAndFifosAreRefusedAtOnce) {
   expect_one_line_error(
       "check " + (dir / "scene.toml").string(),
       "cannot read scene file " + (dir / "scene.toml").string() +
-          ": a FIFO (named pipe), which may never end, not a regular file; give a scene file");
+          ": a FIFO (named pipe) with nothing written into it, which may never end, not a regular file; give "
+          "a scene file, or write the scene into the pipe as tumble reads it (e.g. tumble check <(cat "
+          "s.toml))");
   expect_one_line_error("inertia " + (dir / "scene.toml").string(), "a FIFO (named pipe)");
   expect_one_line_error("check " + dir.path().string(), "cannot read scene file " + dir.path().string() +
                                                             ": a directory, not a regular file");
