@@ -142,7 +142,56 @@ std::string read_file(const std::filesystem::path& path, const char* what) {
   }
 }
 
+/// Arrays and inline tables nested deeper than a scene ever needs are refused before toml++ parses
+/// them: its parser recurses once per level (to its own limit of 256), and so does code that walks the
+/// tree, and 256 levels overflow a small stack (ulimit -s 256, a Python thread's) — a crash. Strings and
+/// comments are skipped, so brackets inside them do not count. Table headers ([a], [[a]]) open and close
+/// on their line.
+void check_nesting(std::string_view text, const TomlFile& file) {
+  constexpr int kMaxNesting = 32;
+  int depth = 0;
+  toml::source_position at{1, 1};
+  auto starts = [&](size_t i, std::string_view what) { return text.substr(i, what.size()) == what; };
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    // Skips to just past `close` (escapes honoured in basic strings), counting lines.
+    auto skip_to = [&](std::string_view close, bool escapes) {
+      for (++i; i < text.size() && !starts(i, close); ++i) {
+        if (escapes && text[i] == '\\') ++i;
+        if (i < text.size() && text[i] == '\n') at = {at.line + 1, 0};
+      }
+      i += close.size() - 1;
+    };
+    if (c == '#') {
+      while (i + 1 < text.size() && text[i + 1] != '\n') ++i;
+    } else if (starts(i, "\"\"\"")) {
+      i += 2, skip_to("\"\"\"", true);
+    } else if (starts(i, "'''")) {
+      i += 2, skip_to("'''", false);
+    } else if (c == '"') {
+      skip_to("\"", true);
+    } else if (c == '\'') {
+      skip_to("'", false);
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxNesting) {
+        fail(file, toml::source_region{at, at, nullptr},
+             fmt::format("arrays and inline tables nested more than {} deep: a scene needs a few levels; "
+                         "flatten the value",
+                         kMaxNesting));
+      }
+    } else if (c == ']' || c == '}') {
+      depth = std::max(0, depth - 1);
+    }
+    if (i < text.size() && text[i] == '\n') {
+      at = {at.line + 1, 1};
+    } else {
+      ++at.column;
+    }
+  }
+}
+
 toml::table parse_toml(std::string_view text, const TomlFile& file) {
+  check_nesting(text, file);
   try {
     return toml::parse(text);  // positions in the text; messages name `file`
   } catch (const toml::parse_error& e) {

@@ -475,3 +475,26 @@ def test_mistaken_arguments_are_named():
     d["simulation"]["again"] = d
     with pytest.raises(ValueError, match="the scene dict contains itself"):
         tumble.scene_from_dict(d)
+
+
+def test_a_deeply_nested_scene_in_a_small_thread_is_an_error_not_a_crash():
+    # A thread's stack is small (here 256 KiB); toml++ recursed once per nesting level (to 256) and
+    # crashed the interpreter. Nesting past 32 is refused before it parses.
+    import threading
+    text = "[simulation]\nduration = 1\nx = " + "{a = " * 250 + "1" + "}" * 250 + "\n"
+    result = []
+
+    def parse():
+        try:
+            tumble.parse_scene(text, "deep.toml")
+        except ValueError as e:
+            result.append(str(e))
+
+    previous = threading.stack_size(256 * 1024)
+    try:
+        worker = threading.Thread(target=parse)
+        worker.start()
+        worker.join()
+    finally:
+        threading.stack_size(previous)
+    assert result and "nested more than 32 deep" in result[0], result
