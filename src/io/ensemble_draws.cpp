@@ -59,7 +59,8 @@ std::vector<double> draw(const Study& study, size_t v, long i) {
       // double (Q(40) ≈ 4e-350 is below double's range; the spec refuses intervals past 150σ). A lower
       // tail is the upper one mirrored.
       const bool upper = alpha > 0.0;
-      const long double from = upper ? alpha : -beta, to = upper ? beta : -alpha;  // from < to, from > 0
+      const auto from = static_cast<long double>(upper ? alpha : -beta);  // from < to, from > 0
+      const auto to = static_cast<long double>(upper ? beta : -alpha);
       const boost::math::normal_distribution<long double> unit;
       const long double q_from = boost::math::cdf(boost::math::complement(unit, from));
       const long double q_to = boost::math::cdf(boost::math::complement(unit, to));

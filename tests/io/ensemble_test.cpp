@@ -155,8 +155,8 @@ high = 3.0
     const double n = static_cast<double>(x.size());
     // The lower tail is the upper one mirrored: z → −z maps [low, high] to [−high, −low].
     const bool upper = c.low > c.mu;
-    const L alpha = upper ? (c.low - c.mu) / c.sigma : (c.mu - c.high) / c.sigma;
-    const L beta = upper ? (c.high - c.mu) / c.sigma : (c.mu - c.low) / c.sigma;
+    const L alpha = static_cast<L>(upper ? (c.low - c.mu) / c.sigma : (c.mu - c.high) / c.sigma);
+    const L beta = static_cast<L>(upper ? (c.high - c.mu) / c.sigma : (c.mu - c.low) / c.sigma);
     const L Z = Q(alpha) - Q(beta);
     const L mean_z = (phi(alpha) - phi(beta)) / Z;
     const double expected = c.mu + (upper ? 1.0 : -1.0) * c.sigma * static_cast<double>(mean_z);
@@ -166,7 +166,7 @@ high = 3.0
     std::sort(x.begin(), x.end());
     double D = 0.0;
     for (size_t i = 0; i < x.size(); ++i) {
-      const L z = upper ? (x[i] - c.mu) / c.sigma : (c.mu - x[i]) / c.sigma;
+      const L z = static_cast<L>(upper ? (x[i] - c.mu) / c.sigma : (c.mu - x[i]) / c.sigma);
       const double F = static_cast<double>((Q(alpha) - Q(z)) / Z);  // mirrored: 1 − F of the lower tail
       const double F_x = upper ? F : 1.0 - F;
       D = std::max(
