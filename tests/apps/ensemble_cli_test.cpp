@@ -119,7 +119,7 @@ TEST(EnsembleCli, FiftyKillsAtRandomPointsStillGiveTheUninterruptedTable) {
   // speed), and the next start resumes from what the last left. The table at the end must be the
   // uninterrupted one, byte for byte: a torn record appended to (the old fault) reads as garbage rows.
   const test::TempDir dir("ensemble_kills");
-  const fs::path scene = dir.write("s.toml", study(12000, 0.1));
+  const fs::path scene = dir.write("s.toml", study(30000, 0.1));
   const auto whole = test::run_tumble(
       fmt::format("ensemble {} -o {} --quiet", scene.string(), (dir / "whole.csv").string()));
   ASSERT_EQ(whole.status, 0) << whole.output;
@@ -136,7 +136,7 @@ TEST(EnsembleCli, FiftyKillsAtRandomPointsStillGiveTheUninterruptedTable) {
     return ec ? std::uintmax_t{0} : size;
   };
   std::mt19937_64 rng(2026);
-  std::uniform_int_distribution<std::uintmax_t> growth(1, 20000);  // bytes: about a batch of rows
+  std::uniform_int_distribution<std::uintmax_t> growth(1, 12000);  // bytes: about half a batch of rows
   int kills = 0, torn = 0;
   // A record is the run, its values and a checksum: 8 bytes for each column of the table and one more.
   const std::string table = test::read_text(dir / "whole.csv");
@@ -164,7 +164,8 @@ TEST(EnsembleCli, FiftyKillsAtRandomPointsStillGiveTheUninterruptedTable) {
     const std::uintmax_t size = size_of();
     if (size > 24 && (size - 24) % record != 0) ++torn;
   }
-  std::printf("[ measured ] %d kills, %d left a torn record\n", kills, torn);
+  std::printf("[ measured ] %d kills, %d left a torn record, %ju rows kept\n", kills, torn,
+              (size_of() - 24) / record);
   EXPECT_GE(torn, 10) << "most kills land between two flushes, which cut records";
   ASSERT_FALSE(fs::exists(dir / "part.csv"));
 
