@@ -96,6 +96,11 @@ Event python_event(const py::tuple& e) {
 /// A force law written in Python, called once per block of bodies (never once per body) with the time,
 /// the bodies' indices and their world quantities as (n, 3) and (n, 4) arrays; it returns the force
 /// (N) and the torque about the centre of mass (N·m), world axes, as two (n, 3) arrays.
+/// Ctrl-C that arrived while a Python force ran: Python raised KeyboardInterrupt inside it. The step is
+/// abandoned (its loads were never given) and the run ends with the samples so far, as a Ctrl-C between
+/// steps does (simulate below). Not an Error: nothing may add context to it on its way out.
+struct InterruptedInForce {};
+
 std::shared_ptr<const ForceModel> python_force(py::function f) {
   return std::make_shared<const BlockCallback>(
       [f = std::move(f)](const BodyBlock& b, BlockLoads& loads) {
@@ -118,7 +123,13 @@ std::shared_ptr<const ForceModel> python_force(py::function f) {
           }
           for (int k = 0; k < 4; ++k) Q(j, k) = b.q[k][j];
         }
-        const py::object result = f(b.t, index, o, q, v, w);
+        py::object result;
+        try {
+          result = f(b.t, index, o, q, v, w);
+        } catch (py::error_already_set& e) {
+          if (e.matches(PyExc_KeyboardInterrupt)) throw InterruptedInForce{};
+          throw;
+        }
         if (!py::isinstance<py::tuple>(result) && !py::isinstance<py::list>(result)) {
           throw InvalidArgument(
               py::str("the force function returned {} (a {}); it must return (force, torque), two (n, 3) "
@@ -359,7 +370,11 @@ py::dict simulate(const Scene& scene_in, const py::dict& settings,
   });
   {
     py::gil_scoped_release free_python;  // the run touches no Python object but the callbacks, which take it
-    run.run();
+    try {
+      run.run();
+    } catch (const InterruptedInForce&) {
+      interrupted = true;  // the samples before the abandoned step are whole
+    }
   }
   py::dict out, arrays, units, frames, diag;
   Series times{std::move(t), {}};

@@ -108,7 +108,8 @@ class Trajectory:
 
 class Interrupted(KeyboardInterrupt):
     """Ctrl-C during `simulate`: a KeyboardInterrupt that keeps what was computed, as ``trajectory``
-    (the samples up to the moment of the interrupt, the state reached as the last one)."""
+    (the samples up to the moment of the interrupt, with the state reached as the last one; a Ctrl-C
+    that lands inside a Python force abandons that step, and the last sample is the one before it)."""
 
     def __init__(self, trajectory):
         super().__init__(f"interrupted at t = {trajectory.t[-1]:g} s; the samples so far are in .trajectory")

@@ -498,3 +498,25 @@ def test_a_deeply_nested_scene_in_a_small_thread_is_an_error_not_a_crash():
     finally:
         threading.stack_size(previous)
     assert result and "nested more than 32 deep" in result[0], result
+
+
+def test_ctrl_c_inside_a_python_force_keeps_the_samples_so_far():
+    # Python raises KeyboardInterrupt in whatever Python code runs when Ctrl-C arrives: during a run
+    # with a force written in Python, that is the force. It was a plain KeyboardInterrupt without the
+    # samples; it is tumble.Interrupted, whose trajectory ends at the last sample before the step.
+    scene = tumble.make_scene(bodies=[racket()], duration=10.0, timestep=1e-3, output_interval=0.1,
+                              integrator="rk4")
+    calls = [0]
+
+    def force(t, index, position, orientation, velocity, omega):
+        calls[0] += 1
+        if calls[0] == 4000:  # rk4: 4 evaluations a step, so in the step from t = 0.999 s to 1 s
+            raise KeyboardInterrupt
+        return np.zeros((len(index), 3)), np.zeros((len(index), 3))
+
+    with pytest.raises(tumble.Interrupted) as caught:
+        tumble.simulate(scene, force=force)
+    t = caught.value.trajectory
+    assert not t.complete and len(t.t) == 10 and t.t[-1] == pytest.approx(0.9)
+    free = tumble.simulate(scene)  # the same motion without the (zero) force: the samples agree
+    np.testing.assert_array_equal(t.orientation, free.orientation[:10])
