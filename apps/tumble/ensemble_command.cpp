@@ -136,6 +136,7 @@ std::filesystem::path write_trajectory(const EnsembleStudy& study, long i, const
 
 int ensemble(const EnsembleOptions& o, const Ranks& ranks) {
   const EnsembleStudy study = EnsembleStudy::load(o.scene);
+  require_same_study(ranks, study);
   const bool hdf5 = hdf5_output(o.output, o.format);
   const std::string example = std::filesystem::path(o.scene).stem().string() +
                               (hdf5 ? "_ensemble.h5" : "_ensemble.csv");

@@ -1,7 +1,12 @@
 #include "mpi_ranks.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
+#include <cstdint>
 #include <cstdlib>
+
+#include "tumble/error.hpp"
 
 #ifdef TUMBLE_HAVE_MPI
 #include <mpi.h>
@@ -68,6 +73,20 @@ void barrier(const Ranks& ranks) {
   if (ranks.mpi) MPI_Barrier(MPI_COMM_WORLD);
 }
 
+void require_same_study(const Ranks& ranks, const EnsembleStudy& study) {
+  if (!ranks.mpi) return;
+  const std::uint64_t mine[2] = {study.fingerprint(), study.columns().size() - 1};
+  std::uint64_t root[2] = {mine[0], mine[1]};
+  MPI_Bcast(root, 2, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+  if (root[0] != mine[0] || root[1] != mine[1]) {
+    throw InvalidArgument(fmt::format(
+        "rank {} read another study than rank 0 (scene fingerprint {:016x} against {:016x}, {} columns "
+        "against {}): every rank must read the same scene file, or one table would mix two studies; give "
+        "every node the same copy (a shared file system, or the same file everywhere)",
+        ranks.rank, mine[0], root[0], mine[1] + 1, root[1] + 1));
+  }
+}
+
 void abort_ranks(const Ranks& ranks, int status) {
   if (ranks.mpi) MPI_Abort(MPI_COMM_WORLD, status);
   std::exit(status);
@@ -88,6 +107,7 @@ std::vector<EnsembleRow> gather_rows(const Ranks&, const std::vector<EnsembleRow
   return all;
 }
 void barrier(const Ranks&) {}
+void require_same_study(const Ranks&, const EnsembleStudy&) {}
 void abort_ranks(const Ranks&, int status) { std::exit(status); }
 void finish_ranks(const Ranks&) {}
 const char* mpi_description() { return "no MPI in this build"; }

@@ -20,6 +20,9 @@ Ranks start_ranks();
 std::vector<EnsembleRow> gather_rows(const Ranks& ranks, const std::vector<EnsembleRow>& mine, size_t width);
 /// Every rank waits for the others.
 void barrier(const Ranks& ranks);
+/// Rank 0's study (its fingerprint and row width) sent to every rank, which throws InvalidArgument if
+/// it read another: ranks that read different copies of a scene would write one table of two studies.
+void require_same_study(const Ranks& ranks, const EnsembleStudy& study);
 /// Ends every rank at once after an error on one of them (the others would wait forever).
 [[noreturn]] void abort_ranks(const Ranks& ranks, int status);
 void finish_ranks(const Ranks& ranks);

@@ -68,6 +68,25 @@ TEST(EnsembleCli, OneThreadTwoThreadsAndTwoMpiRanksWriteTheSameTable) {
   ASSERT_EQ(mpi.status, 0) << mpi.output;
   EXPECT_TRUE(one == test::read_text(dir / "mpi.csv")) << "2 MPI ranks";
   EXPECT_TRUE(test::read_text(dir / "t1.summary.csv") == test::read_text(dir / "mpi.summary.csv"));
+
+  // Ranks that read different copies of the scene (here by mpirun's MPMD form: one scene per rank) would
+  // write one table of two studies: refused by the rank that differs, and no table is written.
+  std::string other = study(60, 2.0);
+  other.replace(other.find("sigma = 0.5"), 11, "sigma = 0.6");
+  const fs::path copy = dir.write("copy/s.toml", other);
+  const auto mixed = test::run_shell_command(
+      fmt::format("OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl=self,vader "
+                  "OMPI_MCA_btl_vader_single_copy_mechanism=none "
+                  "ASAN_OPTIONS=${{ASAN_OPTIONS:+$ASAN_OPTIONS:}}detect_leaks=0 "
+                  "mpirun --oversubscribe -np 1 {0} ensemble {1} -o {3} --threads 1 --quiet : -np 1 {0} "
+                  "ensemble {2} -o {3} "
+                  "--threads 1 --quiet 2>&1",
+                  TUMBLE_CLI, scene.string(), copy.string(), (dir / "mixed.csv").string()));
+  EXPECT_NE(mixed.status, 0) << mixed.output;
+  EXPECT_NE(mixed.output.find("tumble: error (rank 1): rank 1 read another study than rank 0"),
+            std::string::npos)
+      << mixed.output;
+  EXPECT_FALSE(fs::exists(dir / "mixed.csv"));
 }
 
 TEST(EnsembleCli, AKilledStudyResumesToTheSameTable) {
