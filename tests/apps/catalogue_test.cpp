@@ -1053,7 +1053,7 @@ const std::vector<Case>& catalogue() {
        "where a step no longer advances the clock; give a larger timestep or a shorter duration"},
       {"check: a run that run refuses without --force (days) is a warning",
        {{"s.toml",
-         "[simulation]\nduration = 1e5\ntimestep = 1e-6\n[[bodies]]\nname = \"a\"\nshape = { type = \"box\", "
+         "[simulation]\nduration = 1e6\ntimestep = 1e-6\n[[bodies]]\nname = \"a\"\nshape = { type = \"box\", "
          "size = [1, 2, 3] }\ndensity = 1000\n"}},
        "{t} check s.toml",
        0,
