@@ -41,6 +41,18 @@ final = ["orientation"]
                                                     runs);
 }
 
+/// `tumble ensemble SCENE -o OUT --threads 1 --quiet`, started and not waited for (to be killed): its
+/// pid, or -1 if it could not start.
+pid_t start_study(const fs::path& scene, const fs::path& out) {
+  std::vector<std::string> args = {TUMBLE_CLI,  "ensemble", scene.string(), "-o", out.string(),
+                                   "--threads", "1",        "--quiet"};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  return posix_spawn(&pid, TUMBLE_CLI, nullptr, nullptr, argv.data(), environ) == 0 ? pid : -1;
+}
+
 TEST(EnsembleCli, OneThreadTwoThreadsAndTwoMpiRanksWriteTheSameTable) {
   const test::TempDir dir("ensemble_ranks");
   const fs::path scene = dir.write("s.toml", study(60, 2.0));
@@ -97,13 +109,8 @@ TEST(EnsembleCli, AKilledStudyResumesToTheSameTable) {
   ASSERT_EQ(whole.status, 0) << whole.output;
 
   // The same study, killed (SIGKILL: no chance to tidy up) once some rows are kept.
-  std::vector<std::string> args = {TUMBLE_CLI,  "ensemble", scene.string(), "-o", (dir / "part.csv").string(),
-                                   "--threads", "1",        "--quiet"};
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  pid_t pid = 0;
-  ASSERT_EQ(posix_spawn(&pid, TUMBLE_CLI, nullptr, nullptr, argv.data(), environ), 0);
+  const pid_t pid = start_study(scene, dir / "part.csv");
+  ASSERT_GT(pid, 0);
   const fs::path partial = dir / "part.csv.partial-0";
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
   // Rows are flushed every half second: wait for some (a header of 24 bytes, then rows).
@@ -143,11 +150,6 @@ TEST(EnsembleCli, FiftyKillsAtRandomPointsStillGiveTheUninterruptedTable) {
       fmt::format("ensemble {} -o {} --quiet", scene.string(), (dir / "whole.csv").string()));
   ASSERT_EQ(whole.status, 0) << whole.output;
 
-  std::vector<std::string> args = {TUMBLE_CLI,  "ensemble", scene.string(), "-o", (dir / "part.csv").string(),
-                                   "--threads", "1",        "--quiet"};
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
   const fs::path partial = dir / "part.csv.partial-0";
   const auto size_of = [&] {
     std::error_code ec;
@@ -164,8 +166,8 @@ TEST(EnsembleCli, FiftyKillsAtRandomPointsStillGiveTheUninterruptedTable) {
   const auto record = static_cast<std::uintmax_t>(8 * (columns + 1));
   for (; kills < 50; ++kills) {
     const std::uintmax_t target = size_of() + growth(rng);
-    pid_t pid = 0;
-    ASSERT_EQ(posix_spawn(&pid, TUMBLE_CLI, nullptr, nullptr, argv.data(), environ), 0);
+    const pid_t pid = start_study(scene, dir / "part.csv");
+    ASSERT_GT(pid, 0);
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
     int status = 0;
     bool exited = false;
