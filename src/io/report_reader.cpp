@@ -26,6 +26,7 @@ namespace tumble {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// Everything a trajectory file holds that a report shows, before down-sampling.
 struct Samples {
@@ -205,6 +206,23 @@ void use_scene(const Scene& scene, Report& r) {
   r.scene_path = scene.path.string();
 }
 
+/// The viewer's rules for what a file says happened when, checked here so that a damaged or edited
+/// file is refused with its place (where(), built only then) rather than shown as a page that "cannot
+/// be shown": a time is finite and none comes before the one before it.
+template <class Where>
+void check_time(double t, double previous, const Where& where) {
+  if (std::isfinite(t) && t >= previous) return;
+  if (!std::isfinite(t)) {
+    throw InvalidArgument(fmt::format(
+        "{}: t = {} is not a time: the file is damaged or was edited; run the scene again", where(), t));
+  }
+  if (t < previous) {
+    throw InvalidArgument(fmt::format("{}: t = {} comes after t = {}, but times never decrease: the file is "
+                                      "damaged or was edited; run the scene again",
+                                      where(), t, previous));
+  }
+}
+
 Samples read_hdf5(const std::filesystem::path& path, Report& r, const Scene* scene) {
   const Hdf5Reader h(path);
   r.tumble_version = h.string_attribute("tumble_version").value_or("");
@@ -229,6 +247,8 @@ Samples read_hdf5(const std::filesystem::path& path, Report& r, const Scene* sce
   Samples s;
   s.t = h.doubles("t");
   const size_t T = s.t.size(), N = r.names.size();
+  for (size_t k = 0; k < T; ++k)
+    check_time(s.t[k], k > 0 ? s.t[k - 1] : -kInf, [&] { return fmt::format("{}: /t[{}]", path.string(), k); });
   const auto series = [&](const char* name, size_t width) {
     std::vector<hsize_t> shape;
     std::vector<double> v = h.doubles(name, &shape);
@@ -258,7 +278,19 @@ Samples read_hdf5(const std::filesystem::path& path, Report& r, const Scene* sce
     const auto t = h.doubles("events/t");
     const auto names = h.strings("events/event");
     const auto rows = h.doubles("events/body");
-    for (size_t i = 0; i < t.size() && i < names.size() && i < rows.size(); ++i) {
+    if (names.size() != t.size() || rows.size() != t.size()) {
+      throw InvalidArgument(fmt::format("{}: /events/t, /events/event and /events/body differ in length "
+                                        "({}, {}, {}): the file is damaged or was edited",
+                                        path.string(), t.size(), names.size(), rows.size()));
+    }
+    for (size_t i = 0; i < t.size(); ++i) {
+      const auto where = [&] { return fmt::format("{}: /events[{}]", path.string(), i); };
+      check_time(t[i], -kInf, where);
+      if (!(rows[i] >= 0.0 && rows[i] < static_cast<double>(r.names.size()) && rows[i] == std::floor(rows[i]))) {
+        throw InvalidArgument(fmt::format("{}: body {} is not one of the {} in /names: the file is damaged or "
+                                          "was edited; run the scene again",
+                                          where(), rows[i], r.names.size()));
+      }
       r.events.push_back({names[i], t[i], static_cast<long>(rows[i])});
     }
   }
@@ -417,7 +449,16 @@ Samples read_csv_run(const std::filesystem::path& path, Report& r, const Scene* 
       throw InvalidArgument(
           fmt::format("{}:{}: body '{}' where '{}' was expected", file, line + 1, cells[1], r.names[row]));
     }
-    if (row == 0) s.t.push_back(number(cells[0], file, line + 1));
+    const double t = number(cells[0], file, line + 1);
+    const auto where = [&] { return fmt::format("{}:{}", file, line + 1); };
+    if (row == 0) {
+      check_time(t, s.t.empty() ? -kInf : s.t.back(), where);
+      s.t.push_back(t);
+    } else if (t != s.t.back()) {
+      throw InvalidArgument(fmt::format("{}: t = {} within the sample at t = {}: the file is damaged or was "
+                                        "edited; run the scene again",
+                                        where(), t, s.t.back()));
+    }
     for (size_t k = 0; k < 3; ++k) s.position.push_back(number(cells[px + k], file, line + 1));
     for (size_t k = 0; k < 4; ++k) s.orientation.push_back(number(cells[qw + k], file, line + 1));
     for (size_t k = 0; k < 3; ++k) s.omega_world.push_back(number(cells[wx + k], file, line + 1));
@@ -456,10 +497,16 @@ Samples read_csv_run(const std::filesystem::path& path, Report& r, const Scene* 
       const auto cells = split(e.lines[line]);
       if (cells.size() != 3)
         throw InvalidArgument(fmt::format("{}:{}: expected t,event,body", epath.string(), line + 1));
-      long row = -1;
-      for (size_t i = 0; i < N; ++i)
-        if (r.names[i] == cells[2]) row = static_cast<long>(i);
-      r.events.push_back({std::string(cells[1]), number(cells[0], epath.string(), line + 1), row});
+      const auto where = [&] { return fmt::format("{}:{}", epath.string(), line + 1); };
+      const auto named = std::find(r.names.begin(), r.names.end(), cells[2]);
+      if (named == r.names.end()) {
+        throw InvalidArgument(fmt::format("{}: body '{}' is not in {}: the file is damaged or was edited; "
+                                          "run the scene again",
+                                          where(), cells[2], file));
+      }
+      const double t = number(cells[0], epath.string(), line + 1);
+      check_time(t, -kInf, where);
+      r.events.push_back({std::string(cells[1]), t, static_cast<long>(named - r.names.begin())});
     }
   }
   return s;

@@ -52,6 +52,12 @@ std::pair<int, std::string> run_in(const std::filesystem::path& dir, std::string
   return {status, first};
 }
 
+/// A box tumbling about its intermediate axis for 3 s, sampled every 10 ms: its ω₂ changes sign once.
+const char* const kEventScene =
+    "[simulation]\nduration = 3.0\ntimestep = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = \"box\", "
+    "size = [1, 2, 3] }\ndensity = 1000\nangular_velocity = [0.5, 5, 0.5]\n[[events]]\nname = \"flip\"\nbody = "
+    "\"a\"\ncolumn = \"w2\"\n";
+
 const std::vector<Case>& catalogue() {
   static const std::vector<Case> cases = {
       {"scene: empty file",
@@ -1127,6 +1133,23 @@ const std::vector<Case>& catalogue() {
        "tumble: error: e.h5 is the table of a tumble ensemble study (a row per run), not a trajectory: "
        "report one of its runs' trajectories, e.g. e.run-0.h5 (written for the runs that [ensemble.outputs] "
        "trajectories chooses: every = N, worst = N)"},
+      {"report: a trajectory whose times decrease (edited)",
+       {{"s.toml", kEventScene}},
+       "{t} run s.toml -o o.csv -q && sed -i '3s/^0.01,/0.2,/' o.csv && {t} report o.csv",
+       1,
+       "tumble: error: o.csv:4: t = 0.02 comes after t = 0.2, but times never decrease: the file is damaged or "
+       "was edited; run the scene again"},
+      {"report: a trajectory with a time that is not a number",
+       {{"s.toml", kEventScene}},
+       "{t} run s.toml -o o.csv -q && sed -i '3s/^0.01,/nan,/' o.csv && {t} report o.csv",
+       1,
+       "tumble: error: o.csv:3: t = nan is not a time: the file is damaged or was edited; run the scene again"},
+      {"report: an event at a body the trajectory does not have",
+       {{"s.toml", kEventScene}},
+       "{t} run s.toml -o o.csv -q && sed -i '2s/,a$/,ghost/' o.events.csv && {t} report o.csv",
+       1,
+       "tumble: error: o.events.csv:2: body 'ghost' is not in o.csv: the file is damaged or was edited; run "
+       "the scene again"},
       {"scene: through a pipe (process substitution) is read as a stream",
        {{"s.toml",
          "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = \"box\", size = [1, 2, "

@@ -304,6 +304,53 @@ TEST(Report, AForgedHdf5FileReadsNothingOutsideItselfAndClaimsNoMoreThanItHolds)
   EXPECT_EQ(read_report(dir / "t.h5").t.size(), 2001u) << "the file they were made from is read";
 }
 
+/// Overwrites element `index` of the 1-D double dataset `name` of an HDF5 file with `value`.
+void poke(const fs::path& file, const char* name, hsize_t index, double value) {
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  const hid_t set = H5Dopen2(f, name, H5P_DEFAULT);
+  const hid_t space = H5Dget_space(set);
+  const hsize_t one = 1;
+  H5Sselect_elements(space, H5S_SELECT_SET, 1, &index);
+  const hid_t memory = H5Screate_simple(1, &one, nullptr);
+  EXPECT_GE(H5Dwrite(set, H5T_NATIVE_DOUBLE, memory, space, H5P_DEFAULT, &value), 0);
+  H5Sclose(memory);
+  H5Sclose(space);
+  H5Dclose(set);
+  H5Fclose(f);
+}
+
+TEST(Report, ATamperedHdf5TrajectoryIsRefusedWithThePlace) {
+  // What the page's viewer refuses ("This report cannot be shown") is refused by `tumble report` first,
+  // naming the dataset and element: a time that is not finite or that comes before the one before it,
+  // an event at a body the file does not have. (The CSV twins are rows of the catalogue.)
+  const test::TempDir dir("report_tampered");
+  const auto run = test::run_tumble("run " + kTHandle.string() + " -o " + (dir / "t.h5").string() + " -q");
+  ASSERT_EQ(run.status, 0) << run.output;
+  ASSERT_FALSE(read_report(dir / "t.h5").events.empty()) << "the T-handle flips: its file has events";
+  const auto refused = [&](const char* file, const std::function<void(const fs::path&)>& tamper,
+                           const std::string& what) {
+    fs::copy_file(dir / "t.h5", dir / file);
+    tamper(dir / file);
+    try {
+      read_report(dir / file);
+      ADD_FAILURE() << file << " was read";
+    } catch (const InvalidArgument& e) {
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  };
+  refused("nan.h5", [](const fs::path& f) { poke(f, "t", 7, std::nan("")); },
+          "nan.h5: /t[7]: t = nan is not a time");
+  refused("back.h5", [](const fs::path& f) { poke(f, "t", 7, 1e-3); },
+          "back.h5: /t[7]: t = 0.001 comes after t = 0.06, but times never decrease");
+  refused("body.h5", [](const fs::path& f) { poke(f, "events/body", 0, 5.0); },
+          "body.h5: /events[0]: body 5 is not one of the 1 in /names");
+  refused("negative.h5", [](const fs::path& f) { poke(f, "events/body", 0, -1.0); },
+          "negative.h5: /events[0]: body -1 is not one of the 1 in /names");
+  refused("event_t.h5", [](const fs::path& f) { poke(f, "events/t", 0, std::numeric_limits<double>::infinity()); },
+          "event_t.h5: /events[0]: t = inf is not a time");
+}
+
 TEST(Report, MissingPiecesAreNamed) {
   const test::TempDir dir("report_errors");
   auto r = test::run_tumble("run " + kTHandle.string() + " -o " + (dir / "f.h5").string() +
