@@ -274,7 +274,7 @@ int execute(Job& j) {
     report->names = row_names(scene.model);
     report->geometry = *geometry;
     recorder.emplace(*report,
-                     plan_run(settings, scene.model.bodies.size(), scene.model.particles.size(), 0).samples);
+                     plan_run(settings, scene.model.bodies.size(), scene.model.particles.size()).samples);
   }
   // The writer keeps the scene's text (HDF5 stores it); the run needs it no more, so it is not copied.
   TrajectoryInfo info{std::move(scene.text), j.scene_arg, TUMBLE_VERSION, settings, j.fields,

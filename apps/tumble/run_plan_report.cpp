@@ -36,11 +36,9 @@ std::string amount(double n) { return n < 1e15 ? fmt::format("{:.0f}", n) : fmt:
 }  // namespace
 
 RunPlan plan_of(const Scene& scene, const RunSettings& settings, const std::vector<std::string>& fields) {
-  std::size_t columns = 0;
-  for (const BodyField* f : body_fields(fields.empty() ? scene.output_fields : fields)) {
-    columns += static_cast<std::size_t>(f->width);
-  }
-  return plan_run(settings, scene.model.bodies.size(), scene.model.particles.size(), columns);
+  std::vector<int> widths;
+  for (const BodyField* f : body_fields(fields.empty() ? scene.output_fields : fields)) widths.push_back(f->width);
+  return plan_run(settings, scene.model.bodies.size(), scene.model.particles.size(), widths);
 }
 
 std::optional<double> estimate_seconds(const Scene& scene, const RunSettings& settings, const RunPlan& plan) {

@@ -295,7 +295,7 @@ py::dict simulate(const Scene& scene_in, const py::dict& settings,
   // Room for every planned sample at once: growing by doubling would hold up to twice the final size.
   // Up to 1 GiB per array reserved (address space, touched only as samples arrive); beyond, or for an
   // adaptive run's extra samples, the vectors grow.
-  const double planned = plan_run(s, model.bodies.size(), model.particles.size(), 0).samples;
+  const double planned = plan_run(s, model.bodies.size(), model.particles.size()).samples;
   const auto reserve = [planned](std::vector<double>& v, double per_sample) {
     v.reserve(static_cast<size_t>(std::min(planned * per_sample, 0x1p27)));
   };

@@ -28,6 +28,7 @@
 #include "tumble/error.hpp"
 #include "tumble/integrate/integrator.hpp"
 #include "tumble/io/trajectory_writer.hpp"
+#include "tumble/sim/run_plan.hpp"
 
 namespace tumble {
 namespace {
@@ -43,12 +44,13 @@ using io::untimed;
 /// A dataset of shape (n, row...) growing along n, with rows buffered and appended in blocks.
 class Series {
  public:
-  Series(hid_t loc, const char* name, std::vector<hsize_t> row_shape, const Checker& check)
+  /// A run planned to write `planned_samples` (run_plan.hpp) sizes its chunks by them.
+  Series(hid_t loc, const char* name, std::vector<hsize_t> row_shape, double planned_samples,
+         const Checker& check)
       : name_(name), writing_("write " + name_), row_shape_(std::move(row_shape)), check_(check) {
     row_size_ = 1;
     for (hsize_t d : row_shape_) row_size_ *= d;
-    // Chunks of ~64 Ki values (512 KiB): large enough to write fast, small enough for the chunk cache.
-    block_ = std::max<hsize_t>(1, 65536 / row_size_);
+    block_ = hdf5_chunk_samples(row_size_, planned_samples);
     std::vector<hsize_t> dims{0}, max{H5S_UNLIMITED}, chunk{block_};
     for (hsize_t d : row_shape_) {
       dims.push_back(d);
@@ -119,6 +121,7 @@ class Hdf5Writer final : public TrajectoryWriter {
         check_{path.string(), &driver_},
         names_(row_names(model)),
         fields_(body_fields(info.fields)),
+        planned_samples_(plan_run(info.settings, model.bodies.size(), model.particles.size()).samples),
         watch_events_(info.events) {
     // Errors are reported by return codes, turned into one FileError line; HDF5's own stack print
     // to stderr would only add noise.
@@ -145,13 +148,13 @@ class Hdf5Writer final : public TrajectoryWriter {
     number_attribute(root, "output_interval", info.settings.output_interval, H5T_NATIVE_DOUBLE, check_);
     write_names();
     const hsize_t N = names_.size();
-    t_.emplace(root, "t", std::vector<hsize_t>{}, check_);
+    t_.emplace(root, "t", std::vector<hsize_t>{}, planned_samples_, check_);
     string_attribute(t_->id(), "unit", "s", check_);
     field_series_.reserve(fields_.size());
     for (const BodyField* f : fields_) {
       const hsize_t width = static_cast<hsize_t>(f->width);
       Series& series = field_series_.emplace_back(root, std::string(f->name).c_str(),
-                                                  std::vector<hsize_t>{N, width}, check_);
+                                                  std::vector<hsize_t>{N, width}, planned_samples_, check_);
       describe(series.id(), *f);
     }
     if (info.geometry) write_geometry(*info.geometry);
@@ -324,7 +327,7 @@ class Hdf5Writer final : public TrajectoryWriter {
       if (!f.of_sample(d, values)) continue;
       const std::vector<hsize_t> shape = f.width == 1 ? std::vector<hsize_t>{}
                                                       : std::vector<hsize_t>{static_cast<hsize_t>(f.width)};
-      series.emplace(diagnostics_.get(), std::string(f.name).c_str(), shape, check_);
+      series.emplace(diagnostics_.get(), std::string(f.name).c_str(), shape, planned_samples_, check_);
       describe(series->id(), f);
     }
   }
@@ -352,6 +355,7 @@ class Hdf5Writer final : public TrajectoryWriter {
   Handle file_;
   Handle diagnostics_;
   std::vector<const BodyField*> fields_;
+  double planned_samples_;  // what the run's settings will write: sizes the chunks
   std::optional<Series> t_;
   std::vector<Series> field_series_;
   std::vector<std::optional<Series>> diagnostic_series_;  ///< one per SystemField, empty if undefined

@@ -9,7 +9,14 @@
 
 namespace tumble {
 
-RunPlan plan_run(const RunSettings& s, std::size_t bodies, std::size_t particles, std::size_t columns) {
+std::size_t hdf5_chunk_samples(std::size_t values, double samples) {
+  const std::size_t block = std::max<std::size_t>(1, 65536 / std::max<std::size_t>(1, values));
+  const double wanted = samples > 65536.0 ? 65536.0 : samples > 256.0 ? samples : 256.0;  // NaN: 256
+  return std::min(block, static_cast<std::size_t>(wanted));
+}
+
+RunPlan plan_run(const RunSettings& s, std::size_t bodies, std::size_t particles,
+                 std::span<const int> field_widths) {
   RunPlan p;
   // As simulate() steps: from each sample, steps of h, the last one shortened to land on the next
   // sample time (a remainder within 1e-9 h of it is the rounding of the grid, not a step).
@@ -28,9 +35,21 @@ RunPlan plan_run(const RunSettings& s, std::size_t bodies, std::size_t particles
   constexpr double kCsvValue = 25, kCsvLead = 30;
   double diagnostics = 1;  // t, then the energies, momenta and drifts
   for (const SystemField& f : system_fields()) diagnostics += f.width;
-  const auto values = static_cast<double>(columns);
-  p.csv_bytes = p.rows * (kCsvLead + kCsvValue * values) + p.samples * kCsvValue * diagnostics;
-  p.hdf5_bytes = p.rows * 8 * values + p.samples * 8 * diagnostics;
+  double columns = 0;
+  for (const int w : field_widths) columns += w;
+  p.csv_bytes = p.rows * (kCsvLead + kCsvValue * columns) + p.samples * kCsvValue * diagnostics;
+  // HDF5: each dataset in whole chunks of 8-byte values, and a record of its own (object header,
+  // attributes, chunk index: about 2 kB a dataset), plus the file's own (superblock, groups, names:
+  // 4 kB) and the records of the geometry group's ten datasets (their values, the display meshes,
+  // come on top). Measured against written files in run_cli_test (CheckPlansTheHdf5File...).
+  constexpr double kDatasetRecord = 2048, kFileRecord = 4096 + 10 * kDatasetRecord;
+  const auto dataset = [&](double values) {
+    const auto chunk = static_cast<double>(hdf5_chunk_samples(static_cast<std::size_t>(values), p.samples));
+    return std::ceil(p.samples / chunk) * chunk * values * 8 + kDatasetRecord;
+  };
+  p.hdf5_bytes = kFileRecord + dataset(1);  // t
+  for (const int w : field_widths) p.hdf5_bytes += dataset(rows_per_sample * w);
+  for (const SystemField& f : system_fields()) p.hdf5_bytes += dataset(f.width);
   return p;
 }
 

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <sstream>
 #include <thread>
 
@@ -198,6 +199,36 @@ TEST(RunCli, ExactSamplesAreAnalyticAndATorqueIsRefusedByCheckAndRun) {
     EXPECT_NE(bad.output.find("'splitting'"), std::string::npos) << bad.output;
   }
   EXPECT_FALSE(std::filesystem::exists(dir / "damped.csv"));
+}
+
+TEST(RunCli, CheckPlansTheHdf5FileItsRunWrites) {
+  // `tumble check` said "about 1.25 kB (HDF5)" for a run of 6 samples whose file was 6.3 MB: every
+  // dataset was stored in chunks of up to 65 536 samples whatever the run's length. Chunks are now sized
+  // from the plan, and the estimate counts whole chunks and the datasets' records, so it is the file's
+  // size to within the geometry's values (a box: 8 vertices) and the diagnostics a run does not define.
+  const test::TempDir dir("run_hdf5_plan");
+  for (const auto& [duration, samples] : {std::pair{"0.05", 6}, std::pair{"20", 2001}}) {
+    SCOPED_TRACE(duration);
+    const auto scene = dir.write("s.toml", std::string("[simulation]\nduration = ") + duration +
+                                               "\ntimestep = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = "
+                                               "\"box\", size = [1, 2, 3] }\ndensity = 1000\nangular_velocity "
+                                               "= [0.5, 5, 0.5]\n");
+    const auto check = run_tumble("check " + scene.string());
+    ASSERT_EQ(check.status, 0) << check.output;
+    ASSERT_NE(check.output.find(std::to_string(samples) + " samples"), std::string::npos) << check.output;
+    const size_t at = check.output.find(" (HDF5)");
+    ASSERT_NE(at, std::string::npos) << check.output;
+    const size_t from = check.output.rfind("about ", at) + 6;
+    std::istringstream estimate_text(check.output.substr(from, at - from));
+    double estimate = 0;
+    std::string unit;
+    estimate_text >> estimate >> unit;
+    estimate *= unit == "kB" ? 1e3 : unit == "MB" ? 1e6 : unit == "B" ? 1 : std::nan("");
+    const auto run = run_tumble("run " + scene.string() + " -o " + (dir / "o.h5").string() + " -q");
+    ASSERT_EQ(run.status, 0) << run.output;
+    const auto bytes = static_cast<double>(std::filesystem::file_size(dir / "o.h5"));
+    EXPECT_NEAR(bytes / estimate, 1.0, 0.15) << bytes << " bytes, planned " << estimate;
+  }
 }
 
 TEST(RunCli, DriftWarningOnceWithAdvice) {

@@ -20,6 +20,9 @@ std::pair<double, double> samples_and_steps(const Model& model, const SystemStat
   return {n, static_cast<double>(stats.steps)};
 }
 
+/// The default output fields' widths: position, orientation, velocity, angular velocity (13 columns).
+constexpr int kWidths[] = {3, 4, 3, 3};
+
 TEST(RunPlan, CountsAreTheRunsOwn) {
   Model model;
   model.add_body(RigidBody::from_principal_moments(2.0, Vec3(1, 2, 3)));
@@ -32,7 +35,7 @@ TEST(RunPlan, CountsAreTheRunsOwn) {
     for (const double interval : {0.0, 0.01, 0.0015, 0.0004, 0.3, 2.0}) {
       s.duration = duration;
       s.output_interval = interval;
-      const RunPlan p = plan_run(s, 1, 0, 13);
+      const RunPlan p = plan_run(s, 1, 0, kWidths);
       SCOPED_TRACE(testing::Message() << "T = " << duration << ", interval " << interval);
       const auto [samples, steps] = samples_and_steps(model, initial, s);
       EXPECT_EQ(p.samples, samples);
@@ -42,13 +45,13 @@ TEST(RunPlan, CountsAreTheRunsOwn) {
   }
   s.duration = 1.0;
   s.output_interval = 0.0015;  // 666 intervals of 2 steps (h, then 0.5 h), and a last step of h
-  EXPECT_EQ(plan_run(s, 1, 0, 13).steps, 666.0 * 2 + 1);
+  EXPECT_EQ(plan_run(s, 1, 0, kWidths).steps, 666.0 * 2 + 1);
   s.integrator = "dopri45";
-  EXPECT_FALSE(plan_run(s, 1, 0, 13).steps.has_value());
+  EXPECT_FALSE(plan_run(s, 1, 0, kWidths).steps.has_value());
   // Bytes: 8 a value in HDF5, for each of 3 rows (2 bodies and a particle) and 13 columns, plus the
   // diagnostics; CSV is bounded by 25 characters a value and 30 for t and the name.
   s.output_interval = 0.5;  // samples at 0, 0.5, 1
-  const RunPlan p = plan_run(s, 2, 1, 13);
+  const RunPlan p = plan_run(s, 2, 1, kWidths);
   EXPECT_EQ(p.rows, 9.0);
   EXPECT_GT(p.hdf5_bytes, 9.0 * 13 * 8);
   EXPECT_GT(p.csv_bytes, 9.0 * (30 + 13 * 25));
