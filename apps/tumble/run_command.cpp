@@ -59,6 +59,7 @@ struct ResumeOptions {
   std::optional<int> threads;
   bool quiet = false;
   bool progress = false;
+  bool writer_gone = false;  // the writer ran on another host and is gone (recover_outputs)
 };
 
 /// Everything a run needs after its options are checked: from the command line (`run`) or from a
@@ -210,6 +211,7 @@ class CheckpointObserver final : public RunObserver {
     c.largest_angular_momentum_drift = extremes_at_point_.angular_momentum;
     c.drift_warning = warning_at_point_.value_or("");
     c.point = p;
+    stamp_output(c);  // the rows it counts: synced to the file before the observer saves
     write_checkpoint(file_, c);
   }
 
@@ -256,7 +258,7 @@ int execute(Job& j) {
                            : std::filesystem::absolute(diagnostics).lexically_normal().string();
     base.fields = j.fields;
     base.strict = j.strict;
-    base.writer_pid = static_cast<long>(::getpid());
+    set_writer(base);
   }
   auto geometry = std::make_shared<const SceneGeometry>(scene_geometry(scene));
   // A report (--report) keeps every stride-th sample as the run goes, and the run's facts.
@@ -606,7 +608,8 @@ int resume(const ResumeOptions& o) {
                      run_facts_path(c.output), "start a new run"});
   refuse_inputs_as_outputs(outputs, j.scene);
   print_scene_warnings(j.scene);
-  recover_outputs(c);  // a killed run's files, still under their temporary names
+  // A killed run's files, still under their temporary names; the trajectory must be the checkpoint's.
+  recover_outputs(c, o.checkpoint, o.writer_gone);
   j.resumed = std::move(c);
   return execute(j);
 }
@@ -632,6 +635,9 @@ Runner add_resume_command(CLI::App& app) {
   cmd->add_option("--checkpoint-every", o->checkpoint_every,
                   "seconds of wall-clock time between checkpoints (default 60; 0 = at every sample)");
   cmd->add_option("--threads", o->threads, "threads (results are bit-identical for any count)");
+  cmd->add_flag("--writer-gone", o->writer_gone,
+                "the run that wrote the checkpoint ran on another host and no longer runs: take over the "
+                "files it left under temporary names (tumble cannot ask another host)");
   auto* quiet = cmd->add_flag("--quiet,-q", o->quiet, "no progress bar and no summary");
   cmd->add_flag("--progress", o->progress, "show the progress bar even when stderr is not a terminal")
       ->excludes(quiet);

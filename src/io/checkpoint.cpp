@@ -22,7 +22,9 @@ namespace tumble {
 namespace {
 
 constexpr char kMagic[8] = {'T', 'U', 'M', 'B', 'L', 'E', 'C', 'K'};
-constexpr std::uint32_t kVersion = 2;  // 2: the run settings by the settings table, key by key
+// 2: the run settings by the settings table, key by key; 3: the writer's host and boot, the output's
+// stamp. Version 2 is read too.
+constexpr std::uint32_t kVersion = 3;
 constexpr std::uint32_t kByteOrder = 0x01020304;
 
 class Out {
@@ -191,24 +193,145 @@ void check_inputs_unchanged(const std::vector<FileStamp>& inputs) {
   }
 }
 
-void recover_outputs(const Checkpoint& c) {
+namespace {
+
+/// The first line of a small system file, empty if it cannot be read.
+std::string first_line_of(const char* path) {
+  std::string line;
+  if (std::FILE* f = std::fopen(path, "re")) {
+    char buffer[256];
+    if (std::fgets(buffer, sizeof buffer, f)) line = buffer;
+    std::fclose(f);
+  }
+  while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
+  return line;
+}
+
+std::string host_name() {
+  char name[256] = {};
+  return ::gethostname(name, sizeof name - 1) == 0 ? std::string(name) : std::string();
+}
+
+/// Whether process `pid` of this machine is running and is a tumble (its command name).
+bool tumble_is_running(long pid) {
+  if (pid == static_cast<long>(::getpid()) || ::kill(static_cast<pid_t>(pid), 0) != 0) return false;
+  const std::string name = first_line_of(fmt::format("/proc/{}/comm", pid).c_str());
+  return name.empty() || name.rfind("tumble", 0) == 0;  // unknown: assume it is
+}
+
+/// The FNV-1a 64 of bytes [size − kOutputTailBytes, size) of `path` (from 0 if shorter).
+std::uint64_t tail_hash(const std::filesystem::path& path, std::uint64_t size) {
+  const std::uint64_t from = size > kOutputTailBytes ? size - kOutputTailBytes : 0;
+  std::string tail(size - from, '\0');
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  bool ok = fd >= 0;
+  for (size_t done = 0; ok && done < tail.size();) {
+    const ssize_t n = ::pread(fd, tail.data() + done, tail.size() - done, static_cast<off_t>(from + done));
+    if (n < 0 && errno == EINTR) continue;
+    ok = n > 0;
+    done += ok ? static_cast<size_t>(n) : 0;
+  }
+  if (fd >= 0) ::close(fd);
+  if (!ok) throw FileError(fmt::format("cannot read {}: {}", path.string(), std::strerror(errno != 0 ? errno : EIO)));
+  return fnv1a64(tail);
+}
+
+}  // namespace
+
+void set_writer(Checkpoint& c) {
+  c.writer_pid = static_cast<long>(::getpid());
+  c.writer_host = host_name();
+  c.writer_boot_id = first_line_of("/proc/sys/kernel/random/boot_id");
+}
+
+void stamp_output(Checkpoint& c) {
+  const std::filesystem::path temporary = io::temporary_path(c.output, c.writer_pid);
+  std::error_code ec;
+  const std::filesystem::path now =
+      std::filesystem::is_regular_file(temporary, ec) ? temporary : io::output_target(c.output);
+  const std::uint64_t size = std::filesystem::file_size(now, ec);
+  if (ec) throw FileError(fmt::format("cannot stamp {} for the checkpoint: {}", now.string(), ec.message()));
+  c.output_bytes = size;
+  c.output_tail_hash = tail_hash(now, size);
+}
+
+namespace {
+
+/// Throws unless the trajectory `file` is the one `c` stamped: exactly (`grown` false: the checkpoint's
+/// run committed it when it was interrupted, or an earlier resume cut it back), or followed by the rows
+/// a killed run wrote after the checkpoint (`grown` true: its temporary).
+void check_stamp(const Checkpoint& c, const std::filesystem::path& file, bool grown) {
+  std::error_code ec;
+  const std::uint64_t size = std::filesystem::file_size(file, ec);
+  if (!ec && (grown ? size >= c.output_bytes : size == c.output_bytes) &&
+      tail_hash(file, c.output_bytes) == c.output_tail_hash) {
+    return;
+  }
+  const std::string why = ec                      ? "it is gone"
+                          : size != c.output_bytes && !(grown && size > c.output_bytes)
+                              ? fmt::format("{} bytes, where the checkpoint's run had written {}", size,
+                                            c.output_bytes)
+                              : "its rows up to the checkpoint differ";
+  throw InvalidArgument(fmt::format(
+      "{} is not the trajectory of this checkpoint's run ({}): another run has written it since, and "
+      "resuming would cut it back to the checkpoint's {} samples; the checkpoint is stale: keep the file "
+      "and start a new run with tumble run",
+      file.string(), why, c.point.samples));
+}
+
+}  // namespace
+
+void recover_outputs(const Checkpoint& c, const std::filesystem::path& checkpoint, bool writer_gone) {
+  if (c.output.empty()) return;
+  const bool this_machine = c.writer_host.empty() || c.writer_host == host_name();
+  const bool this_boot =
+      c.writer_boot_id.empty() || c.writer_boot_id == first_line_of("/proc/sys/kernel/random/boot_id");
+  // Everything is checked before anything moves.
+  std::vector<std::pair<std::filesystem::path, std::filesystem::path>> moves;  // temporary → final
   for (const std::string& out : {c.output, c.diagnostics, events_path(c.output).string()}) {
-    if (out.empty() || c.output.empty()) continue;
+    if (out.empty()) continue;
     const std::filesystem::path temporary = io::temporary_path(out, c.writer_pid);
     std::error_code ec;
     if (!std::filesystem::is_regular_file(std::filesystem::symlink_status(temporary, ec))) continue;
-    if (c.writer_pid != static_cast<long>(::getpid()) && ::kill(static_cast<pid_t>(c.writer_pid), 0) == 0) {
+    if (!this_machine && !writer_gone) {
+      throw InvalidArgument(fmt::format(
+          "the run that wrote this checkpoint ran on host {} (process {}), and its {} is still there: if that "
+          "run no longer runs, give --writer-gone to take its files over; if it does, stop it there first "
+          "(Ctrl-C writes a last checkpoint)",
+          c.writer_host, c.writer_pid, temporary.string()));
+    }
+    if (this_machine && this_boot && tumble_is_running(c.writer_pid)) {
       throw InvalidArgument(fmt::format(
           "the run that wrote this checkpoint (process {}) is still writing {}: stop it (Ctrl-C writes a "
           "last checkpoint) before resuming",
           c.writer_pid, temporary.string()));
     }
-    std::filesystem::rename(temporary, io::output_target(out), ec);
-    if (ec) {
-      throw FileError(
-          fmt::format("cannot move the killed run's {} to {}: {}", temporary.string(), out, ec.message()));
+    moves.emplace_back(temporary, io::output_target(out));
+  }
+  const bool killed = !moves.empty() && moves.front().second == io::output_target(c.output);
+  if (c.output_bytes != 0) {  // stamped (format version 3)
+    check_stamp(c, killed ? moves.front().first : std::filesystem::path(c.output), killed);
+    // A killed run's files replace the final ones; those must not be another run's, written since.
+    std::error_code ec;
+    const auto final_time = std::filesystem::last_write_time(io::output_target(c.output), ec);
+    if (killed && !ec && final_time > std::filesystem::last_write_time(checkpoint)) {
+      throw InvalidArgument(fmt::format(
+          "{} was written after the checkpoint {}, by another run: resuming would replace it with the "
+          "checkpoint's run; keep it and start a new run with tumble run, or move it away and resume",
+          c.output, checkpoint.string()));
     }
   }
+  for (const auto& [temporary, target] : moves) {
+    std::error_code ec;
+    std::filesystem::rename(temporary, target, ec);
+    if (ec) {
+      throw FileError(fmt::format("cannot move the killed run's {} to {}: {}", temporary.string(),
+                                  target.string(), ec.message()));
+    }
+  }
+  // The rows after the checkpoint are the resume's to write again: cut now, so the trajectory is the
+  // stamped one exactly, whatever becomes of this resume.
+  if (killed && c.output_bytes != 0) std::filesystem::resize_file(io::output_target(c.output), c.output_bytes);
 }
 
 namespace {
@@ -281,9 +404,13 @@ void write_checkpoint(const std::filesystem::path& path, const Checkpoint& c) {
   for (const std::string& f : c.fields) o.str(f);
   o.u64(c.strict ? 1 : 0);
   o.i64(c.writer_pid);
+  o.str(c.writer_host);
+  o.str(c.writer_boot_id);
   o.opt(c.largest_energy_drift);
   o.opt(c.largest_angular_momentum_drift);
   o.str(c.drift_warning);
+  o.u64(c.output_bytes);
+  o.u64(c.output_tail_hash);
   put_point(o, c.point);
   o.u64(fnv1a64(o.bytes));
 
@@ -333,11 +460,12 @@ Checkpoint read_checkpoint(const std::filesystem::path& path) {
     throw InvalidArgument(fmt::format(
         "checkpoint {} was written on a machine of the other byte order; resume it on such a machine", name));
   }
-  if (head[0] != kVersion) {
+  const std::uint32_t version = head[0];
+  if (version != 2 && version != kVersion) {
     throw InvalidArgument(fmt::format(
-        "checkpoint {} has format version {}; this tumble reads version {}: resume it with the tumble that "
-        "wrote it",
-        name, head[0], kVersion));
+        "checkpoint {} has format version {}; this tumble reads versions 2 and {}: resume it with the tumble "
+        "that wrote it",
+        name, version, kVersion));
   }
   std::uint64_t stored;
   std::memcpy(&stored, bytes.data() + bytes.size() - 8, 8);
@@ -386,9 +514,17 @@ Checkpoint read_checkpoint(const std::filesystem::path& path) {
   for (std::string& f : c.fields) f = in.str();
   c.strict = in.flag();
   c.writer_pid = in.i64(1, kMaxLong);
+  if (version >= 3) {
+    c.writer_host = in.str();
+    c.writer_boot_id = in.str();
+  }
   c.largest_energy_drift = in.opt();
   c.largest_angular_momentum_drift = in.opt();
   c.drift_warning = in.str();
+  if (version >= 3) {
+    c.output_bytes = in.u64();
+    c.output_tail_hash = in.u64();
+  }
   c.point = get_point(in);
   if (!in.at_end()) in.corrupt();
   return c;

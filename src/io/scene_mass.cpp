@@ -260,6 +260,8 @@ MassProperties solid(const TableReader& t, const Material& mat, const Pose& pose
     std::shared_ptr<const CachedMesh> cached;
     try {
       cached = load_mesh_cached(path, MeshLoadOptions{.scale = scale});
+      // A glTF's buffers are inputs as much as the mesh: stamped for resume, never overwritten.
+      for (const auto& f : cached->loaded().companions) scene.input_files.push_back(f);
       for (const auto& w : cached->loaded().warnings)
         scene.warnings.push_back(location(t.file(), t.where("mesh")) + ": " + w);
     } catch (const Error& e) {

@@ -5,7 +5,8 @@
 //   status 0: u32 parts, then per part (an assimp mesh with triangles, in file order):
 //             u32 name length, name, u32 vertices, 3 float32 per vertex (as assimp holds them),
 //             u32 triangles, 3 u32 per triangle (indices into the part's vertices)
-//           then u32 kEnd.
+//           then u32 files, per file the path of another file the loader opened (u32 length, the
+//           path; a glTF's buffers), then u32 kEnd.
 // The parent trusts nothing in it: a count is used only after the bytes it needs are known to be
 // there, indices are checked against their part, coordinates for being finite after scaling.
 #include "mesh_assimp.hpp"
@@ -114,6 +115,19 @@ struct Writer {
                               scale == 1.0 ? "" : fmt::format(" after scaling by {}", scale)));
 }
 
+/// Whether `resolved` (symbolic links and ".." resolved) is `directory` or below it.
+bool inside(const std::filesystem::path& directory, const std::filesystem::path& resolved) {
+  const auto [d, r] = std::mismatch(directory.begin(), directory.end(), resolved.begin(), resolved.end());
+  return d == directory.end();
+}
+
+/// Whether `file`, as the child resolved it, is below the directory of `mesh` (resolved the same way).
+bool inside_directory_of(const std::filesystem::path& mesh, const std::filesystem::path& file) {
+  std::error_code ec;
+  const auto directory = std::filesystem::weakly_canonical(std::filesystem::absolute(mesh).parent_path(), ec);
+  return !ec && file.is_absolute() && file == file.lexically_normal() && inside(directory, file);
+}
+
 /// The files a mesh may make assimp open besides itself: those in its own directory or below it. A
 /// received glTF whose buffer is "../secret.txt" or the absolute path of a private key would otherwise
 /// have that file read as vertices, and the vertices end up in reports and run files made to be shared
@@ -133,7 +147,13 @@ class ConfinedIOSystem final : public Assimp::DefaultIOSystem {
   Assimp::IOStream* Open(const char* file, const char* mode) override {
     if (std::string_view(mode).find_first_of("wa+") != std::string_view::npos) return nullptr;
     const std::string p = resolve(file);
-    return p.empty() ? nullptr : DefaultIOSystem::Open(p.c_str(), mode);
+    if (p.empty()) return nullptr;
+    Assimp::IOStream* stream = DefaultIOSystem::Open(p.c_str(), mode);
+    if (stream != nullptr && std::filesystem::path(file) != mesh_ &&
+        std::find(opened_.begin(), opened_.end(), p) == opened_.end()) {
+      opened_.push_back(p);
+    }
+    return stream;
   }
   bool CreateDirectory(const std::string&) override { return false; }
   bool ChangeDirectory(const std::string&) override { return false; }
@@ -141,6 +161,8 @@ class ConfinedIOSystem final : public Assimp::DefaultIOSystem {
 
   /// The first name refused, empty if none.
   const std::string& refused() const { return refused_; }
+  /// The files opened other than the mesh itself, resolved, each once, in the order first opened.
+  const std::vector<std::string>& opened() const { return opened_; }
   const std::filesystem::path& directory() const { return directory_; }
 
  private:
@@ -152,8 +174,7 @@ class ConfinedIOSystem final : public Assimp::DefaultIOSystem {
     if (p.is_relative()) p = directory_ / p;
     std::error_code ec;
     const std::filesystem::path resolved = std::filesystem::weakly_canonical(p, ec);
-    const auto [d, r] = std::mismatch(directory_.begin(), directory_.end(), resolved.begin(), resolved.end());
-    if (!ec && d == directory_.end()) return resolved.string();  // opened as checked
+    if (!ec && inside(directory_, resolved)) return resolved.string();  // opened as checked
     if (refused_.empty()) refused_ = file;
     return {};
   }
@@ -161,6 +182,7 @@ class ConfinedIOSystem final : public Assimp::DefaultIOSystem {
   std::filesystem::path mesh_;       // absolute, as given
   std::filesystem::path directory_;  // the mesh's, symbolic links and ".." resolved
   mutable std::string refused_;
+  std::vector<std::string> opened_;
 };
 
 /// The child's work: parse, check, send.
@@ -237,6 +259,8 @@ void parse_and_send(int fd, const std::filesystem::path& path, double scale, std
       out.u32(static_cast<std::uint32_t>(part.triangles.size()));
       out.bytes(part.triangles.data(), std::size_t{12} * part.triangles.size());
     }
+    out.u32(static_cast<std::uint32_t>(files->opened().size()));
+    for (const std::string& f : files->opened()) out.text(f);
     out.u32(kEnd);
   } catch (const Error& e) {
     out.u8(1);
@@ -338,6 +362,14 @@ RawMesh parse_answer(const std::filesystem::path& path, std::string_view answer,
       raw.part_names.emplace_back(name);
     }
     if (parts == 0) throw Reader::Inconsistent("no parts");
+    // The other files it read: stamped by a run, so each must be one the child was allowed to open.
+    const std::uint32_t files = in.u32("the file count");
+    for (std::uint32_t f = 0; f < files; ++f) {
+      const std::filesystem::path file(in.take(in.u32("a file name's length"), "a file name"));
+      if (!inside_directory_of(path, file))
+        throw Reader::Inconsistent(fmt::format("file {} is outside the mesh's directory", f));
+      raw.companions.push_back(file);
+    }
     if (in.u32("the end mark") != kEnd) throw Reader::Inconsistent("the end mark is wrong");
     if (in.left() != 0) throw Reader::Inconsistent(fmt::format("{} bytes after the end mark", in.left()));
   } catch (const Reader::Inconsistent& e) {

@@ -116,6 +116,7 @@ LoadedMesh finish(const std::filesystem::path& path, RawMesh raw, const MeshLoad
   out.format = std::move(format);
   out.precision = std::move(precision);
   out.warnings = std::move(raw.warnings);
+  out.companions = std::move(raw.companions);
   note_parts(path, raw.part_names, raw.part_word, options.part, out);
 
   // The triangles of the chosen part(s), with only the vertices they use, in the file's order.

@@ -29,6 +29,7 @@ struct RawMesh {
   std::string part_word = "part";       ///< what the format calls a part: "object", "group", "solid"
   std::size_t ignored_elements = 0;     ///< lines and points (OBJ l/p) that carry no surface
   std::vector<std::string> warnings;
+  std::vector<std::filesystem::path> companions;  ///< other files the loader read (a glTF's buffers)
 };
 
 /// A file's text and where a byte offset is in it, for messages. A UTF-8 byte-order mark is dropped.

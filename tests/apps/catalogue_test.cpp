@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <string>
@@ -57,6 +58,29 @@ const char* const kEventScene =
     "[simulation]\nduration = 3.0\ntimestep = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = \"box\", "
     "size = [1, 2, 3] }\ndensity = 1000\nangular_velocity = [0.5, 5, 0.5]\n[[events]]\nname = \"flip\"\nbody = "
     "\"a\"\ncolumn = \"w2\"\n";
+
+/// The unit cube as a glTF buffer: its 8 corners as float32, then 12 outward triangles as uint16.
+std::string cube_gltf_bin() {
+  std::string bytes;
+  const auto put = [&](const void* p, size_t n) { bytes.append(static_cast<const char*>(p), n); };
+  for (int i = 0; i < 8; ++i) {
+    const float corner[3] = {static_cast<float>(i & 1), static_cast<float>((i >> 1) & 1),
+                             static_cast<float>((i >> 2) & 1)};
+    put(corner, sizeof corner);
+  }
+  const std::uint16_t triangles[12][3] = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                                          {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  put(triangles, sizeof triangles);
+  return bytes;
+}
+
+/// A glTF document of that cube, its buffer in model/cube.bin.
+const char* const kCubeGltf =
+    R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+    R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],)"
+    R"("buffers":[{"byteLength":168,"uri":"cube.bin"}],"bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":96},)"
+    R"({"buffer":0,"byteOffset":96,"byteLength":72}],"accessors":[{"bufferView":0,"componentType":5126,"count":8,)"
+    R"("type":"VEC3","min":[0,0,0],"max":[1,1,1]},{"bufferView":1,"componentType":5123,"count":36,"type":"SCALAR"}]})";
 
 const std::vector<Case>& catalogue() {
   static const std::vector<Case> cases = {
@@ -607,6 +631,13 @@ const std::vector<Case>& catalogue() {
        "{t} inertia model/up.gltf --density 1",
        1,
        "tumble: error: model/up.gltf: the mesh refers to the file …"},
+      {"run: -o naming a glTF's buffer file (an input as much as the mesh) is refused",
+       {{"model/cube.gltf", kCubeGltf},
+        {"model/cube.bin", cube_gltf_bin()},
+        {"s.toml", "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"c\"\nmesh = \"model/cube.gltf\"\ndensity = 1000\n"}},
+       "{t} run s.toml -o model/cube.bin",
+       1,
+       "tumble: error: -o model/cube.bin is the file …"},
       {"mesh: empty OBJ",
        {{"m.obj", std::string()}},
        "{t} inertia m.obj --density 1",

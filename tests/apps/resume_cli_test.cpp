@@ -189,6 +189,83 @@ TEST(ResumeCli, ARunOfThousandsOfBodiesWrittenOnASecondThreadResumesToTheSameFil
               test::read_text(whole / "out.diagnostics.csv"));
 }
 
+TEST(ResumeCli, AStaleCheckpointIsRefusedAndAWriterIsAskedOnlyWhereItRan) {
+  Dir whole("resume_stale_whole");
+  const fs::path whole_scene = whole.dir.write("s.toml", scene_text("rk4"));
+  ASSERT_EQ(test::run_tumble("run " + whole_scene.string() + " -o " + (whole.dir / "out.csv").string() + " -q")
+                .status,
+            0);
+  const std::string complete = test::read_text(whole.dir / "out.csv");
+  Dir d("resume_stale");
+  stopped_run(d, "rk4", SIGTERM, 300);
+  const fs::path ckpt = d.dir / "run.ckpt", out = d.dir / "out.csv";
+  const Checkpoint c = read_checkpoint(ckpt);
+  const std::string stopped = test::read_text(out);
+  ASSERT_EQ(c.output_bytes, stopped.size()) << "the interrupted run stamped its committed trajectory";
+  const auto written = fs::last_write_time(ckpt);
+  const auto resume = [&](const Checkpoint& k, const std::string& name, const std::string& options = "") {
+    write_checkpoint(d.dir / name, k);
+    fs::last_write_time(d.dir / name, written);  // as if the run had written it
+    return test::run_tumble("resume " + (d.dir / name).string() + " -q" + options);
+  };
+  // A temporary of a killed writer beside the trajectory (a copy of the rows the checkpoint counts).
+  const auto killed_writer = [&](Checkpoint k, long pid) {
+    k.writer_pid = pid;
+    fs::copy_file(out, fs::path(out.string() + ".tmp-" + std::to_string(pid)), fs::copy_options::overwrite_existing);
+    return k;
+  };
+  // This test process is called tumble_tests: a live tumble on this machine and boot is the writer.
+  const long self = static_cast<long>(::getpid());
+  auto r = resume(killed_writer(c, self), "live.ckpt");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find(fmt::format("(process {}) is still writing", self)), std::string::npos) << r.output;
+  // The same PID in another boot (the machine restarted since) is not the writer, nor on another host,
+  // which tumble cannot ask: refused until the user says the writer is gone.
+  Checkpoint elsewhere = killed_writer(c, self);
+  elsewhere.writer_host = "node-17";
+  r = resume(elsewhere, "elsewhere.ckpt");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("ran on host node-17 (process " + std::to_string(self) +
+                          "), and its " + out.string() + ".tmp-" + std::to_string(self) +
+                          " is still there: if that run no longer runs, give --writer-gone"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(test::read_text(out), stopped) << "refusals move nothing";
+
+  // A complete rerun to the same -o since the checkpoint: its file is not cut back (it was, to the
+  // checkpoint's 150 samples, and continued).
+  ASSERT_EQ(test::run_tumble("run " + (d.dir / "s.toml").string() + " -o " + out.string() + " -q").status, 0);
+  r = test::run_tumble("resume " + ckpt.string() + " -q");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find(out.string() + " is not the trajectory of this checkpoint's run (" +
+                          std::to_string(complete.size()) + " bytes, where the checkpoint's run had written " +
+                          std::to_string(stopped.size()) + "): another run has written it since"),
+            std::string::npos)
+      << r.output;
+  EXPECT_TRUE(test::read_text(out) == complete);
+  // ... nor does a killed writer's temporary replace it.
+  r = resume(killed_writer(c, 999999), "killed.ckpt");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("was written after the checkpoint"), std::string::npos) << r.output;
+  EXPECT_TRUE(test::read_text(out) == complete);
+
+  // The files as the checkpoint left them: the writer in another boot is gone, its temporary is taken
+  // over, and the resumed run is the uninterrupted one.
+  d.dir.write("out.csv", stopped);
+  fs::last_write_time(out, written - std::chrono::hours(1));
+  Checkpoint rebooted = killed_writer(c, self);
+  rebooted.writer_boot_id = "an-earlier-boot";
+  r = resume(rebooted, "rebooted.ckpt");
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_TRUE(test::read_text(out) == complete);
+  // And from another host, once the user says its writer is gone.
+  d.dir.write("out.csv", stopped);
+  fs::last_write_time(out, written - std::chrono::hours(1));
+  r = resume(killed_writer(elsewhere, self), "elsewhere.ckpt", " --writer-gone");
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_TRUE(test::read_text(out) == complete);
+}
+
 TEST(ResumeCli, CorruptTruncatedAndForeignCheckpointsAndChangedMeshesAreRefused) {
   Dir d("resume_refused");
   stopped_run(d, "rk4", SIGTERM, 50);

@@ -31,6 +31,10 @@ Checkpoint sample_checkpoint() {
   c.settings.drift_threshold = 1e-6;
   c.strict = true;
   c.writer_pid = 4242;
+  c.writer_host = "node-17";
+  c.writer_boot_id = "c0ffee00-0000-4000-8000-000000000000";
+  c.output_bytes = 123456789;
+  c.output_tail_hash = 0xfedcba9876543210ULL;
   c.largest_energy_drift = 2.5e-15;
   c.drift_warning = "energy drifted";
   c.point.t0 = 0.0;
@@ -65,6 +69,10 @@ TEST(Checkpoint, EveryFieldComesBackExactly) {
   EXPECT_EQ(r.fields, c.fields);
   EXPECT_TRUE(r.strict);
   EXPECT_EQ(r.writer_pid, 4242);
+  EXPECT_EQ(r.writer_host, c.writer_host);
+  EXPECT_EQ(r.writer_boot_id, c.writer_boot_id);
+  EXPECT_EQ(r.output_bytes, c.output_bytes);
+  EXPECT_EQ(r.output_tail_hash, c.output_tail_hash);
   EXPECT_EQ(r.largest_energy_drift, c.largest_energy_drift);
   EXPECT_FALSE(r.largest_angular_momentum_drift);
   EXPECT_EQ(r.drift_warning, c.drift_warning);

@@ -27,6 +27,7 @@
 #include "mass/child_process.hpp"
 #include "mesh_support.hpp"
 #include "tumble/error.hpp"
+#include "tumble/io/scene.hpp"
 #include "tumble/mass/mesh_io.hpp"
 #include "tumble/mass/mesh_mass.hpp"
 #include "tumble/mass/shapes.hpp"
@@ -339,7 +340,15 @@ TEST(MeshIsolation, AMeshReadsNoFileOutsideItsDirectory) {
   write_bytes(dir / "secret.bin", cube_gltf_buffer());
   std::filesystem::create_symlink(dir / "secret.bin", dir / "model/link.bin");
   write_bytes(dir / "model/inside.gltf", cube_gltf("data/cube.bin"));
-  EXPECT_EQ(load_mesh(dir / "model/inside.gltf").mesh.triangles.size(), 12U);
+  const LoadedMesh inside = load_mesh(dir / "model/inside.gltf");
+  EXPECT_EQ(inside.mesh.triangles.size(), 12U);
+  // The buffer is named as a file the mesh read: a run stamps it (resume refuses a changed one) and
+  // never writes over it.
+  const auto buffer = std::filesystem::weakly_canonical(dir / "model/data/cube.bin");
+  EXPECT_EQ(inside.companions, std::vector<std::filesystem::path>{buffer});
+  write_bytes(dir / "model/s.toml", "[simulation]\nduration = 1\n[[bodies]]\nname = \"c\"\nmesh = \"inside.gltf\"\ndensity = 1\n");
+  const Scene scene = load_scene(dir / "model/s.toml");
+  EXPECT_NE(std::find(scene.input_files.begin(), scene.input_files.end(), buffer), scene.input_files.end());
   // A link to a mesh elsewhere: the mesh is read, and its buffer beside the link.
   std::filesystem::create_directories(dir / "scene/data");
   std::filesystem::create_symlink(dir / "model/inside.gltf", dir / "scene/cube.gltf");
@@ -362,7 +371,9 @@ TEST(MeshIsolation, AMeshReadsNoFileOutsideItsDirectory) {
   write_bytes(dir / "model/outside.glb", cube_glb(secret));
   EXPECT_HAS(load_error(dir / "model/outside.glb"), "the mesh refers to the file " + secret + ", outside");
   write_bytes(dir / "model/beside.glb", cube_glb("data/cube.bin"));
-  EXPECT_EQ(load_mesh(dir / "model/beside.glb").mesh.triangles.size(), 12U);
+  const LoadedMesh beside = load_mesh(dir / "model/beside.glb");
+  EXPECT_EQ(beside.mesh.triangles.size(), 12U);
+  EXPECT_EQ(beside.companions, std::vector<std::filesystem::path>{buffer});
 }
 
 TEST(MeshIsolation, PartsOfAnAssimpFileAreCountedNamedAndPicked) {

@@ -47,6 +47,9 @@ struct LoadedMesh {
   std::string format;                 ///< e.g. "OBJ (text)", "binary STL"
   std::string precision;              ///< what the coordinates carry, e.g. "float32 (the format's own)"
   std::vector<std::string> warnings;  ///< one line each, for the user (several parts merged, ...)
+  /// Files other than the mesh that its loader read (a glTF's .bin buffers, all beside or below the
+  /// mesh): a run stamps them with the mesh, so that resuming after one changed is refused.
+  std::vector<std::filesystem::path> companions;
 };
 
 /// Reads a mesh file into one triangle mesh, vertices at identical positions welded (STL stores each
