@@ -1469,6 +1469,14 @@ const std::vector<Case>& catalogue() {
        "ls x.csv.tmp-* && exit $s",
        152,
        "tumble: interrupted at t = …"},
+      {"limit: ulimit -t (a CPU-time limit: SIGXCPU at the soft one) keeps a valid file and a checkpoint",
+       {{"s.toml", std::string("[simulation]\nduration = 1e4\ntimestep = 1e-4\noutput_interval = "
+                               "1\n[[bodies]]\nname = \"a\"\nshape = { type = \"box\", size = [1, 2, 3] "
+                               "}\ndensity = 1000\n")}},
+       "ulimit -S -t 1; {t} run s.toml -o x.csv --quiet --checkpoint c.ckpt; s=$?; test -s x.csv && test -s "
+       "c.ckpt && ! ls x.csv.tmp-* && exit $s",
+       152,
+       "tumble: interrupted at t = …"},
       {"limit: ulimit -f during run (SIGXFSZ as the shell leaves it): one line, no file",
        {{"s.toml", std::string("[simulation]\nduration = 100\ntimestep = 1e-3\noutput_interval = "
                                "0.01\n[[bodies]]\nname = \"a\"\nshape = { type = \"box\", size = [1, 2, 3] "
