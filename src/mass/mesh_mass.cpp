@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <limits>
 
+#include "mesh_components.hpp"
 #include "mesh_integrals.hpp"
 #include "tumble/error.hpp"
 #include "tumble/mass/mesh_check.hpp"
@@ -58,6 +59,7 @@ MeshMassResult solid_unit_properties(const TriangleMesh& mesh, const std::string
         "properties)",
         name, unit.mass, L));
   }
+  detail::check_surfaces_bound_material_once(mesh, unit.mass < 0.0 ? -1.0 : 1.0, name);
   if (unit.mass < 0.0) {
     // Inside-out: every triangle winds clockwise seen from outside. Flipping them all negates each
     // tetrahedron, so volume and inertia change sign while the centre of mass stays.

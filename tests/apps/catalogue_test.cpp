@@ -638,6 +638,18 @@ const std::vector<Case>& catalogue() {
        "{t} run s.toml -o model/cube.bin",
        1,
        "tumble: error: -o model/cube.bin is the file …"},
+      {"mesh: two nested closed surfaces both facing outward (the material between counted twice)",
+       {{"m.obj",
+         "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\nv 0.25 0.25 0.25\nv 0.75 "
+         "0.25 0.25\nv 0.75 0.75 0.25\nv 0.25 0.75 0.25\nv 0.25 0.25 0.75\nv 0.75 0.25 0.75\nv 0.75 0.75 "
+         "0.75\nv 0.25 0.75 0.75\nf 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 3 4 8 7\nf 1 5 8 4\nf 2 3 7 6\nf 9 12 11 "
+         "10\nf 13 14 15 16\nf 9 10 14 13\nf 11 12 16 15\nf 9 13 16 12\nf 10 11 15 14\n"}},
+       "{t} inertia m.obj --density 1",
+       1,
+       "tumble: error: m.obj: the closed surface of triangle 12 (12 triangles) lies inside the closed surface "
+       "of triangle 0 (12 triangles), and both face outward: the material between them would be counted "
+       "twice; if the inner surface bounds a cavity, reverse its triangles (its normals must point into the "
+       "cavity); if it is a part of its own, give it as another part or body"},
       {"mesh: empty OBJ",
        {{"m.obj", std::string()}},
        "{t} inertia m.obj --density 1",

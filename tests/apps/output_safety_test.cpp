@@ -380,9 +380,10 @@ TEST(RunOutputs, AFullDiskEndsWithOneLineAndNoFile) {
                      "\"");
   };
   const fs::path csv = dir / "t.csv", h5 = dir / "t.h5";
-  // Within the limit: no error (64 KiB for 15 kB of CSV; 10 MiB for 6.3 MB of HDF5).
+  // Within the limit: no error (64 KiB for 15 kB of CSV; 256 KiB for 0.1 MB of HDF5, its chunks
+  // sized from the run's 51 samples).
   EXPECT_EQ(limited(128, "--duration 0.5 -o " + csv.string()).status, 0);
-  EXPECT_EQ(limited(20480, "--duration 0.5 -o " + h5.string()).status, 0);
+  EXPECT_EQ(limited(512, "--duration 0.5 -o " + h5.string()).status, 0);
   fs::remove(csv);
   fs::remove(dir / "t.diagnostics.csv");
   fs::remove(h5);
@@ -393,8 +394,8 @@ TEST(RunOutputs, AFullDiskEndsWithOneLineAndNoFile) {
             "tumble: error: writing the trajectory to " + csv.string() +
                 " failed: File too large; nothing was kept under that name: free some space or write "
                 "elsewhere\n");
-  for (const std::string args : {"--duration 0.5", "--duration 100 --output-interval 0"}) {
-    const auto h = limited(4096, args + " -o " + h5.string());
+  for (const auto& [blocks, args] : {std::pair{64, "--duration 0.5"}, std::pair{4096, "--duration 100 --output-interval 0"}}) {
+    const auto h = limited(blocks, std::string(args) + " -o " + h5.string());
     EXPECT_EQ(h.status, 1) << args << "\n" << h.output;
     EXPECT_EQ(line_count(h.output), 1u) << h.output;
     EXPECT_EQ(h.output.find("tumble: error: writing " + h5.string() + " failed: HDF5 could not "), 0u)
