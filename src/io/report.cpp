@@ -17,9 +17,12 @@
 #include "staged_file.hpp"
 #include "tumble/error.hpp"
 #include "tumble/mass/mesh_decimate.hpp"
+#include "tumble/mass/shapes.hpp"
+#include "tumble/mass/tessellate.hpp"
 #include "tumble/sim/output_fields.hpp"
 
 #include <fstream>
+#include <map>
 
 namespace tumble {
 namespace {
@@ -59,14 +62,8 @@ json array_f32(const std::vector<double>& v, std::vector<size_t> shape) {
   return {{"dtype", "f32"}, {"shape", shape}, {"base64", base64(f.data(), f.size() * sizeof(float))}};
 }
 
-/// A body's surface in its reference frame: its display mesh, or the box of its principal moments
-/// placed on its principal axes at its centre of mass.
-json body_mesh(const BodyGeometry& g) {
-  TriangleMesh mesh = g.surface();
-  if (mesh.triangles.empty()) {
-    mesh = inertia_box(g.mass, g.Lambda);
-    for (Vec3& v : mesh.vertices) v = g.com + g.U * v;
-  }
+/// A surface as the report's {positions, indices}.
+json mesh_json(const TriangleMesh& mesh) {
   std::vector<float> positions;
   positions.reserve(mesh.vertices.size() * 3);
   for (const Vec3& v : mesh.vertices)
@@ -84,6 +81,25 @@ json body_mesh(const BodyGeometry& g) {
             {"base64", base64(indices.data(), indices.size() * sizeof(std::uint32_t))}}}};
 }
 
+/// The report's meshes, each surface once: bodies of one mesh file share it, and every body drawn as
+/// the box of its principal moments shares the unit cube (scaled by its "box" edges). 10⁵ bodies of
+/// one shape were 10⁵ copies, 70 MB of the page.
+class MeshTable {
+ public:
+  /// The index of g's surface (its display mesh, or the unit cube when it has none).
+  std::size_t index_of(const BodyGeometry& g) {
+    const TriangleMesh* key = g.mesh && !g.mesh->triangles.empty() ? g.mesh.get() : nullptr;
+    const auto [at, added] = index_.try_emplace(key, meshes_.size());
+    if (added) meshes_.push_back(key ? mesh_json(*key) : mesh_json(tessellate(Box{Vec3::Ones()}, 4)));
+    return at->second;
+  }
+  json take() && { return std::move(meshes_); }
+
+ private:
+  std::map<const TriangleMesh*, std::size_t> index_;
+  json meshes_ = json::array();
+};
+
 double bounding_radius(const BodyGeometry& g) {
   double r = 0.0;
   for (const Vec3& v : g.surface().vertices) r = std::max(r, (v - g.com).norm());
@@ -98,12 +114,16 @@ json vec(const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); }
 
 json to_json(const Report& r) {
   const size_t T = r.t.size(), N = r.names.size(), B = r.geometry.bodies.size();
+  MeshTable meshes;
   json bodies = json::array();
   for (size_t i = 0; i < N; ++i) {
     json b{{"name", r.names[i]}, {"kind", i < B ? "body" : "particle"}};
     if (i < B) {
       const BodyGeometry& g = r.geometry.bodies[i];
-      b["mesh"] = body_mesh(g);
+      b["mesh"] = meshes.index_of(g);
+      // No surface: the unit cube, scaled by the inertia box's edges along the principal axes at the
+      // centre of mass.
+      if (!g.mesh || g.mesh->triangles.empty()) b["box"] = vec(inertia_box_edges(g.mass, g.Lambda));
       b["com"] = vec(g.com);
       json U = json::array();
       for (int row = 0; row < 3; ++row) U.push_back(json::array({g.U(row, 0), g.U(row, 1), g.U(row, 2)}));
@@ -146,6 +166,7 @@ json to_json(const Report& r) {
           {"version", 1},
           {"meta", meta},
           {"t", array_f64(r.t, {T})},
+          {"meshes", std::move(meshes).take()},
           {"bodies", bodies},
           {"springs", springs},
           {"series",

@@ -54,15 +54,16 @@ TriangleMesh decimate(const TriangleMesh& mesh, std::size_t max_triangles) {
   return cluster(mesh, 1, lo, hi - lo);  // one cell: nothing left to draw
 }
 
-TriangleMesh inertia_box(double m, const Vec3& Lambda) {
+Vec3 inertia_box_edges(double m, const Vec3& Lambda) {
   Vec3 edges;
   for (int i = 0; i < 3; ++i) {
     const double a2 = 6.0 * (Lambda((i + 1) % 3) + Lambda((i + 2) % 3) - Lambda(i)) / m;
     edges(i) = std::sqrt(std::max(a2, 0.0));
   }
   // A flat body (a triangle inequality met with equality) has a zero edge: draw it thin, not invisible.
-  const double floor = 1e-3 * edges.maxCoeff();
-  return tessellate(Box{edges.cwiseMax(floor)}, 4);
+  return edges.cwiseMax(1e-3 * edges.maxCoeff());
 }
+
+TriangleMesh inertia_box(double m, const Vec3& Lambda) { return tessellate(Box{inertia_box_edges(m, Lambda)}, 4); }
 
 }  // namespace tumble

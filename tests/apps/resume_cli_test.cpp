@@ -208,10 +208,10 @@ TEST(ResumeCli, AStaleCheckpointIsRefusedAndAWriterIsAskedOnlyWhereItRan) {
     fs::last_write_time(d.dir / name, written);  // as if the run had written it
     return test::run_tumble("resume " + (d.dir / name).string() + " -q" + options);
   };
-  // A temporary of a killed writer beside the trajectory (a copy of the rows the checkpoint counts).
+  // A temporary of a killed writer beside the trajectory, holding the rows the checkpoint counts.
   const auto killed_writer = [&](Checkpoint k, long pid) {
     k.writer_pid = pid;
-    fs::copy_file(out, fs::path(out.string() + ".tmp-" + std::to_string(pid)), fs::copy_options::overwrite_existing);
+    d.dir.write(out.filename().string() + ".tmp-" + std::to_string(pid), stopped);
     return k;
   };
   // This test process is called tumble_tests: a live tumble on this machine and boot is the writer.

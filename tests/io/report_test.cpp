@@ -218,10 +218,9 @@ TEST(Report, TheHtmlHoldsTheJsonTheViewerDecodes) {
   EXPECT_EQ(decode<double>(j.at("system").at("energy_drift")).size(), T);
   const auto& body = j.at("bodies").at(0);
   EXPECT_EQ(body.at("kind"), "body");
-  EXPECT_EQ(decode<float>(body.at("mesh").at("positions")).size(),
-            3 * r.geometry.bodies[0].surface().vertices.size());
-  EXPECT_EQ(decode<std::uint32_t>(body.at("mesh").at("indices")).size(),
-            3 * r.geometry.bodies[0].surface().triangles.size());
+  const auto& mesh = j.at("meshes").at(body.at("mesh").get<size_t>());
+  EXPECT_EQ(decode<float>(mesh.at("positions")).size(), 3 * r.geometry.bodies[0].surface().vertices.size());
+  EXPECT_EQ(decode<std::uint32_t>(mesh.at("indices")).size(), 3 * r.geometry.bodies[0].surface().triangles.size());
   EXPECT_EQ(j.at("events").size(), 4u);
 }
 

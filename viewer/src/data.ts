@@ -8,6 +8,7 @@ import { Base64Error, base64ToBytes } from './base64';
 import type {
   Body,
   Mat3,
+  Mesh,
   Meta,
   Report,
   Series,
@@ -172,7 +173,29 @@ function decodeMeta(x: Json, T: number): Meta {
   };
 }
 
-function decodeBody(x: Json, i: number): Body {
+/** A surface {positions, indices}, its indices checked against its vertices. */
+function decodeMesh(x: Json, where: string): Mesh {
+  if (!isObject(x)) fail(where, 'expected {positions, indices}');
+  const p = decodeArray(x.positions, `${where}.positions`);
+  const ix = decodeArray(x.indices, `${where}.indices`);
+  if (p.data.length % 3 !== 0) fail(`${where}.positions`, 'length is not a multiple of 3');
+  if (ix.data.length % 3 !== 0) fail(`${where}.indices`, 'length is not a multiple of 3');
+  const V = p.data.length / 3;
+  checkShape(p.shape, [V, 3], `${where}.positions`, 'V, 3');
+  checkShape(ix.shape, [ix.data.length / 3, 3], `${where}.indices`, 'F, 3');
+  const indices = ix.data instanceof Uint32Array ? ix.data : Uint32Array.from(ix.data);
+  for (let k = 0; k < indices.length; k++) {
+    if (indices[k] >= V) fail(`${where}.indices`, `index ${indices[k]} at ${k} is past the ${V} vertices`);
+  }
+  const positions = p.data instanceof Float32Array ? p.data : Float32Array.from(p.data);
+  return { positions, indices };
+}
+
+/**
+ * A body. Its mesh is an index into the report's shared meshes (tumble writes each surface once), or
+ * the mesh itself (a report made by hand), or null (a sphere).
+ */
+function decodeBody(x: Json, i: number, meshes: Mesh[]): Body {
   const where = `bodies[${i}]`;
   if (!isObject(x)) fail(where, 'expected an object');
   const kind = x.kind ?? 'body';
@@ -180,28 +203,25 @@ function decodeBody(x: Json, i: number): Body {
     fail(`${where}.kind`, `expected "body" or "particle", got ${JSON.stringify(kind)}`);
   }
   let mesh: Body['mesh'] = null;
-  if (x.mesh !== null && x.mesh !== undefined) {
-    if (!isObject(x.mesh)) fail(`${where}.mesh`, 'expected {positions, indices} or null');
-    const p = decodeArray(x.mesh.positions, `${where}.mesh.positions`);
-    const ix = decodeArray(x.mesh.indices, `${where}.mesh.indices`);
-    if (p.data.length % 3 !== 0) fail(`${where}.mesh.positions`, 'length is not a multiple of 3');
-    if (ix.data.length % 3 !== 0) fail(`${where}.mesh.indices`, 'length is not a multiple of 3');
-    const V = p.data.length / 3;
-    checkShape(p.shape, [V, 3], `${where}.mesh.positions`, 'V, 3');
-    checkShape(ix.shape, [ix.data.length / 3, 3], `${where}.mesh.indices`, 'F, 3');
-    const indices = ix.data instanceof Uint32Array ? ix.data : Uint32Array.from(ix.data);
-    for (let k = 0; k < indices.length; k++) {
-      if (indices[k] >= V) {
-        fail(`${where}.mesh.indices`, `index ${indices[k]} at ${k} is past the ${V} vertices`);
-      }
+  if (typeof x.mesh === 'number') {
+    if (!Number.isInteger(x.mesh) || x.mesh < 0 || x.mesh >= meshes.length) {
+      fail(`${where}.mesh`, `expected an index into meshes [0, ${meshes.length}), got ${x.mesh}`);
     }
-    const positions = p.data instanceof Float32Array ? p.data : Float32Array.from(p.data);
-    mesh = { positions, indices };
+    mesh = meshes[x.mesh];
+  } else if (x.mesh !== null && x.mesh !== undefined) {
+    mesh = decodeMesh(x.mesh, `${where}.mesh`);
+  }
+  let box: Vec3 | null = null;
+  if (x.box !== null && x.box !== undefined) {
+    box = vec3(x.box, `${where}.box`);
+    if (!box.every((e) => Number.isFinite(e) && e >= 0)) fail(`${where}.box`, 'expected three edges ≥ 0');
+    if (!mesh) fail(`${where}.box`, 'a box scales a mesh: give mesh too');
   }
   return {
     name: str(x.name, `${where}.name`, `body ${i}`),
     kind,
     mesh,
+    box,
     com: x.com === undefined ? [0, 0, 0] : vec3(x.com, `${where}.com`),
     principal_axes:
       x.principal_axes === undefined
@@ -282,8 +302,11 @@ export function decodeReport(x: Json): Report {
     if (i > 0 && t[i] < t[i - 1]) fail('t', `times decrease at sample ${i}`);
   }
 
+  const meshesJson = x.meshes ?? [];
+  if (!Array.isArray(meshesJson)) fail('meshes', 'expected a list');
+  const meshes = meshesJson.map((m, k) => decodeMesh(m, `meshes[${k}]`));
   if (!Array.isArray(x.bodies) || x.bodies.length === 0) fail('bodies', 'expected a non-empty list');
-  const bodies = x.bodies.map(decodeBody);
+  const bodies = x.bodies.map((b, i) => decodeBody(b, i, meshes));
   const N = bodies.length;
 
   const springsJson = x.springs ?? [];

@@ -2,6 +2,7 @@
 // version), its warnings (highlighted: they say the numbers may not be trusted), the bodies, the
 // events (click to seek) and the scene file itself (collapsed: it can be long).
 
+import { CROWD } from './bodypicker';
 import { samplesNote } from './derived';
 import type { Report } from './types';
 
@@ -71,7 +72,8 @@ export function buildFacts(
   const head = el('tr');
   for (const h of ['', 'name', 'kind', 'I₁, I₂, I₃ (kg m²)']) head.appendChild(el('th', undefined, h));
   table.appendChild(head);
-  r.bodies.forEach((b, i) => {
+  // A crowd's first CROWD rows: a table of 10⁵ rows made every layout of the page take seconds.
+  r.bodies.slice(0, CROWD).forEach((b, i) => {
     const tr = el('tr');
     const sw = el('td');
     const swatch = sw.appendChild(el('span', 'swatch'));
@@ -83,6 +85,12 @@ export function buildFacts(
     table.appendChild(tr);
   });
   panel.appendChild(table);
+  if (r.bodies.length > CROWD) {
+    const more = r.bodies.length - CROWD;
+    panel.appendChild(
+      el('p', 'samples-note', `… and ${more.toLocaleString('en-US')} more bodies: follow one by its name or number`),
+    );
+  }
 
   if (r.events.length) {
     panel.appendChild(el('h2', undefined, `Events (${r.events.length})`));

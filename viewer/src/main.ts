@@ -1,6 +1,7 @@
 // Entry point: reads the embedded data, builds the views and ties them to one playback clock.
 // Every failure ends in a message on the page (and in window.__tumble.error), never a blank page.
 
+import { bodyPicker } from './bodypicker';
 import './style.css';
 import { bodyColor } from './colors';
 import { readEmbedded } from './data';
@@ -85,14 +86,11 @@ function start(report: Report): void {
   if (hasOmegaPlots && report.bodies.length > 1) {
     const label = document.createElement('label');
     label.textContent = 'ω plots for ';
-    const select = document.createElement('select');
-    select.className = 'plot-body';
-    report.bodies.forEach((b, i) => select.appendChild(new Option(b.name, String(i), i === plotBody, i === plotBody)));
-    select.addEventListener('change', () => {
-      plotBody = Number(select.value);
+    const pick = (b: number) => {
+      plotBody = b;
       plots?.setBody(plotBody);
-    });
-    label.appendChild(select);
+    };
+    label.appendChild(bodyPicker(report, plotBody, pick, 'plot-body'));
     document.getElementById('plots-header')!.appendChild(label);
   }
 

@@ -2,6 +2,10 @@
 // axes through the centre of mass, its ω and L arrows, an optional trail of the centre of mass,
 // springs, a ground grid and an orbit camera that can follow a body.
 //
+// A crowd (more than CROWD bodies: a debris field of 10⁵) is drawn as one instanced mesh per surface,
+// a draw call each rather than three per body; axes, arrows and the trail are then drawn for the
+// followed body only. Bodies of one surface share one geometry either way.
+//
 // tumble's world is z-up (gravity along -z in the examples), so the camera's up is +z and the grid
 // lies in the xy-plane. Rendering happens only when something changed (time, camera, size): a
 // software-rendered WebGL (no GPU) would otherwise burn a core redrawing a still picture.
@@ -12,7 +16,9 @@ import { COLORS, bodyColor } from './colors';
 import { bodyVectors, comTrack, principalAxes, toWorld, vectorMaxima } from './derived';
 import { norm, wxyzToXyzw, xyzwToWxyz } from './quat';
 import { lerpRow, quatAtSegment, type Segment } from './timeline';
-import type { QuatWXYZ, Report, Vec3 } from './types';
+import type { Body, Mesh, QuatWXYZ, Report, Vec3 } from './types';
+
+import { CROWD } from './bodypicker';
 
 interface BodyView {
   /** Posed by the report: position = origin of the reference frame, quaternion = R. */
@@ -101,10 +107,18 @@ export class Scene3D {
   readonly camera: THREE.PerspectiveCamera;
   readonly controls: OrbitControls;
   private scene = new THREE.Scene();
-  private views: BodyView[] = [];
+  /** Each body's objects; in a crowd only the followed body's (the others are instances). */
+  private views: (BodyView | null)[] = [];
+  private geometries = new Map<Mesh | 'sphere', THREE.BufferGeometry>();
+  private readonly crowd: boolean;
+  /** A crowd's instance of each body, and its pose as last drawn (x, then q as w, x, y, z). */
+  private crowdSlots: { mesh: THREE.InstancedMesh; index: number; local: THREE.Matrix4 }[] = [];
+  private crowdPoses = new Float64Array(0);
+  private crowdMeshes: THREE.InstancedMesh[] = [];
   private springs: THREE.LineSegments | null = null;
   private dirty = true;
   private followIndex = -1;
+  private trails = false;
   private followPoint = new THREE.Vector3();
   private lastSegment: Segment = { i: 0, s: 0 };
   private resizeObserver: ResizeObserver;
@@ -176,7 +190,13 @@ export class Scene3D {
 
     this.addLights();
     this.addGrid(all, sphere);
-    for (let b = 0; b < N; b++) this.views.push(this.makeBody(b));
+    this.crowd = N > CROWD;
+    if (this.crowd) {
+      this.views = new Array<BodyView | null>(N).fill(null);
+      this.makeCrowd();
+    } else {
+      for (let b = 0; b < N; b++) this.views.push(this.makeBody(b));
+    }
     this.makeSprings();
 
     this.resizeObserver = new ResizeObserver(() => this.resize());
@@ -207,29 +227,92 @@ export class Scene3D {
     this.scene.add(grid);
   }
 
-  private makeBody(b: number): BodyView {
+  /** One geometry per surface (bodies of one mesh file share it; so do all boxes and all spheres). */
+  private geometryOf(body: Body): THREE.BufferGeometry {
+    const key = body.mesh ?? 'sphere';
+    let g = this.geometries.get(key);
+    if (!g) {
+      if (body.mesh) {
+        g = new THREE.BufferGeometry();
+        g.setAttribute('position', new THREE.BufferAttribute(body.mesh.positions, 3));
+        g.setIndex(new THREE.BufferAttribute(body.mesh.indices, 1));
+      } else {
+        g = new THREE.SphereGeometry(1, 20, 14); // scaled per body (localMatrix)
+      }
+      this.geometries.set(key, g);
+    }
+    return g;
+  }
+
+  /**
+   * Where the body's geometry sits in its reference frame: the mesh as it is; a box's unit cube
+   * scaled by its edges along the principal axes (the columns of U) at the centre of mass; a sphere
+   * (particles, bodies without a surface) at the centre of mass.
+   */
+  private localMatrix(body: Body): THREE.Matrix4 {
+    const m = new THREE.Matrix4();
+    if (body.mesh && !body.box) return m;
+    const [c, U] = [body.com, body.principal_axes];
+    if (body.mesh && body.box) {
+      const [a, b, d] = body.box;
+      return m.set(
+        U[0][0] * a, U[0][1] * b, U[0][2] * d, c[0],
+        U[1][0] * a, U[1][1] * b, U[1][2] * d, c[1],
+        U[2][0] * a, U[2][1] * b, U[2][2] * d, c[2],
+        0, 0, 0, 1,
+      );
+    }
+    const size = body.size > 0 ? body.size : this.radius * 0.3;
+    const r = body.kind === 'particle' ? size * 0.5 : size * 0.6;
+    return m.makeScale(r, r, r).setPosition(c[0], c[1], c[2]);
+  }
+
+  /** Lambert, not a PBR material: flat faces show the shape as well, and its shader compiles and runs
+   * several times faster where WebGL is rendered in software (SwiftShader, no GPU). */
+  private static material(color: THREE.Color): THREE.MeshLambertMaterial {
+    return new THREE.MeshLambertMaterial({ color, flatShading: true, side: THREE.DoubleSide });
+  }
+
+  /**
+   * The crowd's instanced meshes, one per surface; instance k of a surface is body crowdBodies[k],
+   * posed by update() as pose × localMatrix.
+   */
+  private makeCrowd(): void {
+    const N = this.report.bodies.length;
+    const groups = new Map<THREE.BufferGeometry, number[]>();
+    for (let b = 0; b < N; b++) {
+      const g = this.geometryOf(this.report.bodies[b]);
+      const list = groups.get(g);
+      if (list) list.push(b);
+      else groups.set(g, [b]);
+    }
+    this.crowdPoses = new Float64Array(N * 7);
+    for (const [geometry, bodies] of groups) {
+      const mesh = new THREE.InstancedMesh(geometry, Scene3D.material(new THREE.Color(0xffffff)), bodies.length);
+      mesh.frustumCulled = false; // the instances move; their bounds are not the geometry's
+      bodies.forEach((b, k) => {
+        mesh.setColorAt(k, new THREE.Color(bodyColor(b)));
+        this.crowdSlots[b] = { mesh, index: k, local: this.localMatrix(this.report.bodies[b]) };
+      });
+      this.scene.add(mesh);
+      this.crowdMeshes.push(mesh);
+    }
+  }
+
+  /** A body's own objects: its mesh (unless drawn as an instance), principal axes and arrows. */
+  private makeBody(b: number, withMesh = true): BodyView {
     const body = this.report.bodies[b];
     const color = new THREE.Color(bodyColor(b));
     const group = new THREE.Group();
     group.name = body.name;
     const size = body.size > 0 ? body.size : this.radius * 0.3;
 
-    let geometry: THREE.BufferGeometry;
-    if (body.mesh) {
-      geometry = new THREE.BufferGeometry();
-      geometry.setAttribute('position', new THREE.BufferAttribute(body.mesh.positions, 3));
-      geometry.setIndex(new THREE.BufferAttribute(body.mesh.indices, 1));
-    } else {
-      // Particles (and bodies without a mesh): a sphere at the centre of mass.
-      const r = body.kind === 'particle' ? size * 0.5 : size * 0.6;
-      geometry = new THREE.SphereGeometry(r, 20, 14);
-      geometry.translate(body.com[0], body.com[1], body.com[2]);
+    if (withMesh) {
+      const mesh = new THREE.Mesh(this.geometryOf(body), Scene3D.material(color));
+      mesh.matrixAutoUpdate = false;
+      mesh.matrix.copy(this.localMatrix(body));
+      group.add(mesh);
     }
-    // Lambert, not a PBR material: flat faces show the shape as well, and its shader compiles and
-    // runs several times faster where WebGL is rendered in software (SwiftShader, no GPU).
-    const material = new THREE.MeshLambertMaterial({ color, flatShading: true, side: THREE.DoubleSide });
-    group.add(new THREE.Mesh(geometry, material));
-
     if (body.kind === 'body') {
       // The principal axes: three short lines through the centre of mass, in the reference frame, so
       // the group's pose carries them along.
@@ -297,11 +380,20 @@ export class Scene3D {
     const r = this.report;
     const N = r.bodies.length;
     const poses: { x: Vec3; q: QuatWXYZ }[] = [];
+    const pose = new THREE.Matrix4(), quaternion = new THREE.Quaternion(), position = new THREE.Vector3();
+    const one = new THREE.Vector3(1, 1, 1);
     for (let b = 0; b < N; b++) {
-      const v = this.views[b];
       const x = lerpRow(r.series.position, N, b, 3, seg, [0, 0, 0]) as Vec3;
       const q = quatAtSegment(r.series.quaternion, N, b, seg);
       poses.push({ x, q });
+      const slot = this.crowdSlots[b];
+      if (slot) {
+        this.crowdPoses.set([x[0], x[1], x[2], q[0], q[1], q[2], q[3]], 7 * b);
+        pose.compose(position.set(x[0], x[1], x[2]), quaternion.set(q[1], q[2], q[3], q[0]), one);
+        slot.mesh.setMatrixAt(slot.index, pose.multiply(slot.local));
+      }
+      const v = this.views[b];
+      if (!v) continue;
       v.group.position.set(x[0], x[1], x[2]);
       v.group.quaternion.fromArray(wxyzToXyzw(q));
       const com = toWorld(x, q, r.bodies[b].com);
@@ -310,6 +402,7 @@ export class Scene3D {
       if (v.LArrow) setArrow(v.LArrow, com, vec.L, v.LScale, v.head);
       v.trail?.geometry.setDrawRange(0, seg.i + 1);
     }
+    for (const mesh of this.crowdMeshes) mesh.instanceMatrix.needsUpdate = true;
     if (this.springs) {
       const attr = this.springs.geometry.getAttribute('position') as THREE.BufferAttribute;
       r.springs.forEach((s, k) => {
@@ -336,15 +429,30 @@ export class Scene3D {
   }
 
   private comOf(b: number): THREE.Vector3 {
-    const v = this.views[b];
+    const [x, q] = this.poseOf(b);
     const com = this.report.bodies[b].com;
-    return new THREE.Vector3(com[0], com[1], com[2]).applyQuaternion(v.group.quaternion).add(v.group.position);
+    return new THREE.Vector3(com[0], com[1], com[2]).applyQuaternion(q).add(x);
+  }
+
+  /** The body's pose as last drawn. */
+  private poseOf(b: number): [THREE.Vector3, THREE.Quaternion] {
+    const v = this.views[b];
+    if (v) return [v.group.position.clone(), v.group.quaternion.clone()];
+    const p = this.crowdPoses.subarray(7 * b, 7 * b + 7);
+    return [new THREE.Vector3(p[0], p[1], p[2]), new THREE.Quaternion(p[4], p[5], p[6], p[3])];
   }
 
   /** Follow body `b` (its centre of mass becomes the orbit target), or stop following with -1. */
   setFollow(b: number): void {
+    // In a crowd the followed body alone gets its axes, arrows (and trail).
+    if (this.crowd && this.followIndex !== b && this.followIndex >= 0) this.dropView(this.followIndex);
     this.followIndex = b;
     if (b < 0) return;
+    if (this.crowd && !this.views[b]) {
+      this.views[b] = this.makeBody(b, false);
+      this.setTrails(this.trails);
+      this.update(this.lastSegment);
+    }
     const p = this.comOf(b);
     const delta = p.clone().sub(this.controls.target);
     this.camera.position.add(delta);
@@ -354,8 +462,18 @@ export class Scene3D {
     this.dirty = true;
   }
 
+  /** Removes a body's own objects (a crowd's body no longer followed). */
+  private dropView(b: number): void {
+    const v = this.views[b];
+    if (!v) return;
+    for (const o of [v.group, v.omegaArrow, v.LArrow, v.trail]) if (o) this.scene.remove(o);
+    this.views[b] = null;
+  }
+
   setTrails(on: boolean): void {
+    this.trails = on;
     this.views.forEach((v, b) => {
+      if (!v) return;
       if (on && !v.trail) {
         const g = new THREE.BufferGeometry();
         g.setAttribute('position', new THREE.BufferAttribute(comTrack(this.report, b), 3));
@@ -371,7 +489,7 @@ export class Scene3D {
 
   /** The orientation as drawn, read back from the three.js object: [w, x, y, z]. */
   bodyQuaternion(b: number): QuatWXYZ {
-    return xyzwToWxyz(this.views[b].group.quaternion.toArray());
+    return xyzwToWxyz(this.poseOf(b)[1].toArray());
   }
 
   private resize(): void {

@@ -31,7 +31,14 @@ export interface Mesh {
 export interface Body {
   name: string;
   kind: 'body' | 'particle';
+  /** Shared by every body of the same surface (the report's "meshes", one object each). */
   mesh: Mesh | null;
+  /**
+   * The edges of the box the body is drawn as (no surface of its own: the box of its principal
+   * moments): its mesh is then the unit cube, scaled by these along the principal axes and centred
+   * at the centre of mass. null: the mesh is in the reference frame as it is.
+   */
+  box: Vec3 | null;
   com: Vec3;
   /** Row-major U; its COLUMNS are the principal axes in the reference frame. */
   principal_axes: Mat3;

@@ -1,6 +1,7 @@
 // The playback controls and keyboard shortcuts. The controls only talk to the Playback clock and
 // mirror its state; what to draw at a time is main.ts's business.
 
+import { bodyPicker } from './bodypicker';
 import { COLORS } from './colors';
 import { lSource } from './derived';
 import { SPEEDS, type Playback } from './playback';
@@ -71,11 +72,7 @@ export class Controls {
     trailsLabel.append(trails, ' trails');
 
     const followLabel = el('label', { textContent: 'follow ' });
-    const follow = el('select', { className: 'follow' });
-    follow.appendChild(el('option', { value: '-1', textContent: '— free camera —' }));
-    report.bodies.forEach((b, i) => follow.appendChild(el('option', { value: String(i), textContent: b.name })));
-    follow.addEventListener('change', () => opts.onFollow(Number(follow.value)));
-    followLabel.appendChild(follow);
+    followLabel.appendChild(bodyPicker(report, -1, opts.onFollow, 'follow', '— free camera —'));
 
     const legend = el('span', { className: 'legend' });
     const key = (color: string, text: string) => {

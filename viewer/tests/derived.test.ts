@@ -16,6 +16,7 @@ describe('derived quantities', () => {
       name: 'b',
       kind: 'body',
       mesh: null,
+      box: null,
       com: [0, 0, 0],
       // Columns: principal axis 1 = y, 2 = z, 3 = x.
       principal_axes: [

@@ -22,5 +22,7 @@ TriangleMesh decimate(const TriangleMesh& mesh, std::size_t max_triangles);
 /// aᵢ² = 6(Λⱼ + Λₖ − Λᵢ)/m along the principal axes, centred at the origin): how a body known only by
 /// its mass properties is drawn.
 TriangleMesh inertia_box(double m, const Vec3& Lambda);
+/// That box's edges (a flat body's zero edge drawn 1e-3 of the longest: thin, not invisible).
+Vec3 inertia_box_edges(double m, const Vec3& Lambda);
 
 }  // namespace tumble
