@@ -4,6 +4,8 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <numbers>
 #include <numeric>
 #include <vector>
@@ -13,11 +15,13 @@
 namespace tumble::detail {
 namespace {
 
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
 /// A closed surface of the mesh: its triangles, signed volume and bounding box.
 struct Surface {
   std::vector<std::size_t> triangles;
   double volume = 0.0;  // Σ v₀·(v₁ × v₂)/6: positive when it faces outward
-  Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
+  Vec3 lo = Vec3::Constant(kInf), hi = Vec3::Constant(-kInf);
 };
 
 /// The mesh's connected surfaces (triangles sharing a vertex), in the order of their first triangle.
