@@ -1,7 +1,7 @@
 // The playback controls and keyboard shortcuts. The controls only talk to the Playback clock and
 // mirror its state; what to draw at a time is main.ts's business.
 
-import { bodyPicker } from './bodypicker';
+import { bodyPicker, CROWD } from './bodypicker';
 import { COLORS } from './colors';
 import { lSource } from './derived';
 import { SPEEDS, type Playback } from './playback';
@@ -70,6 +70,8 @@ export class Controls {
     const trails = el('input', { type: 'checkbox' });
     trails.addEventListener('change', () => opts.onTrails(trails.checked));
     trailsLabel.append(trails, ' trails');
+    // A crowd draws axes, arrows and the trail of the followed body only (scene3d.ts).
+    if (report.bodies.length > CROWD) trailsLabel.title = "the followed body's trail (one of a crowd)";
 
     const followLabel = el('label', { textContent: 'follow ' });
     followLabel.appendChild(bodyPicker(report, -1, opts.onFollow, 'follow', '— free camera —'));
