@@ -260,7 +260,8 @@ namespace {
 /// Throws unless the trajectory `file` is the one `c` stamped: exactly (`grown` false: the checkpoint's
 /// run committed it when it was interrupted, or an earlier resume cut it back), or followed by the rows
 /// a killed run wrote after the checkpoint (`grown` true: its temporary).
-void check_stamp(const Checkpoint& c, const std::filesystem::path& file, bool grown) {
+void check_stamp(const Checkpoint& c, const std::filesystem::path& checkpoint, const std::filesystem::path& file,
+                 bool grown) {
   std::error_code ec;
   const std::uint64_t size = std::filesystem::file_size(file, ec);
   if (!ec && (grown ? size >= c.output_bytes : size == c.output_bytes) &&
@@ -273,10 +274,10 @@ void check_stamp(const Checkpoint& c, const std::filesystem::path& file, bool gr
                                             c.output_bytes)
                               : "its rows up to the checkpoint differ";
   throw InvalidArgument(fmt::format(
-      "{} is not the trajectory of this checkpoint's run ({}): another run has written it since, and "
-      "resuming would cut it back to the checkpoint's {} samples; the checkpoint is stale: keep the file "
-      "and start a new run with tumble run",
-      file.string(), why, c.point.samples));
+      "checkpoint {} is stale: {} is not the trajectory of its run ({}): another run has written it since, "
+      "and resuming would cut it back to the checkpoint's {} samples; keep the file and start a new run with "
+      "tumble run",
+      checkpoint.string(), file.string(), why, c.point.samples));
 }
 
 }  // namespace
@@ -310,15 +311,16 @@ void recover_outputs(const Checkpoint& c, const std::filesystem::path& checkpoin
   }
   const bool killed = !moves.empty() && moves.front().second == io::output_target(c.output);
   if (c.output_bytes != 0) {  // stamped (format version 3)
-    check_stamp(c, killed ? moves.front().first : std::filesystem::path(c.output), killed);
+    check_stamp(c, checkpoint, killed ? moves.front().first : std::filesystem::path(c.output), killed);
     // A killed run's files replace the final ones; those must not be another run's, written since.
     std::error_code ec;
     const auto final_time = std::filesystem::last_write_time(io::output_target(c.output), ec);
     if (killed && !ec && final_time > std::filesystem::last_write_time(checkpoint)) {
       throw InvalidArgument(fmt::format(
-          "{} was written after the checkpoint {}, by another run: resuming would replace it with the "
-          "checkpoint's run; keep it and start a new run with tumble run, or move it away and resume",
-          c.output, checkpoint.string()));
+          "checkpoint {} is stale: {} was written after it, by another run, and resuming would replace it "
+          "with the checkpoint's run; keep it and start a new run with tumble run, or move it away and "
+          "resume",
+          checkpoint.string(), c.output));
     }
   }
   for (const auto& [temporary, target] : moves) {

@@ -1489,6 +1489,14 @@ const std::vector<Case>& catalogue() {
        "c.ckpt && ! ls x.csv.tmp-* && exit $s",
        152,
        "tumble: interrupted at t = …"},
+      {"resume: a stale checkpoint (another, complete run wrote the same -o since) is refused, not cut back",
+       {{"s.toml", std::string("[simulation]\nduration = 1e4\ntimestep = 1e-4\noutput_interval = "
+                               "1\n[[bodies]]\nname = \"a\"\nshape = { type = \"box\", size = [1, 2, 3] "
+                               "}\ndensity = 1000\n")}},
+       "(ulimit -S -t 1; {t} run s.toml -o o.csv -q --checkpoint c.ckpt 2> /dev/null); {t} run s.toml -o o.csv "
+       "-q --duration 2 && cp o.csv kept.csv && {t} resume c.ckpt; s=$?; cmp -s o.csv kept.csv && exit $s",
+       1,
+       "tumble: error: checkpoint c.ckpt is stale: …"},
       {"limit: ulimit -f during run (SIGXFSZ as the shell leaves it): one line, no file",
        {{"s.toml", std::string("[simulation]\nduration = 100\ntimestep = 1e-3\noutput_interval = "
                                "0.01\n[[bodies]]\nname = \"a\"\nshape = { type = \"box\", size = [1, 2, 3] "

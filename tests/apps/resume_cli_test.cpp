@@ -237,16 +237,19 @@ TEST(ResumeCli, AStaleCheckpointIsRefusedAndAWriterIsAskedOnlyWhereItRan) {
   ASSERT_EQ(test::run_tumble("run " + (d.dir / "s.toml").string() + " -o " + out.string() + " -q").status, 0);
   r = test::run_tumble("resume " + ckpt.string() + " -q");
   EXPECT_EQ(r.status, 1);
-  EXPECT_NE(r.output.find(out.string() + " is not the trajectory of this checkpoint's run (" +
-                          std::to_string(complete.size()) + " bytes, where the checkpoint's run had written " +
-                          std::to_string(stopped.size()) + "): another run has written it since"),
+  EXPECT_NE(r.output.find("checkpoint " + ckpt.string() + " is stale: " + out.string() +
+                          " is not the trajectory of its run (" + std::to_string(complete.size()) +
+                          " bytes, where the checkpoint's run had written " + std::to_string(stopped.size()) +
+                          "): another run has written it since"),
             std::string::npos)
       << r.output;
   EXPECT_TRUE(test::read_text(out) == complete);
   // ... nor does a killed writer's temporary replace it.
   r = resume(killed_writer(c, 999999), "killed.ckpt");
   EXPECT_EQ(r.status, 1);
-  EXPECT_NE(r.output.find("was written after the checkpoint"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("killed.ckpt is stale: " + out.string() + " was written after it, by another run"),
+            std::string::npos)
+      << r.output;
   EXPECT_TRUE(test::read_text(out) == complete);
 
   // The files as the checkpoint left them: the writer in another boot is gone, its temporary is taken
