@@ -37,7 +37,8 @@ std::string amount(double n) { return n < 1e15 ? fmt::format("{:.0f}", n) : fmt:
 
 RunPlan plan_of(const Scene& scene, const RunSettings& settings, const std::vector<std::string>& fields) {
   std::vector<int> widths;
-  for (const BodyField* f : body_fields(fields.empty() ? scene.output_fields : fields)) widths.push_back(f->width);
+  for (const BodyField* f : body_fields(fields.empty() ? scene.output_fields : fields))
+    widths.push_back(f->width);
   return plan_run(settings, scene.model.bodies.size(), scene.model.particles.size(), widths);
 }
 

@@ -232,7 +232,9 @@ std::uint64_t tail_hash(const std::filesystem::path& path, std::uint64_t size) {
     done += ok ? static_cast<size_t>(n) : 0;
   }
   if (fd >= 0) ::close(fd);
-  if (!ok) throw FileError(fmt::format("cannot read {}: {}", path.string(), std::strerror(errno != 0 ? errno : EIO)));
+  if (!ok)
+    throw FileError(
+        fmt::format("cannot read {}: {}", path.string(), std::strerror(errno != 0 ? errno : EIO)));
   return fnv1a64(tail);
 }
 
@@ -260,19 +262,19 @@ namespace {
 /// Throws unless the trajectory `file` is the one `c` stamped: exactly (`grown` false: the checkpoint's
 /// run committed it when it was interrupted, or an earlier resume cut it back), or followed by the rows
 /// a killed run wrote after the checkpoint (`grown` true: its temporary).
-void check_stamp(const Checkpoint& c, const std::filesystem::path& checkpoint, const std::filesystem::path& file,
-                 bool grown) {
+void check_stamp(const Checkpoint& c, const std::filesystem::path& checkpoint,
+                 const std::filesystem::path& file, bool grown) {
   std::error_code ec;
   const std::uint64_t size = std::filesystem::file_size(file, ec);
   if (!ec && (grown ? size >= c.output_bytes : size == c.output_bytes) &&
       tail_hash(file, c.output_bytes) == c.output_tail_hash) {
     return;
   }
-  const std::string why = ec                      ? "it is gone"
-                          : size != c.output_bytes && !(grown && size > c.output_bytes)
-                              ? fmt::format("{} bytes, where the checkpoint's run had written {}", size,
-                                            c.output_bytes)
-                              : "its rows up to the checkpoint differ";
+  const std::string why =
+      ec ? "it is gone"
+      : size != c.output_bytes && !(grown && size > c.output_bytes)
+          ? fmt::format("{} bytes, where the checkpoint's run had written {}", size, c.output_bytes)
+          : "its rows up to the checkpoint differ";
   throw InvalidArgument(fmt::format(
       "checkpoint {} is stale: {} is not the trajectory of its run ({}): another run has written it since, "
       "and resuming would cut it back to the checkpoint's {} samples; keep the file and start a new run with "
@@ -285,8 +287,8 @@ void check_stamp(const Checkpoint& c, const std::filesystem::path& checkpoint, c
 void recover_outputs(const Checkpoint& c, const std::filesystem::path& checkpoint, bool writer_gone) {
   if (c.output.empty()) return;
   const bool this_machine = c.writer_host.empty() || c.writer_host == host_name();
-  const bool this_boot =
-      c.writer_boot_id.empty() || c.writer_boot_id == first_line_of("/proc/sys/kernel/random/boot_id");
+  const bool this_boot = c.writer_boot_id.empty() ||
+                         c.writer_boot_id == first_line_of("/proc/sys/kernel/random/boot_id");
   // Everything is checked before anything moves.
   std::vector<std::pair<std::filesystem::path, std::filesystem::path>> moves;  // temporary → final
   for (const std::string& out : {c.output, c.diagnostics, events_path(c.output).string()}) {
@@ -296,7 +298,8 @@ void recover_outputs(const Checkpoint& c, const std::filesystem::path& checkpoin
     if (!std::filesystem::is_regular_file(std::filesystem::symlink_status(temporary, ec))) continue;
     if (!this_machine && !writer_gone) {
       throw InvalidArgument(fmt::format(
-          "the run that wrote this checkpoint ran on host {} (process {}), and its {} is still there: if that "
+          "the run that wrote this checkpoint ran on host {} (process {}), and its {} is still there: if "
+          "that "
           "run no longer runs, give --writer-gone to take its files over; if it does, stop it there first "
           "(Ctrl-C writes a last checkpoint)",
           c.writer_host, c.writer_pid, temporary.string()));
@@ -333,7 +336,8 @@ void recover_outputs(const Checkpoint& c, const std::filesystem::path& checkpoin
   }
   // The rows after the checkpoint are the resume's to write again: cut now, so the trajectory is the
   // stamped one exactly, whatever becomes of this resume.
-  if (killed && c.output_bytes != 0) std::filesystem::resize_file(io::output_target(c.output), c.output_bytes);
+  if (killed && c.output_bytes != 0)
+    std::filesystem::resize_file(io::output_target(c.output), c.output_bytes);
 }
 
 namespace {

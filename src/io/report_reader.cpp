@@ -217,9 +217,10 @@ void check_time(double t, double previous, const Where& where) {
         "{}: t = {} is not a time: the file is damaged or was edited; run the scene again", where(), t));
   }
   if (t < previous) {
-    throw InvalidArgument(fmt::format("{}: t = {} comes after t = {}, but times never decrease: the file is "
-                                      "damaged or was edited; run the scene again",
-                                      where(), t, previous));
+    throw InvalidArgument(
+        fmt::format("{}: t = {} comes after t = {}, but times never decrease: the file is "
+                    "damaged or was edited; run the scene again",
+                    where(), t, previous));
   }
 }
 
@@ -248,7 +249,8 @@ Samples read_hdf5(const std::filesystem::path& path, Report& r, const Scene* sce
   s.t = h.doubles("t");
   const size_t T = s.t.size(), N = r.names.size();
   for (size_t k = 0; k < T; ++k)
-    check_time(s.t[k], k > 0 ? s.t[k - 1] : -kInf, [&] { return fmt::format("{}: /t[{}]", path.string(), k); });
+    check_time(s.t[k], k > 0 ? s.t[k - 1] : -kInf,
+               [&] { return fmt::format("{}: /t[{}]", path.string(), k); });
   const auto series = [&](const char* name, size_t width) {
     std::vector<hsize_t> shape;
     std::vector<double> v = h.doubles(name, &shape);
@@ -279,17 +281,20 @@ Samples read_hdf5(const std::filesystem::path& path, Report& r, const Scene* sce
     const auto names = h.strings("events/event");
     const auto rows = h.doubles("events/body");
     if (names.size() != t.size() || rows.size() != t.size()) {
-      throw InvalidArgument(fmt::format("{}: /events/t, /events/event and /events/body differ in length "
-                                        "({}, {}, {}): the file is damaged or was edited",
-                                        path.string(), t.size(), names.size(), rows.size()));
+      throw InvalidArgument(
+          fmt::format("{}: /events/t, /events/event and /events/body differ in length "
+                      "({}, {}, {}): the file is damaged or was edited",
+                      path.string(), t.size(), names.size(), rows.size()));
     }
     for (size_t i = 0; i < t.size(); ++i) {
       const auto where = [&] { return fmt::format("{}: /events[{}]", path.string(), i); };
       check_time(t[i], -kInf, where);
-      if (!(rows[i] >= 0.0 && rows[i] < static_cast<double>(r.names.size()) && rows[i] == std::floor(rows[i]))) {
-        throw InvalidArgument(fmt::format("{}: body {} is not one of the {} in /names: the file is damaged or "
-                                          "was edited; run the scene again",
-                                          where(), rows[i], r.names.size()));
+      if (!(rows[i] >= 0.0 && rows[i] < static_cast<double>(r.names.size()) &&
+            rows[i] == std::floor(rows[i]))) {
+        throw InvalidArgument(
+            fmt::format("{}: body {} is not one of the {} in /names: the file is damaged or "
+                        "was edited; run the scene again",
+                        where(), rows[i], r.names.size()));
       }
       r.events.push_back({names[i], t[i], static_cast<long>(rows[i])});
     }
@@ -455,9 +460,10 @@ Samples read_csv_run(const std::filesystem::path& path, Report& r, const Scene* 
       check_time(t, s.t.empty() ? -kInf : s.t.back(), where);
       s.t.push_back(t);
     } else if (t != s.t.back()) {
-      throw InvalidArgument(fmt::format("{}: t = {} within the sample at t = {}: the file is damaged or was "
-                                        "edited; run the scene again",
-                                        where(), t, s.t.back()));
+      throw InvalidArgument(
+          fmt::format("{}: t = {} within the sample at t = {}: the file is damaged or was "
+                      "edited; run the scene again",
+                      where(), t, s.t.back()));
     }
     for (size_t k = 0; k < 3; ++k) s.position.push_back(number(cells[px + k], file, line + 1));
     for (size_t k = 0; k < 4; ++k) s.orientation.push_back(number(cells[qw + k], file, line + 1));
@@ -500,9 +506,10 @@ Samples read_csv_run(const std::filesystem::path& path, Report& r, const Scene* 
       const auto where = [&] { return fmt::format("{}:{}", epath.string(), line + 1); };
       const auto named = std::find(r.names.begin(), r.names.end(), cells[2]);
       if (named == r.names.end()) {
-        throw InvalidArgument(fmt::format("{}: body '{}' is not in {}: the file is damaged or was edited; "
-                                          "run the scene again",
-                                          where(), cells[2], file));
+        throw InvalidArgument(
+            fmt::format("{}: body '{}' is not in {}: the file is damaged or was edited; "
+                        "run the scene again",
+                        where(), cells[2], file));
       }
       const double t = number(cells[0], epath.string(), line + 1);
       check_time(t, -kInf, where);

@@ -61,7 +61,8 @@ double winding_number(const TriangleMesh& mesh, const Surface& s, const Vec3& p)
     const auto& f = mesh.triangles[t];
     const Vec3 a = mesh.vertices[f[0]] - p, b = mesh.vertices[f[1]] - p, c = mesh.vertices[f[2]] - p;
     const double la = a.norm(), lb = b.norm(), lc = c.norm();
-    omega += 2.0 * std::atan2(a.dot(b.cross(c)), la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la);
+    omega += 2.0 *
+             std::atan2(a.dot(b.cross(c)), la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la);
   }
   return omega / (4.0 * std::numbers::pi);
 }

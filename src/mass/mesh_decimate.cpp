@@ -64,6 +64,8 @@ Vec3 inertia_box_edges(double m, const Vec3& Lambda) {
   return edges.cwiseMax(1e-3 * edges.maxCoeff());
 }
 
-TriangleMesh inertia_box(double m, const Vec3& Lambda) { return tessellate(Box{inertia_box_edges(m, Lambda)}, 4); }
+TriangleMesh inertia_box(double m, const Vec3& Lambda) {
+  return tessellate(Box{inertia_box_edges(m, Lambda)}, 4);
+}
 
 }  // namespace tumble

@@ -53,10 +53,20 @@ std::pair<int, std::string> run_in(const std::filesystem::path& dir, std::string
   return {status, first};
 }
 
+/// A box at rest for 10 ms: the scene of the command-line rows.
+const char* const kBoxScene =
+    "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = \"box\", size = [1, 2, 3] "
+    "}\ndensity = 1000\n";
+/// A box for 10⁴ s at steps of 0.1 ms: a run that is stopped (a signal, a limit) long before its end.
+const char* const kLongBoxScene =
+    "[simulation]\nduration = 1e4\ntimestep = 1e-4\noutput_interval = 1\n[[bodies]]\nname = \"a\"\nshape = "
+    "{ type = \"box\", size = [1, 2, 3] }\ndensity = 1000\n";
+
 /// A box tumbling about its intermediate axis for 3 s, sampled every 10 ms: its ω₂ changes sign once.
 const char* const kEventScene =
     "[simulation]\nduration = 3.0\ntimestep = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = \"box\", "
-    "size = [1, 2, 3] }\ndensity = 1000\nangular_velocity = [0.5, 5, 0.5]\n[[events]]\nname = \"flip\"\nbody = "
+    "size = [1, 2, 3] }\ndensity = 1000\nangular_velocity = [0.5, 5, 0.5]\n[[events]]\nname = \"flip\"\nbody "
+    "= "
     "\"a\"\ncolumn = \"w2\"\n";
 
 /// The unit cube as a glTF buffer: its 8 corners as float32, then 12 outward triangles as uint16.
@@ -634,7 +644,9 @@ const std::vector<Case>& catalogue() {
       {"run: -o naming a glTF's buffer file (an input as much as the mesh) is refused",
        {{"model/cube.gltf", kCubeGltf},
         {"model/cube.bin", cube_gltf_bin()},
-        {"s.toml", "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"c\"\nmesh = \"model/cube.gltf\"\ndensity = 1000\n"}},
+        {"s.toml",
+         "[simulation]\nduration = 0.01\n[[bodies]]\nname = \"c\"\nmesh = \"model/cube.gltf\"\ndensity = "
+         "1000\n"}},
        "{t} run s.toml -o model/cube.bin",
        1,
        "tumble: error: -o model/cube.bin is the file …"},
@@ -642,11 +654,13 @@ const std::vector<Case>& catalogue() {
        {{"m.obj",
          "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\nv 0.25 0.25 0.25\nv 0.75 "
          "0.25 0.25\nv 0.75 0.75 0.25\nv 0.25 0.75 0.25\nv 0.25 0.25 0.75\nv 0.75 0.25 0.75\nv 0.75 0.75 "
-         "0.75\nv 0.25 0.75 0.75\nf 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 3 4 8 7\nf 1 5 8 4\nf 2 3 7 6\nf 9 12 11 "
+         "0.75\nv 0.25 0.75 0.75\nf 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 3 4 8 7\nf 1 5 8 4\nf 2 3 7 6\nf 9 12 "
+         "11 "
          "10\nf 13 14 15 16\nf 9 10 14 13\nf 11 12 16 15\nf 9 13 16 12\nf 10 11 15 14\n"}},
        "{t} inertia m.obj --density 1",
        1,
-       "tumble: error: m.obj: the closed surface of triangle 12 (12 triangles) lies inside the closed surface "
+       "tumble: error: m.obj: the closed surface of triangle 12 (12 triangles) lies inside the closed "
+       "surface "
        "of triangle 0 (12 triangles), and both face outward: the material between them would be counted "
        "twice; if the inner surface bounds a cavity, reverse its triangles (its normals must point into the "
        "cavity); if it is a part of its own, give it as another part or body"},
@@ -992,40 +1006,34 @@ const std::vector<Case>& catalogue() {
        "tumble: error: --density was given an empty value (''): give one, or leave the option out; see "
        "tumble inertia --help"},
       {"cli: an empty value after '='",
-       {{"s.toml", std::string("[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = "
-                               "\"box\", size = [1, 2, 3] }\ndensity = 1000\n")}},
+       {{"s.toml", kBoxScene}},
        "{t} run s.toml --timestep=",
        2,
        "tumble: error: --timestep was given an empty value: give one after the '=', or leave the option "
        "out; see tumble run --help"},
       {"cli: output with an unknown extension (not silently CSV)",
-       {{"s.toml", std::string("[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = "
-                               "\"box\", size = [1, 2, 3] }\ndensity = 1000\n")}},
+       {{"s.toml", kBoxScene}},
        "{t} run s.toml -o out.xyz",
        1,
        "tumble: error: -o out.xyz: unknown extension .xyz; tumble writes CSV (.csv) or HDF5 (.h5, .hdf5): "
        "name the file so, or give --format csv or --format hdf5"},
       {"cli: output extension in capitals is HDF5",
-       {{"s.toml", std::string("[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = "
-                               "\"box\", size = [1, 2, 3] }\ndensity = 1000\n")}},
+       {{"s.toml", kBoxScene}},
        "{t} run s.toml -o OUT.H5 -q && head -c 8 OUT.H5 | od -c | grep -q 'H   D   F'",
        0,
        ""},
       {"cli: checkpoint into a directory that does not exist yet (created before the run)",
-       {{"s.toml", std::string("[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = "
-                               "\"box\", size = [1, 2, 3] }\ndensity = 1000\n")}},
+       {{"s.toml", kBoxScene}},
        "{t} run s.toml -o r.csv --checkpoint later/r.ckpt -q && test -d later",
        0,
        ""},
       {"cli: checkpoint that cannot be written (refused before the run)",
-       {{"s.toml", std::string("[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = "
-                               "\"box\", size = [1, 2, 3] }\ndensity = 1000\n")}},
+       {{"s.toml", kBoxScene}},
        "{t} run s.toml -o r.csv --checkpoint /proc/r.ckpt",
        1,
        "tumble: error: cannot write the checkpoint /proc/r.ckpt: …"},
       {"cli: checkpoint onto a device",
-       {{"s.toml", std::string("[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = "
-                               "\"box\", size = [1, 2, 3] }\ndensity = 1000\n")}},
+       {{"s.toml", kBoxScene}},
        "{t} run s.toml -o r.csv --checkpoint /dev/null",
        1,
        "tumble: error: --checkpoint /dev/null is not a regular file: give a file name, e.g. --checkpoint "
@@ -1180,13 +1188,15 @@ const std::vector<Case>& catalogue() {
        {{"s.toml", kEventScene}},
        "{t} run s.toml -o o.csv -q && sed -i '3s/^0.01,/0.2,/' o.csv && {t} report o.csv",
        1,
-       "tumble: error: o.csv:4: t = 0.02 comes after t = 0.2, but times never decrease: the file is damaged or "
+       "tumble: error: o.csv:4: t = 0.02 comes after t = 0.2, but times never decrease: the file is damaged "
+       "or "
        "was edited; run the scene again"},
       {"report: a trajectory with a time that is not a number",
        {{"s.toml", kEventScene}},
        "{t} run s.toml -o o.csv -q && sed -i '3s/^0.01,/nan,/' o.csv && {t} report o.csv",
        1,
-       "tumble: error: o.csv:3: t = nan is not a time: the file is damaged or was edited; run the scene again"},
+       "tumble: error: o.csv:3: t = nan is not a time: the file is damaged or was edited; run the scene "
+       "again"},
       {"report: an event at a body the trajectory does not have",
        {{"s.toml", kEventScene}},
        "{t} run s.toml -o o.csv -q && sed -i '2s/,a$/,ghost/' o.events.csv && {t} report o.csv",
@@ -1447,53 +1457,39 @@ const std::vector<Case>& catalogue() {
        0,
        ""},
       {"signal: SIGINT mid-run keeps a valid file",
-       {{"s.toml", std::string("[simulation]\nduration = 1e4\ntimestep = 1e-4\noutput_interval = "
-                               "1\n[[bodies]]\nname = \"a\"\nshape = { type = \"box\", size = [1, 2, 3] "
-                               "}\ndensity = 1000\n",
-                               144)}},
+       {{"s.toml", kLongBoxScene}},
        "set -m; {t} run s.toml -o x.csv --quiet & sleep 1; kill -INT $!; wait $!; s=$?; test -s x.csv && ! "
        "ls x.csv.tmp-* && exit $s",
        130,
        "tumble: interrupted at t = …"},
       {"signal: SIGTERM mid-run keeps a valid file",
-       {{"s.toml", std::string("[simulation]\nduration = 1e4\ntimestep = 1e-4\noutput_interval = "
-                               "1\n[[bodies]]\nname = \"a\"\nshape = { type = \"box\", size = [1, 2, 3] "
-                               "}\ndensity = 1000\n",
-                               144)}},
+       {{"s.toml", kLongBoxScene}},
        "set -m; {t} run s.toml -o x.csv --quiet & sleep 1; kill -TERM $!; wait $!; s=$?; test -s x.csv && ! "
        "ls x.csv.tmp-* && exit $s",
        143,
        "tumble: interrupted at t = …"},
       {"signal: SIGHUP mid-run keeps a valid file",
-       {{"s.toml", std::string("[simulation]\nduration = 1e4\ntimestep = 1e-4\noutput_interval = "
-                               "1\n[[bodies]]\nname = \"a\"\nshape = { type = \"box\", size = [1, 2, 3] "
-                               "}\ndensity = 1000\n",
-                               144)}},
+       {{"s.toml", kLongBoxScene}},
        "set -m; {t} run s.toml -o x.csv --quiet & sleep 1; kill -HUP $!; wait $!; s=$?; test -s x.csv && ! "
        "ls x.csv.tmp-* && exit $s",
        129,
        "tumble: interrupted at t = …"},
       {"signal: SIGXCPU (a batch system's CPU-time warning) mid-run keeps a valid file",
-       {{"s.toml", std::string("[simulation]\nduration = 1e4\ntimestep = 1e-4\noutput_interval = "
-                               "1\n[[bodies]]\nname = \"a\"\nshape = { type = \"box\", size = [1, 2, 3] "
-                               "}\ndensity = 1000\n")}},
+       {{"s.toml", kLongBoxScene}},
        "set -m; {t} run s.toml -o x.csv --quiet & sleep 1; kill -XCPU $!; wait $!; s=$?; test -s x.csv && ! "
        "ls x.csv.tmp-* && exit $s",
        152,
        "tumble: interrupted at t = …"},
       {"limit: ulimit -t (a CPU-time limit: SIGXCPU at the soft one) keeps a valid file and a checkpoint",
-       {{"s.toml", std::string("[simulation]\nduration = 1e4\ntimestep = 1e-4\noutput_interval = "
-                               "1\n[[bodies]]\nname = \"a\"\nshape = { type = \"box\", size = [1, 2, 3] "
-                               "}\ndensity = 1000\n")}},
+       {{"s.toml", kLongBoxScene}},
        "ulimit -S -t 1; {t} run s.toml -o x.csv --quiet --checkpoint c.ckpt; s=$?; test -s x.csv && test -s "
        "c.ckpt && ! ls x.csv.tmp-* && exit $s",
        152,
        "tumble: interrupted at t = …"},
       {"resume: a stale checkpoint (another, complete run wrote the same -o since) is refused, not cut back",
-       {{"s.toml", std::string("[simulation]\nduration = 1e4\ntimestep = 1e-4\noutput_interval = "
-                               "1\n[[bodies]]\nname = \"a\"\nshape = { type = \"box\", size = [1, 2, 3] "
-                               "}\ndensity = 1000\n")}},
-       "(ulimit -S -t 1; {t} run s.toml -o o.csv -q --checkpoint c.ckpt 2> /dev/null); {t} run s.toml -o o.csv "
+       {{"s.toml", kLongBoxScene}},
+       "(ulimit -S -t 1; {t} run s.toml -o o.csv -q --checkpoint c.ckpt 2> /dev/null); {t} run s.toml -o "
+       "o.csv "
        "-q --duration 2 && cp o.csv kept.csv && {t} resume c.ckpt; s=$?; cmp -s o.csv kept.csv && exit $s",
        1,
        "tumble: error: checkpoint c.ckpt is stale: …"},

@@ -394,7 +394,8 @@ TEST(RunOutputs, AFullDiskEndsWithOneLineAndNoFile) {
             "tumble: error: writing the trajectory to " + csv.string() +
                 " failed: File too large; nothing was kept under that name: free some space or write "
                 "elsewhere\n");
-  for (const auto& [blocks, args] : {std::pair{64, "--duration 0.5"}, std::pair{4096, "--duration 100 --output-interval 0"}}) {
+  for (const auto& [blocks, args] :
+       {std::pair{64, "--duration 0.5"}, std::pair{4096, "--duration 100 --output-interval 0"}}) {
     const auto h = limited(blocks, std::string(args) + " -o " + h5.string());
     EXPECT_EQ(h.status, 1) << args << "\n" << h.output;
     EXPECT_EQ(line_count(h.output), 1u) << h.output;

@@ -192,7 +192,8 @@ TEST(ResumeCli, ARunOfThousandsOfBodiesWrittenOnASecondThreadResumesToTheSameFil
 TEST(ResumeCli, AStaleCheckpointIsRefusedAndAWriterIsAskedOnlyWhereItRan) {
   Dir whole("resume_stale_whole");
   const fs::path whole_scene = whole.dir.write("s.toml", scene_text("rk4"));
-  ASSERT_EQ(test::run_tumble("run " + whole_scene.string() + " -o " + (whole.dir / "out.csv").string() + " -q")
+  ASSERT_EQ(test::run_tumble("run " + whole_scene.string() + " -o " + (whole.dir / "out.csv").string() +
+                             " -q")
                 .status,
             0);
   const std::string complete = test::read_text(whole.dir / "out.csv");
@@ -225,8 +226,8 @@ TEST(ResumeCli, AStaleCheckpointIsRefusedAndAWriterIsAskedOnlyWhereItRan) {
   elsewhere.writer_host = "node-17";
   r = resume(elsewhere, "elsewhere.ckpt");
   EXPECT_EQ(r.status, 1);
-  EXPECT_NE(r.output.find("ran on host node-17 (process " + std::to_string(self) +
-                          "), and its " + out.string() + ".tmp-" + std::to_string(self) +
+  EXPECT_NE(r.output.find("ran on host node-17 (process " + std::to_string(self) + "), and its " +
+                          out.string() + ".tmp-" + std::to_string(self) +
                           " is still there: if that run no longer runs, give --writer-gone"),
             std::string::npos)
       << r.output;

@@ -209,10 +209,11 @@ TEST(RunCli, CheckPlansTheHdf5FileItsRunWrites) {
   const test::TempDir dir("run_hdf5_plan");
   for (const auto& [duration, samples] : {std::pair{"0.05", 6}, std::pair{"20", 2001}}) {
     SCOPED_TRACE(duration);
-    const auto scene = dir.write("s.toml", std::string("[simulation]\nduration = ") + duration +
-                                               "\ntimestep = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = "
-                                               "\"box\", size = [1, 2, 3] }\ndensity = 1000\nangular_velocity "
-                                               "= [0.5, 5, 0.5]\n");
+    const auto scene =
+        dir.write("s.toml", std::string("[simulation]\nduration = ") + duration +
+                                "\ntimestep = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = "
+                                "\"box\", size = [1, 2, 3] }\ndensity = 1000\nangular_velocity "
+                                "= [0.5, 5, 0.5]\n");
     const auto check = run_tumble("check " + scene.string());
     ASSERT_EQ(check.status, 0) << check.output;
     ASSERT_NE(check.output.find(std::to_string(samples) + " samples"), std::string::npos) << check.output;

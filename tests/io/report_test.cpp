@@ -220,7 +220,8 @@ TEST(Report, TheHtmlHoldsTheJsonTheViewerDecodes) {
   EXPECT_EQ(body.at("kind"), "body");
   const auto& mesh = j.at("meshes").at(body.at("mesh").get<size_t>());
   EXPECT_EQ(decode<float>(mesh.at("positions")).size(), 3 * r.geometry.bodies[0].surface().vertices.size());
-  EXPECT_EQ(decode<std::uint32_t>(mesh.at("indices")).size(), 3 * r.geometry.bodies[0].surface().triangles.size());
+  EXPECT_EQ(decode<std::uint32_t>(mesh.at("indices")).size(),
+            3 * r.geometry.bodies[0].surface().triangles.size());
   EXPECT_EQ(j.at("events").size(), 4u);
 }
 
@@ -338,16 +339,22 @@ TEST(Report, ATamperedHdf5TrajectoryIsRefusedWithThePlace) {
       EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
     }
   };
-  refused("nan.h5", [](const fs::path& f) { poke(f, "t", 7, std::nan("")); },
-          "nan.h5: /t[7]: t = nan is not a time");
-  refused("back.h5", [](const fs::path& f) { poke(f, "t", 7, 1e-3); },
-          "back.h5: /t[7]: t = 0.001 comes after t = 0.06, but times never decrease");
-  refused("body.h5", [](const fs::path& f) { poke(f, "events/body", 0, 5.0); },
-          "body.h5: /events[0]: body 5 is not one of the 1 in /names");
-  refused("negative.h5", [](const fs::path& f) { poke(f, "events/body", 0, -1.0); },
-          "negative.h5: /events[0]: body -1 is not one of the 1 in /names");
-  refused("event_t.h5", [](const fs::path& f) { poke(f, "events/t", 0, std::numeric_limits<double>::infinity()); },
-          "event_t.h5: /events[0]: t = inf is not a time");
+  refused(
+      "nan.h5", [](const fs::path& f) { poke(f, "t", 7, std::nan("")); },
+      "nan.h5: /t[7]: t = nan is not a time");
+  refused(
+      "back.h5", [](const fs::path& f) { poke(f, "t", 7, 1e-3); },
+      "back.h5: /t[7]: t = 0.001 comes after t = 0.06, but times never decrease");
+  refused(
+      "body.h5", [](const fs::path& f) { poke(f, "events/body", 0, 5.0); },
+      "body.h5: /events[0]: body 5 is not one of the 1 in /names");
+  refused(
+      "negative.h5", [](const fs::path& f) { poke(f, "events/body", 0, -1.0); },
+      "negative.h5: /events[0]: body -1 is not one of the 1 in /names");
+  refused(
+      "event_t.h5",
+      [](const fs::path& f) { poke(f, "events/t", 0, std::numeric_limits<double>::infinity()); },
+      "event_t.h5: /events[0]: t = inf is not a time");
 }
 
 TEST(Report, MissingPiecesAreNamed) {

@@ -56,9 +56,10 @@ TEST(MeshSurfaces, NestedOutwardSurfacesOrALoneInwardOneAreRefused) {
             "twice; if the inner surface bounds a cavity, reverse its triangles (its normals must point "
             "into the cavity); if it is a part of its own, give it as another part or body");
   // Listed inner first, and off-centre: the same.
-  EXPECT_NE(refusal(merged({cube(0.5, Vec3(0.3, 0.2, 0.1)), cube(2)})).find("the closed surface of triangle 0 "
-                                                                           "(12 triangles) lies inside the "
-                                                                           "closed surface of triangle 12"),
+  EXPECT_NE(refusal(merged({cube(0.5, Vec3(0.3, 0.2, 0.1)), cube(2)}))
+                .find("the closed surface of triangle 0 "
+                      "(12 triangles) lies inside the "
+                      "closed surface of triangle 12"),
             std::string::npos);
   EXPECT_EQ(refusal(merged({cube(1), cube(0.5, Vec3(3, 0, 0), true)})),
             "m.obj: the closed surface of triangle 12 (12 triangles) faces inward (a cavity's surface) but "

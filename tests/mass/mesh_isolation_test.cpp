@@ -346,7 +346,8 @@ TEST(MeshIsolation, AMeshReadsNoFileOutsideItsDirectory) {
   // never writes over it.
   const auto buffer = std::filesystem::weakly_canonical(dir / "model/data/cube.bin");
   EXPECT_EQ(inside.companions, std::vector<std::filesystem::path>{buffer});
-  write_bytes(dir / "model/s.toml", "[simulation]\nduration = 1\n[[bodies]]\nname = \"c\"\nmesh = \"inside.gltf\"\ndensity = 1\n");
+  write_bytes(dir / "model/s.toml",
+              "[simulation]\nduration = 1\n[[bodies]]\nname = \"c\"\nmesh = \"inside.gltf\"\ndensity = 1\n");
   const Scene scene = load_scene(dir / "model/s.toml");
   EXPECT_NE(std::find(scene.input_files.begin(), scene.input_files.end(), buffer), scene.input_files.end());
   // A link to a mesh elsewhere: the mesh is read, and its buffer beside the link.
