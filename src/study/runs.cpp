@@ -252,7 +252,10 @@ std::vector<EnsembleRow> run_ensemble(const EnsembleStudy& study, const std::vec
   std::atomic<size_t> next{0};
   std::atomic<bool> halt{false};
   std::mutex lock;
+  // The failure reported is the first run's, whatever thread meets it first: a batch before the one
+  // that failed was claimed before it and still runs to its end.
   std::exception_ptr failure;
+  size_t failed_batch = batches;
   const auto work = [&] {
     for (;;) {
       const size_t b = next.fetch_add(1);
@@ -269,7 +272,7 @@ std::vector<EnsembleRow> run_ensemble(const EnsembleStudy& study, const std::vec
         if (stop && stop()) halt = true;
       } catch (...) {
         const std::lock_guard<std::mutex> guard(lock);
-        if (!failure) failure = std::current_exception();
+        if (b < failed_batch) failure = std::current_exception(), failed_batch = b;
         halt = true;
         return;
       }

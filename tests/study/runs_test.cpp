@@ -238,6 +238,21 @@ runs = 16)" + test::vary("bodies.racket.angular_velocity[1]", "list",
   }
 }
 
+// When several runs fail, the study reports the first of them, whatever thread meets a failure first:
+// here every run's draw is invalid, and two threads take batches of 4 runs side by side.
+TEST(StudyRuns, OfSeveralFailingRunsTheFirstIsReportedOnAnyThread) {
+  const EnsembleStudy s =
+      study("[ensemble]\nruns = 64" + test::vary("bodies.racket.mass", "uniform", "low = -2.0\nhigh = -1.0"));
+  for (int attempt = 0; attempt < 20; ++attempt) {
+    try {
+      (void)run_ensemble(s, every_run(s), 2, {});
+      FAIL() << "the invalid masses went unnoticed";
+    } catch (const Error& e) {
+      ASSERT_EQ(std::string(e.what()).rfind("run 0 (", 0), 0u) << e.what();
+    }
+  }
+}
+
 // Each run's mean interval between flips against 2K(m)/λ computed from its own drawn ω (Euler–Poinsot).
 // RK4 at ω h = 0.01 rad: the interval carries its phase error, ~1e-9 s over 8 s (measured 1e-10 for
 // the T-handle in examples_test at twice the step); 1e-7 s leaves room.
