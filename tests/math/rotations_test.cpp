@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "../support/random.hpp"
@@ -76,6 +77,58 @@ TEST(Rotations, GimbalLockPutsTheWholeTurnInTheFirstAngle) {
     EXPECT_NEAR(a.x(), -2.5, 1e-15);
     EXPECT_LT(test::rel_diff(from_euler_zxz(a), R), kRebuilt);
   }
+}
+
+// R rebuilt from double angles in long double (64-bit significand): a reference 2^11 finer than a
+// double's rounding, so what it shows is the angles' error, not the rebuild's.
+Eigen::Matrix<long double, 3, 3> rebuilt_long(int first, int second, int third, const Vec3& a) {
+  const auto axis = [](int i, long double t) {
+    Eigen::Matrix<long double, 3, 3> M = Eigen::Matrix<long double, 3, 3>::Identity();
+    const int j = (i + 1) % 3, k = (i + 2) % 3;
+    M(j, j) = M(k, k) = std::cos(t);
+    M(k, j) = std::sin(t);
+    M(j, k) = -M(k, j);
+    return M;
+  };
+  return axis(first, a.x()) * axis(second, a.y()) * axis(third, a.z());
+}
+
+double largest_entry_error(const Eigen::Matrix<long double, 3, 3>& A, const Mat3& R) {
+  return static_cast<double>((A - R.cast<long double>()).cwiseAbs().maxCoeff());
+}
+
+TEST(Rotations, ApproachingTheLockTheAnglesStillRebuildTheRotationToRounding) {
+  // Rotations whose cos(pitch) (ZYX) or sin θ (ZXZ) is 1e-3 … 1e-16, given as unit quaternions, with
+  // random outer angles. The rebuilt R must match the input to a few ulp: each angle, up to π, is
+  // rounded by atan2 to ~1.6ε absolute, and the first one also carries the rounding of the two-term
+  // sums it is taken from (~2ε), each moving entries of size 1 by as much: 8ε bounds the three (measured
+  // 3–4ε). Taking yaw and roll each from entries of size cos(pitch) was off by ~ε / cos(pitch), 1e-4.
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  test::Random rng(11);
+  double worst_zyx = 0, worst_zxz = 0;
+  for (int k = 3; k <= 16; ++k) {
+    const double delta = std::pow(10.0, -k);
+    for (const double side : {1.0, -1.0}) {
+      for (int n = 0; n < 50; ++n) {
+        const double outer1 = rng.uniform(-3.1, 3.1), outer2 = rng.uniform(-3.1, 3.1);
+        const Quat zyx = Quat(Eigen::AngleAxisd(outer1, Vec3::UnitZ())) *
+                         Quat(Eigen::AngleAxisd(side * (pi / 2 - delta), Vec3::UnitY())) *
+                         Quat(Eigen::AngleAxisd(outer2, Vec3::UnitX()));
+        const Mat3 R = zyx.normalized().toRotationMatrix();
+        worst_zyx = std::max(worst_zyx, largest_entry_error(rebuilt_long(2, 1, 0, euler_zyx(R)), R));
+        const double theta = side > 0 ? delta : pi - delta;
+        const Quat zxz = Quat(Eigen::AngleAxisd(outer1, Vec3::UnitZ())) *
+                         Quat(Eigen::AngleAxisd(theta, Vec3::UnitX())) *
+                         Quat(Eigen::AngleAxisd(outer2, Vec3::UnitZ()));
+        const Mat3 S = zxz.normalized().toRotationMatrix();
+        worst_zxz = std::max(worst_zxz, largest_entry_error(rebuilt_long(2, 0, 2, euler_zxz(S)), S));
+      }
+    }
+  }
+  EXPECT_LT(worst_zyx, 8 * eps);
+  EXPECT_LT(worst_zxz, 8 * eps);
+  RecordProperty("worst_zyx_in_eps", std::to_string(worst_zyx / eps));
+  RecordProperty("worst_zxz_in_eps", std::to_string(worst_zxz / eps));
 }
 
 TEST(Rotations, AxisAngleOfEitherSignOfTheQuaternion) {

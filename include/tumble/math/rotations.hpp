@@ -4,9 +4,10 @@
 //
 //  - ZYX (yaw–pitch–roll, aerospace): R = Rz(yaw) Ry(pitch) Rx(roll), angles (yaw, pitch, roll) with
 //    yaw, roll ∈ (−π, π] and pitch ∈ [−π/2, π/2]. At pitch = ±π/2 (gimbal lock) only yaw ∓ roll is
-//    defined: roll is set to 0.
+//    defined: roll is set to 0. Just short of the lock the angles still rebuild R to rounding.
 //  - ZXZ (3-1-3, classical mechanics and orbits): R = Rz(φ) Rx(θ) Rz(ψ), angles (φ, θ, ψ) with
-//    φ, ψ ∈ (−π, π] and θ ∈ [0, π]. At θ = 0 or π only φ ± ψ is defined: ψ is set to 0.
+//    φ, ψ ∈ (−π, π] and θ ∈ [0, π]. At θ = 0 or π only φ ± ψ is defined: ψ is set to 0. Just short of
+//    it, as of ZYX's lock, the angles still rebuild R to rounding.
 //  - Axis–angle: R = exp(angle [axis]×), angle ∈ [0, π], |axis| = 1; at angle = 0 the axis is
 //    arbitrary and given as (1, 0, 0).
 // Rotations are active and map the rotated frame's coordinates to the fixed frame's: x_w = R x.
@@ -22,19 +23,21 @@ inline Mat3 rotation_x(double a) { return Eigen::AngleAxisd(a, Vec3::UnitX()).to
 inline Mat3 rotation_y(double a) { return Eigen::AngleAxisd(a, Vec3::UnitY()).toRotationMatrix(); }
 inline Mat3 rotation_z(double a) { return Eigen::AngleAxisd(a, Vec3::UnitZ()).toRotationMatrix(); }
 
-/// Below this cos(pitch) (ZYX) or sin(θ) (ZXZ) the two outer axes are treated as aligned: the outer
-/// angles are then known only through their sum or difference, and atan2 of the rounding left in the
-/// matrix entries (~1e-16) would give an arbitrary split.
-inline constexpr double kGimbalLock = 1e-12;
-
 /// (yaw, pitch, roll) with R = Rz(yaw) Ry(pitch) Rx(roll).
 inline Vec3 euler_zyx(const Mat3& R) {
-  // R(2,0) = −sin pitch, R(1,0)/R(0,0) = tan yaw, R(2,1)/R(2,2) = tan roll; pitch from atan2 keeps
-  // its accuracy near ±π/2, where asin(−R(2,0)) would lose half the digits.
-  const double c = std::hypot(R(0, 0), R(1, 0));
+  // Third row: (−sin pitch, cos pitch sin roll, cos pitch cos roll). pitch from atan2 keeps its accuracy
+  // near ±π/2, where asin(−R(2,0)) would lose half the digits.
+  const double c = std::hypot(R(2, 1), R(2, 2));
   const double pitch = std::atan2(-R(2, 0), c);
-  if (c < kGimbalLock) return {std::atan2(-R(0, 1), R(1, 1)), pitch, 0.0};  // R = Rz(yaw) Ry(±π/2)
-  return {std::atan2(R(1, 0), R(0, 0)), pitch, std::atan2(R(2, 1), R(2, 2))};
+  // Near the lock roll comes from entries of size cos pitch, each off by ~ε, so roll alone is off by
+  // ~ε / cos pitch. Yaw is therefore taken from entries of size 1 *given* that roll, so that yaw ∓ roll,
+  // on which alone the rotation depends there, is right to rounding:
+  //   sin r R(0,2) − cos r R(0,1) = sin yaw,   cos r R(1,1) − sin r R(1,2) = cos yaw.
+  // At the lock itself (c = 0) only yaw ∓ roll is defined: roll is set to 0.
+  const double roll = c == 0.0 ? 0.0 : std::atan2(R(2, 1), R(2, 2));
+  const double sr = std::sin(roll), cr = std::cos(roll);
+  const double yaw = std::atan2(sr * R(0, 2) - cr * R(0, 1), cr * R(1, 1) - sr * R(1, 2));
+  return {yaw, pitch, roll};
 }
 
 inline Mat3 from_euler_zyx(const Vec3& yaw_pitch_roll) {
@@ -43,11 +46,16 @@ inline Mat3 from_euler_zyx(const Vec3& yaw_pitch_roll) {
 
 /// (φ, θ, ψ) with R = Rz(φ) Rx(θ) Rz(ψ).
 inline Vec3 euler_zxz(const Mat3& R) {
-  // Third column (sin φ sin θ, −cos φ sin θ, cos θ), third row (sin θ sin ψ, sin θ cos ψ, cos θ).
+  // Third row (sin θ sin ψ, sin θ cos ψ, cos θ). As in euler_zyx, ψ comes from entries of size sin θ
+  // and φ from entries of size 1 given ψ, so that near θ = 0 or π the rotation is rebuilt to rounding:
+  //   cos ψ R(1,0) − sin ψ R(1,1) = sin φ,   cos ψ R(0,0) − sin ψ R(0,1) = cos φ.
+  // At θ = 0 or π exactly (s = 0) only φ ± ψ is defined: ψ is set to 0.
   const double s = std::hypot(R(2, 0), R(2, 1));
   const double theta = std::atan2(s, R(2, 2));
-  if (s < kGimbalLock) return {std::atan2(R(1, 0), R(0, 0)), theta, 0.0};  // R = Rz(φ) Rx(0 or π)
-  return {std::atan2(R(0, 2), -R(1, 2)), theta, std::atan2(R(2, 0), R(2, 1))};
+  const double psi = s == 0.0 ? 0.0 : std::atan2(R(2, 0), R(2, 1));
+  const double sp = std::sin(psi), cp = std::cos(psi);
+  const double phi = std::atan2(cp * R(1, 0) - sp * R(1, 1), cp * R(0, 0) - sp * R(0, 1));
+  return {phi, theta, psi};
 }
 
 inline Mat3 from_euler_zxz(const Vec3& phi_theta_psi) {
