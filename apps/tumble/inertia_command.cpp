@@ -2,6 +2,7 @@
 // a primitive shape, for a person or (--json) for a program.
 #include <fmt/format.h>
 
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <optional>
@@ -193,7 +194,10 @@ Derived derive(const InertiaOptions& o, const Report& r, const PrincipalAxes& pa
   return d;
 }
 
-std::string json_vector(const Vec3& v) { return fmt::format("[{}, {}, {}]", v(0), v(1), v(2)); }
+// x + 0.0 is x, but −0 becomes +0: a negative zero is rounding's sign, not a fact to print.
+std::string json_vector(const Vec3& v) {
+  return fmt::format("[{}, {}, {}]", v(0) + 0.0, v(1) + 0.0, v(2) + 0.0);
+}
 std::string json_rows(const Mat3& M) {
   return fmt::format("[{}, {}, {}]", json_vector(M.row(0)), json_vector(M.row(1)), json_vector(M.row(2)));
 }
@@ -238,15 +242,15 @@ void print_human(const Report& r, const PrincipalAxes& pa, const Derived& d, con
   if (mp.volume > 0) fmt::print("  volume            {:.10g} m^3\n", mp.volume);
   if (r.surface_area) fmt::print("  surface area      {:.10g} m^2\n", *r.surface_area);
   const Vec3& c = mp.center_of_mass;
-  fmt::print("  centre of mass    ({:.10g}, {:.10g}, {:.10g}) m\n", c(0), c(1), c(2));
+  fmt::print("  centre of mass    ({:.10g}, {:.10g}, {:.10g}) m\n", c(0) + 0.0, c(1) + 0.0, c(2) + 0.0);
   fmt::print("  inertia tensor about {}, {} (kg*m^2):\n",
              d.about ? fmt::format("the point ({:.10g}, {:.10g}, {:.10g}) m", (*d.about)(0), (*d.about)(1),
                                    (*d.about)(2))
                      : std::string("the centre of mass"),
              frame == "principal" ? "principal axes (the columns of U below)" : "file axes");
   for (int i = 0; i < 3; ++i) {
-    fmt::print("    [{:>17.10g} {:>17.10g} {:>17.10g} ]\n", d.inertia(i, 0), d.inertia(i, 1),
-               d.inertia(i, 2));
+    fmt::print("    [{:>17.10g} {:>17.10g} {:>17.10g} ]\n", d.inertia(i, 0) + 0.0, d.inertia(i, 1) + 0.0,
+               d.inertia(i, 2) + 0.0);
   }
   if (d.axis_moment) {
     fmt::print(
@@ -259,7 +263,10 @@ void print_human(const Report& r, const PrincipalAxes& pa, const Derived& d, con
              pa.Lambda(1), pa.Lambda(2));
   fmt::print("  principal axes (columns of U, a proper rotation: I = U diag(moments) U^T):\n");
   for (int i = 0; i < 3; ++i) {
-    fmt::print("    [{:>13.10f} {:>13.10f} {:>13.10f} ]\n", pa.U(i, 0), pa.U(i, 1), pa.U(i, 2));
+    // An entry below the last digit shown is 0, not "-0.0000000000".
+    const auto shown = [](double u) { return std::abs(u) < 5e-11 ? 0.0 : u; };
+    fmt::print("    [{:>13.10f} {:>13.10f} {:>13.10f} ]\n", shown(pa.U(i, 0)), shown(pa.U(i, 1)),
+               shown(pa.U(i, 2)));
   }
 }
 

@@ -9,7 +9,10 @@
 namespace tumble::cli {
 namespace {
 
-std::string vec(const Vec3& v) { return fmt::format("({:.6g}, {:.6g}, {:.6g})", v.x(), v.y(), v.z()); }
+// + 0.0 turns −0 into +0: a negative zero is rounding's sign, not a fact to print.
+std::string vec(const Vec3& v) {
+  return fmt::format("({:.6g}, {:.6g}, {:.6g})", v.x() + 0.0, v.y() + 0.0, v.z() + 0.0);
+}
 
 std::string conserved_list(const Conservation& c) {
   std::vector<std::string> names;
@@ -55,7 +58,7 @@ void print_scene_summary(std::FILE* out, const Scene& scene) {
                vec(scene.initial.bodies[i].v));
   }
   for (const Particle& p : m.particles) fmt::print(out, "  particle '{}': mass {:.10g} kg\n", p.name, p.mass);
-  for (const auto& f : m.forces) fmt::print(out, "  force        {}\n", f->describe());
+  for (const auto& f : m.forces) fmt::print(out, "  force        {}\n", f->describe(m.bodies));
   const Invariants inv = invariants(m, scene.initial);
   fmt::print(out, "  initial      kinetic energy {:.10g} J", inv.kinetic_energy);
   if (inv.potential_energy) {

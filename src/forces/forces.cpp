@@ -40,7 +40,14 @@ void for_bodies(size_t which, const BodyBlock& block, F&& f) {
 
 Vec3 column_vec(const double* const c[3], size_t j) { return {c[0][j], c[1][j], c[2][j]}; }
 
-std::string target(size_t body) { return body == all_bodies ? "all bodies" : fmt::format("body #{}", body); }
+/// "body 'name'" (its index if the model has no such body: describe() may run before check()).
+std::string body_label(std::span<const RigidBody> bodies, size_t body) {
+  return body < bodies.size() ? fmt::format("body '{}'", bodies[body].name()) : fmt::format("body #{}", body);
+}
+
+std::string target(std::span<const RigidBody> bodies, size_t body) {
+  return body == all_bodies ? "all bodies" : body_label(bodies, body);
+}
 
 }  // namespace
 
@@ -121,7 +128,9 @@ void UniformGravity::accumulate_block(const BodyBlock& block, BlockLoads& loads)
 void UniformGravity::accumulate_particles(const SystemView& view, std::span<Vec3> f) const {
   for (size_t i = 0; i < view.particles.size(); ++i) f[i] += view.particles[i].mass * g_;
 }
-std::string UniformGravity::describe() const { return "uniform gravity " + vec(g_) + " m/s^2"; }
+std::string UniformGravity::describe(std::span<const RigidBody>) const {
+  return "uniform gravity " + vec(g_) + " m/s^2";
+}
 std::optional<double> UniformGravity::potential_energy(const SystemView& view) const {
   double V = 0;
   for (size_t i = 0; i < view.bodies.size(); ++i) V -= view.bodies[i].mass() * g_.dot(view.body_states[i].o);
@@ -146,9 +155,9 @@ void PointForce::accumulate_block(const BodyBlock& block, BlockLoads& loads) con
   loads.add_force_at(j, s.o, f, x);
 }
 void PointForce::check(size_t n_bodies, size_t) const { check_body(body_, n_bodies, "point force"); }
-std::string PointForce::describe() const {
-  return fmt::format("force {} N ({} axes) at {} ({} point) on body #{}", vec(force_),
-                     frame_name(force_frame_), vec(point_), frame_name(point_frame_), body_);
+std::string PointForce::describe(std::span<const RigidBody> bodies) const {
+  return fmt::format("force {} N ({} axes) at {} ({} point) on {}", vec(force_), frame_name(force_frame_),
+                     vec(point_), frame_name(point_frame_), body_label(bodies, body_));
 }
 
 void PureTorque::accumulate_block(const BodyBlock& block, BlockLoads& loads) const {
@@ -158,8 +167,9 @@ void PureTorque::accumulate_block(const BodyBlock& block, BlockLoads& loads) con
   loads.add(j, Vec3::Zero(), tau);
 }
 void PureTorque::check(size_t n_bodies, size_t) const { check_body(body_, n_bodies, "torque"); }
-std::string PureTorque::describe() const {
-  return fmt::format("torque {} N*m ({} axes) on body #{}", vec(torque_), frame_name(frame_), body_);
+std::string PureTorque::describe(std::span<const RigidBody> bodies) const {
+  return fmt::format("torque {} N*m ({} axes) on {}", vec(torque_), frame_name(frame_),
+                     body_label(bodies, body_));
 }
 
 // ---- dissipation ------------------------------------------------------------------------------
@@ -174,8 +184,8 @@ void ViscousDamping::accumulate_particles(const SystemView& view, std::span<Vec3
   for (size_t i = 0; i < view.particles.size(); ++i) f[i] -= linear_ * view.particle_states[i].v;
 }
 void ViscousDamping::check(size_t n_bodies, size_t) const { check_body(body_, n_bodies, "damping"); }
-std::string ViscousDamping::describe() const {
-  return fmt::format("viscous damping {} N*s/m, {} N*m*s on {}", linear_, angular_, target(body_));
+std::string ViscousDamping::describe(std::span<const RigidBody> bodies) const {
+  return fmt::format("viscous damping {} N*s/m, {} N*m*s on {}", linear_, angular_, target(bodies, body_));
 }
 
 void QuadraticDrag::accumulate_block(const BodyBlock& block, BlockLoads& loads) const {
@@ -193,8 +203,8 @@ void QuadraticDrag::accumulate_particles(const SystemView& view, std::span<Vec3>
   }
 }
 void QuadraticDrag::check(size_t n_bodies, size_t) const { check_body(body_, n_bodies, "drag"); }
-std::string QuadraticDrag::describe() const {
-  return fmt::format("quadratic drag {} kg/m, {} kg*m^2 on {}", linear_, angular_, target(body_));
+std::string QuadraticDrag::describe(std::span<const RigidBody> bodies) const {
+  return fmt::format("quadratic drag {} kg/m, {} kg*m^2 on {}", linear_, angular_, target(bodies, body_));
 }
 
 // ---- springs ----------------------------------------------------------------------------------
@@ -236,7 +246,7 @@ void Spring::check(size_t n_bodies, size_t n_particles) const {
     if (e.particle == all_bodies) check_body(e.body, n_bodies, "spring");
   }
 }
-std::string Spring::describe() const {
+std::string Spring::describe(std::span<const RigidBody>) const {
   return fmt::format("spring k={} N/m, rest length {} m, damping {} N*s/m", k_, rest_, c_);
 }
 std::optional<double> Spring::potential_energy(const SystemView& view) const {
@@ -271,7 +281,7 @@ void GravityGradient::accumulate_block(const BodyBlock& block, BlockLoads& loads
     loads.add(j, -(mu_ * block.m[j] / (r2 * r1) * r + grad_V2), tau);
   }
 }
-std::string GravityGradient::describe() const {
+std::string GravityGradient::describe(std::span<const RigidBody>) const {
   return fmt::format("central gravity mu={} m^3/s^2 at {}{}", mu_, vec(center_),
                      torque_only_ ? " (gradient torque only)" : " with gravity-gradient torque");
 }

@@ -37,7 +37,9 @@ class OnEveryRun final : public LocalForceModel {
   }
   bool needs_velocity() const override { return model_->needs_velocity(); }
   std::optional<Vec3> uniform_acceleration() const override { return model_->uniform_acceleration(); }
-  std::string describe() const override { return model_->describe() + " (in every stacked run)"; }
+  std::string describe(std::span<const RigidBody> bodies) const override {
+    return model_->describe(bodies) + " (in every stacked run)";
+  }
   std::optional<double> potential_energy(const SystemView& view) const override {
     // Σ over the runs of each run's potential, on its own bodies.
     double V = 0;

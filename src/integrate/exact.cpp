@@ -36,7 +36,7 @@ class Exact final : public Integrator {
             "integrator 'exact' solves torque-free motion only (no forces, or uniform gravity), but the "
             "scene has {}; use 'splitting', which is exact for the free motion and second order in the "
             "forces (or 'splitting4' for fourth order)",
-            force->describe()));
+            force->describe(model.bodies)));
       }
     }
   }

@@ -11,7 +11,8 @@ namespace tumble::io {
 /// The shortest text of x that reads back as x; "nan", "inf" or "-inf" for those.
 class NumberText {
  public:
-  explicit NumberText(double x) : end_(std::to_chars(digits_, digits_ + sizeof digits_, x).ptr) {}
+  // x + 0.0 is x, but for −0, which becomes +0: a negative zero is rounding's sign, not a fact to print.
+  explicit NumberText(double x) : end_(std::to_chars(digits_, digits_ + sizeof digits_, x + 0.0).ptr) {}
   std::string_view view() const { return {digits_, static_cast<size_t>(end_ - digits_)}; }
   operator std::string_view() const { return view(); }
 

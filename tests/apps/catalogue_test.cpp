@@ -598,7 +598,7 @@ const std::vector<Case>& catalogue() {
        "{t} run s.toml",
        1,
        "tumble: error: integrator 'exact' solves torque-free motion only (no forces, or uniform gravity), "
-       "but the scene has torque (0, 0, 1) N*m (world axes) on body #0; use 'splitting', which is exact for "
+       "but the scene has torque (0, 0, 1) N*m (world axes) on body 'a'; use 'splitting', which is exact for "
        "the free motion and second order in the forces (or 'splitting4' for fourth order)"},
       {"scene: body table missing",
        {{"s.toml", std::string("[simulation]\nduration = 0.01\n[[body_tables]]\nfile = \"b.csv\"\n", 60)}},

@@ -259,7 +259,7 @@ TEST(Particles, CentralForceConservesAngularMomentum) {
     void accumulate(const SystemView& v, Loads& loads) const override {
       loads.particles[0] -= 5.0 * v.particle_states[0].x;
     }
-    std::string describe() const override { return "central spring"; }
+    std::string describe(std::span<const RigidBody>) const override { return "central spring"; }
   };
   model.forces.push_back(std::make_shared<CentralSpring>());
   const SystemState s0{0.0, {BodyState{}}, {ParticleState{Vec3(1, 0, 0), Vec3(0, 1, 0.5)}}};

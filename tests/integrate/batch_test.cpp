@@ -52,7 +52,7 @@ void add_local_forces(Model& model, bool damped = true) {
 class NoForce final : public ForceModel {
  public:
   void accumulate(const SystemView&, Loads&) const override {}
-  std::string describe() const override { return "nothing"; }
+  std::string describe(std::span<const RigidBody>) const override { return "nothing"; }
 };
 
 SystemCoordinates run_steps(const Model& model, const SystemState& s0, const std::string& name, Formulation F,

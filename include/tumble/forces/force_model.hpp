@@ -87,8 +87,8 @@ class ForceModel {
   virtual ~ForceModel() = default;
   /// Add this model's forces and torques at the state in `view` to `loads`.
   virtual void accumulate(const SystemView& view, Loads& loads) const = 0;
-  /// One line for summaries and error messages.
-  virtual std::string describe() const = 0;
+  /// One line for summaries and error messages; bodies are named from `bodies` (the model's).
+  virtual std::string describe(std::span<const RigidBody> bodies) const = 0;
   /// The potential energy, for conservative models (gravity, springs); nullopt otherwise.
   virtual std::optional<double> potential_energy(const SystemView&) const { return std::nullopt; }
   /// Local models are evaluated block by block (LocalForceModel); the others on the whole system.

@@ -20,7 +20,7 @@ class UniformGravity final : public LocalForceModel {
   bool needs_velocity() const override { return false; }
   std::optional<Vec3> uniform_acceleration() const override { return g_; }
   bool acts_alike_on_every_body() const override { return true; }
-  std::string describe() const override;
+  std::string describe(std::span<const RigidBody> bodies) const override;
   std::optional<double> potential_energy(const SystemView& view) const override;
 
  private:
@@ -36,7 +36,7 @@ class PointForce final : public LocalForceModel {
   void accumulate_block(const BodyBlock& block, BlockLoads& loads) const override;
   bool needs_velocity() const override { return false; }
   void check(size_t n_bodies, size_t n_particles) const override;
-  std::string describe() const override;
+  std::string describe(std::span<const RigidBody> bodies) const override;
 
  private:
   size_t body_;
@@ -53,7 +53,7 @@ class PureTorque final : public LocalForceModel {
   void accumulate_block(const BodyBlock& block, BlockLoads& loads) const override;
   bool needs_velocity() const override { return false; }
   void check(size_t n_bodies, size_t n_particles) const override;
-  std::string describe() const override;
+  std::string describe(std::span<const RigidBody> bodies) const override;
 
  private:
   size_t body_;
@@ -70,7 +70,7 @@ class ViscousDamping final : public LocalForceModel {
   void accumulate_particles(const SystemView& view, std::span<Vec3> f) const override;
   void check(size_t n_bodies, size_t n_particles) const override;
   bool acts_alike_on_every_body() const override { return body_ == all_bodies; }
-  std::string describe() const override;
+  std::string describe(std::span<const RigidBody> bodies) const override;
 
  private:
   size_t body_;
@@ -86,7 +86,7 @@ class QuadraticDrag final : public LocalForceModel {
   void accumulate_particles(const SystemView& view, std::span<Vec3> f) const override;
   void check(size_t n_bodies, size_t n_particles) const override;
   bool acts_alike_on_every_body() const override { return body_ == all_bodies; }
-  std::string describe() const override;
+  std::string describe(std::span<const RigidBody> bodies) const override;
 
  private:
   size_t body_;
@@ -107,7 +107,7 @@ class Spring final : public ForceModel {
       : a_(a), b_(b), k_(stiffness), rest_(rest_length), c_(damping) {}
   void accumulate(const SystemView& view, Loads& loads) const override;
   void check(size_t n_bodies, size_t n_particles) const override;
-  std::string describe() const override;
+  std::string describe(std::span<const RigidBody> bodies) const override;
   std::optional<double> potential_energy(const SystemView& view) const override;
   const End& a() const { return a_; }
   const End& b() const { return b_; }
@@ -130,7 +130,7 @@ class GravityGradient final : public LocalForceModel {
   void accumulate_block(const BodyBlock& block, BlockLoads& loads) const override;
   bool needs_velocity() const override { return false; }
   bool acts_alike_on_every_body() const override { return true; }
-  std::string describe() const override;
+  std::string describe(std::span<const RigidBody> bodies) const override;
   std::optional<double> potential_energy(const SystemView& view) const override;
 
  private:
@@ -149,7 +149,7 @@ class BodyCallback final : public LocalForceModel {
       : body_(body), f_(std::move(f)), label_(std::move(label)) {}
   void accumulate_block(const BodyBlock& block, BlockLoads& loads) const override;
   void check(size_t n_bodies, size_t n_particles) const override;
-  std::string describe() const override { return label_; }
+  std::string describe(std::span<const RigidBody>) const override { return label_; }
 
  private:
   size_t body_;
@@ -168,7 +168,7 @@ class BlockCallback final : public LocalForceModel {
       : f_(std::move(f)), label_(std::move(label)), needs_velocity_(needs_velocity) {}
   void accumulate_block(const BodyBlock& block, BlockLoads& loads) const override { f_(block, loads); }
   bool needs_velocity() const override { return needs_velocity_; }
-  std::string describe() const override { return label_; }
+  std::string describe(std::span<const RigidBody>) const override { return label_; }
 
  private:
   Function f_;
