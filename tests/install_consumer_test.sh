@@ -11,6 +11,13 @@ cmake --install "$build_dir" --prefix "$work/prefix" >/dev/null
 for doc in README.md scene-format.md NOTATION.md ARCHITECTURE.md examples/t_handle.toml; do
   test -f "$work/prefix/share/doc/tumble/$doc" || { echo "not installed: share/doc/tumble/$doc"; exit 1; }
 done
+# ... and `tumble --help` names that folder of the prefix it is in, even after the tree was moved.
+"$work/prefix/bin/tumble" --help | tr -s ' \n' ' ' | grep -qF "installed in $(realpath "$work")/prefix/share/doc/tumble." ||
+  { echo "tumble --help does not name $work/prefix/share/doc/tumble"; exit 1; }
+cp -a "$work/prefix" "$work/moved"
+"$work/moved/bin/tumble" --help | tr -s ' \n' ' ' | grep -qF "installed in $(realpath "$work")/moved/share/doc/tumble." ||
+  { echo "a moved tumble --help does not name its own share/doc/tumble"; exit 1; }
+rm -rf "$work/moved"
 cmake -S "$source_dir/examples/cpp" -B "$work/build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
 cmake --build "$work/build" >/dev/null

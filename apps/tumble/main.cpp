@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <filesystem>
 #include <new>
 #include <string>
 #include <system_error>
@@ -96,6 +97,20 @@ void hold_reserve() {
   if (g_reserve != nullptr) std::set_new_handler(release_reserve_and_throw);
 }
 
+/// Where the documentation is: beside an installed program, share/doc/tumble of its prefix (found from
+/// the program's own path, so a moved or relocated install still names it); for a program in a build
+/// tree, the source tree's docs/ and examples/.
+std::string where_the_docs_are() {
+  std::error_code error;
+  const std::filesystem::path self = std::filesystem::canonical("/proc/self/exe", error);
+  if (!error) {
+    const std::filesystem::path docs = (self.parent_path() / TUMBLE_DOC_DIR_FROM_BIN).lexically_normal();
+    if (std::filesystem::is_regular_file(docs / "README.md", error))
+      return "installed in " + docs.string() + ".";
+  }
+  return "in docs/ and examples/ of the source tree (installed: share/doc/tumble of the prefix).";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -107,7 +122,8 @@ int main(int argc, char** argv) {
       "tumble: rigid-body dynamics after Jia's Tutorial on Rigid Body Dynamics.\n"
       "Run 'tumble COMMAND --help' for the options and an example of each command. The documentation "
       "(README.md; scene-format.md: every scene key and output field; NOTATION.md: frames and symbols) "
-      "and the examples are installed in " TUMBLE_DOC_DIR " (docs/ and examples/ in the source tree).",
+      "and the examples are " +
+          where_the_docs_are(),
       "tumble"};
   app.set_version_flag("--version", std::string("tumble ") + TUMBLE_VERSION);
   app.require_subcommand(1);

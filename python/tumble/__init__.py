@@ -82,11 +82,18 @@ def simulate(scene: Scene | str | _os.PathLike, integrator: str | None = None, f
     if isinstance(scene, (str, bytes)) or hasattr(scene, "__fspath__"):
         scene = load_scene(scene)
     specs, python_events, every = [], [], []
-    for e in events or ():
+    watched = {name: "the scene's [[events]]" for name in scene.events}
+    for k, e in enumerate(events or ()):
         if isinstance(e, dict):
             e = Event(**e)
         if not isinstance(e, Event):
             raise TypeError(f"events must be tumble.Event objects or dicts; got {type(e).__name__}")
+        # Two events of one name would count each crossing twice under that name.
+        if e.name in watched:
+            raise ValueError(f"events[{k}]: an event named '{e.name}' is already watched ({watched[e.name]}): "
+                             f"its crossings would be counted twice; give this one another name, or leave it "
+                             f"out to keep the scene's")
+        watched[e.name] = f"events[{k}]"
         if e.g is not None:
             if not callable(e.g):
                 raise TypeError(f"event '{e.name}': g must be a function g(t, position, orientation, velocity, omega)")

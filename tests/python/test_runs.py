@@ -108,6 +108,11 @@ def test_event_mistakes_raise_the_scene_files_message():
         tumble.simulate(scene, events=[Event("e", g=lambda *a: "up")])
     with pytest.raises(ValueError, match="is a Python function: give it to simulate"):
         tumble.make_scene(bodies=[racket()], events=[Event("e", g=lambda *a: 0.0)], duration=1.0)
+    # A name already watched would count each crossing twice under it: the scene's own, or one given twice.
+    with pytest.raises(ValueError, match=r"^events\[0\]: an event named 'flip' is already watched \(the scene's \[\[events\]\]\)"):
+        tumble.simulate(tumble.load_scene(T_HANDLE), duration=0.1, events=[Event("flip", body="handle", column="w2")])
+    with pytest.raises(ValueError, match=r"^events\[1\]: an event named 'e' is already watched \(events\[0\]\)"):
+        tumble.simulate(scene, events=[Event("e", body="racket", column="w2"), Event("e", g=lambda *a: 1.0)])
 
 
 def test_a_scene_built_from_classes_is_the_scene_file_bit_for_bit(tmp_path):
