@@ -17,7 +17,7 @@ namespace tumble::detail {
 
 inline constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// ---- Equal moments (euler_poinsot_symmetric.cpp; shared/research/numerics.md §2) ----
+// ---- Equal moments (euler_poinsot_symmetric.cpp) ----
 
 /// Constant ω_b (rest, sphere, spin about a principal axis that stays one): Ṙ = R[ω_b]× = [ω_w]×R with
 /// ω_w = R₀ω_b fixed, so R(t) = exp(t[ω_w]×) R₀ = Rot(ω_w, |ω|t) R₀.
@@ -57,7 +57,7 @@ class AxisymmetricRotation {
   double n_;
 };
 
-// ---- Three distinct moments (euler_poinsot_triaxial.cpp; numerics.md §1) ----
+// ---- Three distinct moments (euler_poinsot_triaxial.cpp) ----
 
 /// The body in sorted principal axes: I₁ < I₂ < I₃ (all three distinct), ω_s = P ω_b with P a signed
 /// permutation (det P = +1). I and ω_s may be scaled by powers of two (exactly): I by any factor, ω_s

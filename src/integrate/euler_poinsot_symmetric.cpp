@@ -1,4 +1,4 @@
-// Closed-form torque-free motion of bodies with two equal moments (shared/research/numerics.md §2);
+// Closed-form torque-free motion of bodies with two equal moments (Landau & Lifshitz, Mechanics, §33);
 // the classes and the formulas are in euler_poinsot_flows.hpp (SteadyRotation is all there).
 #include <cmath>
 

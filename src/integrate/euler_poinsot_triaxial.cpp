@@ -1,5 +1,5 @@
-// The torque-free triaxial body I₁ < I₂ < I₃ in closed form (shared/research/numerics.md §1;
-// Landau & Lifshitz §37). Everything is written in the sorted frame {s} (ω_s = P ω_b).
+// The torque-free triaxial body I₁ < I₂ < I₃ in closed form (Landau & Lifshitz, Mechanics, §37;
+// Celledoni, Fassò, Säfström & Zanna, SIAM J. Sci. Comput. 30, 2008, for the attitude). Everything is written in the sorted frame {s} (ω_s = P ω_b).
 //
 // Invariant differences, formed from the components so that nothing large cancels:
 //   d₁ = L² − 2EI₁ = I₂(I₂−I₁)ω₂² + I₃(I₃−I₁)ω₃² ≥ 0,   d₃ = 2EI₃ − L² = I₁(I₃−I₁)ω₁² + I₂(I₃−I₂)ω₂² ≥ 0,

@@ -1,11 +1,12 @@
 // implicit_gyro: what game engines do for stability at large steps (Catto, GDC 2015; Bullet's default
-// since 2015; numerics.md §3). Euler's equation in the body frame is taken backward in time,
+// since 2015). Euler's equation in the body frame is taken backward in time,
 //   Λ(ω′ − ω) + h ω′ × Λω′ = h ^bτ,
 // solved with ONE Newton step from ω′ = ω:
 //   J = Λ + h([ω]×Λ − [Λω]×),   ω′ = ω − J⁻¹ h (ω × Λω − ^bτ);
 // velocities then follow semi-implicit Euler and the orientation the exact exponential map
 // q ← q ⊗ exp(h ^bω′). First order. Honest about energy: it is stable because it dissipates —
-// on the HLW test body (numerics.md) E drops ~17 % in ten periods at h = 0.05 s and the body ends up
+// on the test body of Hairer, Lubich & Wanner (Geometric Numerical Integration, 2nd ed., 2006, §IV.1:
+// I = (2, 1, 2/3)) E drops ~17 % in ten periods at h = 0.05 s and the body ends up
 // spinning about its major axis; use it for games and controllers, not for physics that must conserve.
 #include "engine.hpp"
 #include "methods.hpp"

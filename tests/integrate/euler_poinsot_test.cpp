@@ -133,7 +133,7 @@ TEST(EulerPoinsot, GroupPropertyRestartingFromAnyStateGivesTheSameMotion) {
       for (double t2 : {0.5, 4.2, 17.0}) {
         if (c.regime == Regime::separatrix && t1 + t2 > 10.0) continue;  // see the separatrix tests
         const double tol = c.regime == Regime::about_minor_axis && c.Lambda(0) == 1.5 && c.omega(0) == 0.002
-                               ? 1e-9  // 7e7 amplification at each flip (numerics.md §3)
+                               ? 1e-9  // 7e7 amplification at each flip (free_body_taylor.hpp)
                                : 1e-13;
         EXPECT_LT((restarted.omega_b(t2) - ep.omega_b(t1 + t2)).norm(), tol * W)
             << c.name << " " << t1 << "+" << t2;
@@ -268,7 +268,7 @@ TEST(EulerPoinsot, AgreesWithTumblesRk4ToItsOwnErrorBound) {
 TEST(EulerPoinsot, PeriodOfTheHairerLubichWannerCase) {
   // HLW (GNI §IV.1): I = (2, 1, 2/3), body momentum y₀ = (cos 1.1, 0, sin 1.1), R₀ = Id. D < I₂.
   // Reference 4K/λ from mpmath at 40 digits for these double inputs: 10.731465234882801673 s
-  // (numerics.md quotes 10.73 s).
+  // (GNI's figure shows 10.73 s).
   const Vec3 I(2.0, 1.0, 2.0 / 3.0);
   const Vec3 w0(std::cos(1.1) / 2.0, 0.0, std::sin(1.1) / (2.0 / 3.0));
   const EulerPoinsot ep(I, Quat::Identity(), w0);
@@ -288,8 +288,8 @@ TEST(EulerPoinsot, PeriodOfTheHairerLubichWannerCase) {
 }
 
 TEST(EulerPoinsot, FlipIntervalOfTheTennisRacketNearTheSeparatrix) {
-  // I = (1.5, 2.5, 4), ω_b = (0.002, 6, 0): k′² = 1.1e-7. numerics.md calls 6.2617744637604357 s the
-  // "flip period": it is 2K/λ, the time between successive sign changes of ω₂ (the period of ω_b is
+  // I = (1.5, 2.5, 4), ω_b = (0.002, 6, 0): k′² = 1.1e-7. Its "flip period" 6.2617744637604357 s
+  // is 2K/λ, the time between successive sign changes of ω₂ (the period of ω_b is
   // 4K/λ = 12.52 s). mpmath at 50 digits: 2K/λ = 6.2617744637604357342 s.
   const EulerPoinsot ep(Vec3(1.5, 2.5, 4.0), Quat::Identity(), Vec3(0.002, 6.0, 0.0));
   EXPECT_EQ(ep.regime(), Regime::about_minor_axis);
@@ -314,7 +314,7 @@ TEST(EulerPoinsot, FlipIntervalOfTheTennisRacketNearTheSeparatrix) {
 
 TEST(EulerPoinsot, NearSeparatrixAgreesWithTheTaylorReferenceWithinItsConditioningFloor) {
   // Every step of a step-by-step method perturbs the state at the flips, where the motion amplifies
-  // perturbations by ~7e7 (numerics.md §3); in long double (ε = 1.1e-19) the floor is ~1e-11 over 30 s.
+  // perturbations by ~7e7 (free_body_taylor.hpp); in long double (ε = 1.1e-19) the floor is ~1e-11 over 30 s.
   const Vec3 I(1.5, 2.5, 4.0), w0(0.002, 6.0, 0.0);
   const EulerPoinsot ep(I, Quat::Identity(), w0);
   const test::FreeBodyTaylor taylor(I);

@@ -92,9 +92,10 @@ TEST(Exact, EveryRegimeAgreesWithALongDoubleTaylorReferenceOver100s) {
 
 TEST(Exact, NearTheSeparatrixAgreesWithAQuadPrecisionReferenceOver100s) {
   // The T-handle's regime: spun about the intermediate axis with a small wobble, 1 − m = k′² = 9.0e-7
-  // (1.11e-7 at ω₁ = 0.002, numerics.md, times (0.0057/0.002)²).
+  // (1.11e-7 at ω₁ = 0.002, EulerPoinsot.FlipIntervalOfTheTennisRacketNearTheSeparatrix, times
+  // (0.0057/0.002)²).
   // There a long-double reference is itself off by ~1e-11 (each step's rounding is amplified ~7e7 at
-  // every flip, numerics.md), so the reference runs in __float128 (ε = 1.9e-34): order 40 at h = 0.01 s
+  // every flip, as free_body_taylor.hpp says), so the reference runs in __float128 (ε = 1.9e-34): order 40 at h = 0.01 s
   // (hΩ = 0.06) truncates far below that, and the amplified rounding stays below 1e-25. (Halving the
   // step changed the reference quaternion by 3.6e-26: measured once, too slow to repeat in every run.)
   const Vec3 Lambda(1.5, 2.5, 4.0), w0(0.0057, 6.0, 0.0);

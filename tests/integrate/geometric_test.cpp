@@ -40,7 +40,7 @@ TEST(LieRk4, OrientationStaysOnSO3WithoutRenormalisation) {
 }
 
 TEST(ImplicitGyro, StableAtLargeStepsBecauseItDissipates) {
-  // The HLW test body of numerics.md, I = (2, 1, 2/3), violates the triangle inequality (2 > 1 + 2/3:
+  // The test body of Hairer, Lubich & Wanner (GNI §IV.1), I = (2, 1, 2/3), violates the triangle inequality (2 > 1 + 2/3:
   // no mass distribution has it) and tumble refuses it; take a physical body of the same shape class.
   const Vec3 I(1.0, 2.0, 2.5);
   const Model model = free_body(I);

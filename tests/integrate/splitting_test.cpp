@@ -20,7 +20,7 @@ namespace {
 // perturbation of the phase (measured: one ulp of ω₂ at t = 50 s moves the attitude at 100 s by
 // 3e-12 rad for a wobble of 1/400, by 3e-13 rad for 1/10). Every step of a step-by-step method commits
 // such rounding, so its floor after 1000 steps rises from ~1e-11 to ~3e-9 rad as the wobble shrinks —
-// a property of the problem, not of the method (numerics.md §3).
+// a property of the problem, not of the method.
 const Vec3 kLambda(1.2e-5, 3.1e-5, 4.0e-5);
 const Vec3 kOmega0(2.0, 20.0, 2.0);
 

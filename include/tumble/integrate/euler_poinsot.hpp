@@ -5,7 +5,8 @@
 // world (x_w = o + R x_b), ω_b = Rᵀ ω_w. Euler's equation Λ ω̇_b = (Λω_b) × ω_b with Ṙ = R [ω_b]×
 // conserves 2E = ω_bᵀΛω_b and the world angular momentum L_w = R Λ ω_b.
 //
-// Solution (shared/research/numerics.md §1–2; Landau & Lifshitz §37):
+// Solution (Landau & Lifshitz, Mechanics, §§33, 37; Celledoni, Fassò, Säfström & Zanna, SIAM J. Sci.
+// Comput. 30, 2008):
 //   - triaxial I₁ < I₂ < I₃ (moments sorted internally by a proper signed permutation): ω_b is a triple
 //     of Jacobi elliptic functions of u = λt + u₀ with parameter m = k²; the orientation is
 //       R(t) = G · Rz(φ(t)) · Rx(θ(t)) Rz(ψ(t)) · C P,
