@@ -75,23 +75,31 @@ void check_indices(const TriangleMesh& mesh, MeshReport& r) {
 /// arithmetic still gets a cross product of the size of the coordinates' rounding, about
 /// ε·S·ℓ (S the coordinate magnitude, ℓ the edge length); 16 ε S ℓ covers the few roundings of
 /// two subtractions and a cross product.
+/// Whether triangle f is degenerate at tolerance `tol` (check_triangles); adds twice its area to `area2`.
+bool degenerate_triangle(const TriangleMesh& mesh, const std::array<std::uint32_t, 3>& f, double tol,
+                         double& area2) {
+  if (repeated_index(f)) return true;
+  const Vec3& a = mesh.vertices[f[0]];
+  const Vec3& b = mesh.vertices[f[1]];
+  const Vec3& c = mesh.vertices[f[2]];
+  const Vec3 n = (b - a).cross(c - a);
+  const double n2 = n.squaredNorm();
+  const double l2 = std::max({(b - a).squaredNorm(), (c - a).squaredNorm(), (c - b).squaredNorm()});
+  area2 += std::sqrt(n2);
+  return n2 <= tol * tol * l2;
+}
+
+double degenerate_tolerance(const MeshReport& r, double max_abs) {
+  return 16.0 * std::numeric_limits<double>::epsilon() * (max_abs + r.diagonal);
+}
+
 void check_triangles(const TriangleMesh& mesh, MeshReport& r, double max_abs) {
-  const double tol = 16.0 * std::numeric_limits<double>::epsilon() * (max_abs + r.diagonal);
+  const double tol = degenerate_tolerance(r, max_abs);
   detail::PairwiseSum<1> area;
   double block = 0.0;  // twice the area of the current block of 256 triangles
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     const auto& f = mesh.triangles[t];
-    bool degenerate = repeated_index(f);
-    if (!degenerate) {
-      const Vec3& a = mesh.vertices[f[0]];
-      const Vec3& b = mesh.vertices[f[1]];
-      const Vec3& c = mesh.vertices[f[2]];
-      const Vec3 n = (b - a).cross(c - a);
-      const double n2 = n.squaredNorm();
-      const double l2 = std::max({(b - a).squaredNorm(), (c - a).squaredNorm(), (c - b).squaredNorm()});
-      degenerate = n2 <= tol * tol * l2;
-      block += std::sqrt(n2);
-    }
+    const bool degenerate = degenerate_triangle(mesh, f, tol, block);
     if (degenerate && r.degenerate_count++ < MeshReport::listed) {
       r.degenerate_triangles.push_back({t, f});
     }
@@ -211,6 +219,26 @@ MeshReport check_mesh(const TriangleMesh& mesh) {
   check_triangles(mesh, r, max_abs);
   check_edges(mesh, r);
   return r;
+}
+
+TriangleMesh without_degenerate_triangles(const TriangleMesh& mesh, std::vector<std::size_t>& dropped) {
+  MeshReport r;
+  double max_abs = 0.0;
+  check_vertices(mesh, r, max_abs);
+  const double tol = degenerate_tolerance(r, max_abs);
+  TriangleMesh kept;
+  kept.vertices = mesh.vertices;
+  kept.triangles.reserve(mesh.triangles.size());
+  dropped.clear();
+  double area2 = 0.0;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    if (degenerate_triangle(mesh, mesh.triangles[t], tol, area2)) {
+      dropped.push_back(t);
+    } else {
+      kept.triangles.push_back(mesh.triangles[t]);
+    }
+  }
+  return kept;
 }
 
 std::string describe_solid_defects(const MeshReport& r) {

@@ -37,14 +37,35 @@ MeshMassResult solid_unit_properties(const TriangleMesh& mesh, const std::string
   if (mesh.triangles.empty()) {
     throw MeshError(fmt::format("{}: the mesh has no triangles, so it bounds no solid", name));
   }
-  const MeshReport report = check_mesh(mesh);
+  MeshReport report = check_mesh(mesh);
+  MeshMassResult result;
+  if (!report.solid() && report.usable() && report.degenerate_count > 0) {
+    // Zero-area triangles (CAD exports leave slivers) add nothing to the integrals: if the surface
+    // without them is closed, it bounds the same solid.
+    std::vector<std::size_t> dropped;
+    TriangleMesh kept = without_degenerate_triangles(mesh, dropped);
+    MeshReport kept_report = check_mesh(kept);
+    if (kept_report.solid()) {
+      std::string list;
+      for (std::size_t k = 0; k < std::min<std::size_t>(dropped.size(), MeshReport::listed); ++k)
+        list += fmt::format("{}{}", k > 0 ? ", " : "", dropped[k]);
+      if (dropped.size() > MeshReport::listed) list += ", ...";
+      result.warnings.push_back(fmt::format(
+          "{}: left out {} degenerate (zero-area) triangle{} ({}), which add nothing to the solid: the "
+          "surface without {} is closed. Remove {} in a mesh editor to silence this notice",
+          name, dropped.size(), dropped.size() == 1 ? "" : "s", list, dropped.size() == 1 ? "it" : "them",
+          dropped.size() == 1 ? "it" : "them"));
+      MeshMassResult rest = solid_unit_properties(kept, name);
+      rest.warnings.insert(rest.warnings.begin(), result.warnings.begin(), result.warnings.end());
+      return rest;
+    }
+  }
   if (!report.solid()) {
     const std::string what =
         fmt::format("{}: cannot compute solid mass properties: {}", name, describe_solid_defects(report));
     if (report.boundary_edge_count > 0) throw NotASolidError(what);  // a shell would do
     throw MeshError(what);
   }
-  MeshMassResult result;
   result.surface_area = report.surface_area;
   MassProperties unit = integrate_solid_mesh(mesh);
   require_finite_integrals(unit, report.diagonal, name);

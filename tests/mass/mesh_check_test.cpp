@@ -122,6 +122,31 @@ TEST(MeshCheck, DegenerateTrianglesRepeatedIndexAndZeroArea) {
   EXPECT_EQ(msg.find("boundary"), std::string::npos) << msg;  // repeated-index triangles add no edges
 }
 
+TEST(MeshCheck, DegenerateTrianglesWhoseRemovalLeavesAClosedSurfaceAreLeftOutWithANotice) {
+  // The tetrahedron with a triangle of a repeated index and a back-to-back pair of zero-area triangles
+  // on three collinear points (closed and consistent among themselves, as CAD exports leave them): the
+  // surface without them is the tetrahedron's, whose solid is well defined: the same numbers, bit for
+  // bit (a left-out triangle adds no term), and a notice naming the triangles.
+  TriangleMesh mesh = tetrahedron();
+  mesh.vertices.emplace_back(0.1, 0.1, 0.1);
+  mesh.vertices.emplace_back(0.2, 0.2, 0.2);
+  mesh.vertices.emplace_back(0.3, 0.3, 0.3);
+  mesh.triangles.push_back({1, 1, 2});  // triangle 4
+  mesh.triangles.push_back({4, 5, 6});  // triangle 5
+  mesh.triangles.push_back({4, 6, 5});  // triangle 6
+  ASSERT_EQ(check_mesh(mesh).degenerate_count, 3u);
+  const MeshMassResult clean = solid_mass_properties(tetrahedron(), MassSpec::density(1000.0), "part.stl");
+  const MeshMassResult r = solid_mass_properties(mesh, MassSpec::density(1000.0), "part.stl");
+  EXPECT_EQ(r.properties.mass, clean.properties.mass);
+  EXPECT_NEAR(r.properties.volume, 1.0 / 6.0, 1e-16);
+  EXPECT_EQ(r.properties.center_of_mass, clean.properties.center_of_mass);
+  EXPECT_EQ(r.properties.inertia, clean.properties.inertia);
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_CONTAINS(r.warnings[0],
+                  "part.stl: left out 3 degenerate (zero-area) triangles (4, 5, 6), which add nothing to the "
+                  "solid: the surface without them is closed");
+}
+
 TEST(MeshCheck, IndexOutOfRange) {
   TriangleMesh mesh = tetrahedron();
   mesh.triangles[3] = {0, 3, 99};

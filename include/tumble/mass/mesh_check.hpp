@@ -88,6 +88,11 @@ MeshReport check_mesh(const TriangleMesh& mesh);
 /// diagonal). Cheap: one pass over vertices and one over indices.
 MeshReport check_mesh_indices(const TriangleMesh& mesh);
 
+/// The mesh without its degenerate triangles (as check_mesh judges them; the mesh's indices must be in
+/// range), their indices in `dropped`. A zero-area triangle adds nothing to a solid's integrals, so a
+/// closed surface left by dropping them bounds the same solid.
+TriangleMesh without_degenerate_triangles(const TriangleMesh& mesh, std::vector<std::size_t>& dropped);
+
 /// One sentence per defect a solid must not have: what, how many, the first few indices, and how to
 /// fix it, joined by "; ". Empty if report.solid().
 std::string describe_solid_defects(const MeshReport& report);
