@@ -114,21 +114,26 @@ std::filesystem::path write_trajectory(const EnsembleStudy& study, long i, const
   file.replace_extension(fmt::format(".run-{}{}", i, hdf5 ? ".h5" : ".csv"));
   std::unique_ptr<TrajectoryWriter> writer;
   std::optional<DriftMonitor> monitor;
-  run_alone(study, i, [&](const Scene& s, const SystemState& state) {
-    if (!writer) {
+  RunTrajectory trajectory;
+  trajectory.sample = [&](const Scene& s, const SystemState& state) {
+    if (!writer) {  // the first sample comes before any crossing
       TrajectoryInfo info{s.text,
                           s.path.string(),
                           TUMBLE_VERSION,
                           s.settings,
                           s.output_fields,
-                          false,
+                          !s.events.empty(),
                           std::make_shared<const SceneGeometry>(scene_geometry(s))};
       writer = hdf5 ? make_hdf5_writer(file, s.model, info)
                     : make_csv_writer(file, diagnostics_path(file), s.model, info);
       monitor.emplace(s.model, s.initial, s.conserved, 0.0, s.settings);
     }
     writer->write(s.model, state, monitor->observe(state));
-  });
+  };
+  trajectory.event = [&](const Scene& s, const EventHit& hit) {
+    writer->event(hit.name, s.events[hit.index].row, hit.state.t);
+  };
+  run_alone(study, i, trajectory);
   writer->outcome(0.0, {});
   writer->commit(true);
   return file;

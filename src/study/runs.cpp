@@ -117,16 +117,19 @@ RunSettings study_settings(const Scene& s) {
 
 /// Run i of a study simulated alone, from its scene: its row.
 EnsembleRow run_alone(const EnsembleOutputs& outputs, const Scene& s, long i, std::vector<double> draws,
-                      const std::function<void(const Scene&, const SystemState&)>& trajectory = {}) {
+                      const RunTrajectory& trajectory = {}) {
   LaneSamples samples(outputs, s.settings.formulation, 1, s.model.bodies.size(), s.model.particles.size());
   samples.add(0, s);
   RowReducer reducer(outputs, s, i, std::move(draws), samples, 0);
   RunHooks hooks;
   hooks.events = make_events(s.model, s.events);
-  hooks.on_event = [&](const EventHit& hit) { reducer.on_event(hit); };
-  if (trajectory) {
+  hooks.on_event = [&](const EventHit& hit) {
+    reducer.on_event(hit);
+    if (trajectory.event) trajectory.event(s, hit);
+  };
+  if (trajectory.sample) {
     hooks.on_sample = [&](const SystemState& state) {
-      trajectory(s, state);
+      trajectory.sample(s, state);
       return true;
     };
   }
@@ -152,8 +155,7 @@ EnsembleRow naming_run(const EnsembleStudy& study, long i, const F& f) {
 
 }  // namespace
 
-EnsembleRow run_alone(const EnsembleStudy& study, long i,
-                      const std::function<void(const Scene&, const SystemState&)>& trajectory) {
+EnsembleRow run_alone(const EnsembleStudy& study, long i, const RunTrajectory& trajectory) {
   const Scene s = study.scene_of_run(i);
   return naming_run(study, i, [&] { return run_alone(study.outputs(), s, i, study.draws(i), trajectory); });
 }

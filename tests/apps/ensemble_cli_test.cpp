@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <random>
+#include <sstream>
 #include <thread>
 
 #include "../support/run.hpp"
@@ -200,7 +201,7 @@ TEST(EnsembleCli, FiftyKillsAtRandomPointsStillGiveTheUninterruptedTable) {
 
 TEST(EnsembleCli, ChosenRunsGetTheirTrajectoriesAndBadStudiesOneLine) {
   const test::TempDir dir("ensemble_files");
-  std::string text = study(10, 1.0);
+  std::string text = study(10, 4.0);
   text += "trajectories = { every = 5, worst = 1, by = \"energy_drift_max\" }\n";
   const fs::path scene = dir.write("s.toml", text);
   // Into a directory that does not exist yet, as `tumble run` allows.
@@ -210,6 +211,29 @@ TEST(EnsembleCli, ChosenRunsGetTheirTrajectoriesAndBadStudiesOneLine) {
   EXPECT_TRUE(fs::exists(dir / "new/t.run-0.csv"));
   EXPECT_TRUE(fs::exists(dir / "new/t.run-5.csv"));
   EXPECT_NE(r.output.find("flip.count"), std::string::npos) << "the summary on the terminal: " << r.output;
+  // A chosen run's file has its crossings (OUT.run-I.events.csv, as `tumble run` writes them): as many
+  // flips as its row counts, so that `tumble report` shows them.
+  std::vector<std::vector<std::string>> table;
+  for (std::istringstream lines(test::read_text(dir / "new/t.csv")); !lines.eof();) {
+    std::string line;
+    std::getline(lines, line);
+    if (line.empty()) continue;
+    std::vector<std::string>& row = table.emplace_back();
+    std::istringstream cells(line);
+    for (std::string cell; std::getline(cells, cell, ',');) row.push_back(cell);
+  }
+  const size_t count_column = std::find(table[0].begin(), table[0].end(), "flip.count") - table[0].begin();
+  ASSERT_LT(count_column, table[0].size());
+  long flips = 0;
+  for (const int run : {0, 5}) {
+    const std::string events = test::read_text(dir / fmt::format("new/t.run-{}.events.csv", run));
+    long crossings = 0;
+    for (size_t at = events.find(",flip,"); at != std::string::npos; at = events.find(",flip,", at + 1))
+      ++crossings;
+    EXPECT_EQ(std::to_string(crossings), table[static_cast<size_t>(run) + 1][count_column]) << events;
+    flips += crossings;
+  }
+  EXPECT_GT(flips, 0) << "4 s holds a flip of these rackets";
 
   const fs::path bad = dir.write("bad.toml", study(10, 1.0) +
                                                  "[[ensemble.vary]]\npath = \"bodies.racket.mass\"\n"

@@ -12,9 +12,15 @@
 
 namespace tumble {
 
-/// Runs run i alone: its row. `trajectory`, if given, receives every sample (the chosen runs' files).
-EnsembleRow run_alone(const EnsembleStudy& study, long i,
-                      const std::function<void(const Scene&, const SystemState&)>& trajectory = {});
+/// What a chosen run's trajectory file receives as run_alone runs it: every sample and every crossing
+/// of the scene's events (EventHit::index into scene.events), in time order.
+struct RunTrajectory {
+  std::function<void(const Scene&, const SystemState&)> sample;
+  std::function<void(const Scene&, const EventHit&)> event;
+};
+
+/// Runs run i alone: its row. `trajectory`, if given, receives its samples and crossings.
+EnsembleRow run_alone(const EnsembleStudy& study, long i, const RunTrajectory& trajectory = {});
 
 /// The rows of several runs, in their order, the runs that share a structure stepped together (one run
 /// alone when none shares it, when it has particles or a system force model, or for an adaptive
