@@ -159,8 +159,15 @@ class ReportObserver final : public RunObserver {
 /// closing summary says (the largest drifts, the time reached, each event's crossings).
 class ConsoleObserver final : public RunObserver {
  public:
-  ConsoleObserver(DriftMonitor& monitor, Progress& progress, DriftExtremes& extremes, size_t events, double t)
-      : monitor_(monitor), progress_(progress), extremes_(extremes), crossings_(events, {0, 0.0}), t_(t) {}
+  /// `crossings`: per event, those before a resumed run's checkpoint (empty: none, or not recorded).
+  ConsoleObserver(DriftMonitor& monitor, Progress& progress, DriftExtremes& extremes, size_t events, double t,
+                  const std::vector<std::pair<long, double>>& crossings)
+      : monitor_(monitor),
+        progress_(progress),
+        extremes_(extremes),
+        crossings_(crossings.size() == events ? crossings
+                                              : std::vector<std::pair<long, double>>(events, {0, 0.0})),
+        t_(t) {}
   void on_sample(const SystemState& state, const DriftSample& d) override {
     extremes_.add(d);
     t_ = state.t;
@@ -189,17 +196,20 @@ class CheckpointObserver final : public RunObserver {
  public:
   using Clock = std::chrono::steady_clock;
   CheckpointObserver(std::filesystem::path file, const Checkpoint& base, double every,
-                     TrajectoryWriter& writer, const DriftMonitor& monitor, const DriftExtremes& extremes)
+                     TrajectoryWriter& writer, const DriftMonitor& monitor, const DriftExtremes& extremes,
+                     const ConsoleObserver& console)
       : file_(std::move(file)),
         base_(base),
         every_(every),
         writer_(writer),
         monitor_(monitor),
         extremes_(extremes),
+        console_(console),
         next_(Clock::now() + interval()) {}
   void on_run_point(const RunPoint& p) override {
     extremes_at_point_ = extremes_;
     warning_at_point_ = monitor_.warning();
+    crossings_at_point_ = console_.crossings();  // the console saw this point's events already
     if (Clock::now() < next_) return;
     writer_.sync();  // the rows the checkpoint counts are in the file before it names them
     save(p);
@@ -210,6 +220,7 @@ class CheckpointObserver final : public RunObserver {
     c.largest_energy_drift = extremes_at_point_.energy;
     c.largest_angular_momentum_drift = extremes_at_point_.angular_momentum;
     c.drift_warning = warning_at_point_.value_or("");
+    c.crossings = crossings_at_point_;
     c.point = p;
     stamp_output(c);  // the rows it counts: synced to the file before the observer saves
     write_checkpoint(file_, c);
@@ -225,8 +236,10 @@ class CheckpointObserver final : public RunObserver {
   TrajectoryWriter& writer_;
   const DriftMonitor& monitor_;
   const DriftExtremes& extremes_;
+  const ConsoleObserver& console_;
   DriftExtremes extremes_at_point_;
   std::optional<std::string> warning_at_point_;
+  std::vector<std::pair<long, double>> crossings_at_point_;
   Clock::time_point next_;
 };
 
@@ -313,7 +326,8 @@ int execute(Job& j) {
   std::optional<ReportObserver> reporting;
   if (report) reporting.emplace(*report, *recorder, scene);
   ConsoleObserver console(monitor, progress, extremes, scene.events.size(),
-                          j.resumed ? j.resumed->point.t_last_sample : t0);
+                          j.resumed ? j.resumed->point.t_last_sample : t0,
+                          j.resumed ? j.resumed->crossings : std::vector<std::pair<long, double>>{});
   run.watch(make_events(scene.model, scene.events)).attach(trajectory);
   if (reporting) run.attach(*reporting);
   run.attach(console).stop_when([&] { return interrupt.requested(); });  // asked every step and sample
@@ -321,7 +335,7 @@ int execute(Job& j) {
   RunPoint point;
   std::optional<CheckpointObserver> checkpoints;
   if (!j.checkpoint.empty()) {
-    checkpoints.emplace(j.checkpoint, base, j.checkpoint_every, *writer, monitor, extremes);
+    checkpoints.emplace(j.checkpoint, base, j.checkpoint_every, *writer, monitor, extremes, console);
     run.keep_run_points(point).attach(*checkpoints);
   }
   if (j.resumed) run.resume_from(j.resumed->point);

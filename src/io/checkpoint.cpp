@@ -24,7 +24,7 @@ namespace {
 constexpr char kMagic[8] = {'T', 'U', 'M', 'B', 'L', 'E', 'C', 'K'};
 // 2: the run settings by the settings table, key by key; 3: the writer's host and boot, the output's
 // stamp. Version 2 is read too.
-constexpr std::uint32_t kVersion = 3;
+constexpr std::uint32_t kVersion = 4;
 constexpr std::uint32_t kByteOrder = 0x01020304;
 
 class Out {
@@ -417,6 +417,11 @@ void write_checkpoint(const std::filesystem::path& path, const Checkpoint& c) {
   o.str(c.drift_warning);
   o.u64(c.output_bytes);
   o.u64(c.output_tail_hash);
+  o.u64(c.crossings.size());
+  for (const auto& [count, first] : c.crossings) {
+    o.i64(count);
+    o.f64(first);
+  }
   put_point(o, c.point);
   o.u64(fnv1a64(o.bytes));
 
@@ -467,9 +472,9 @@ Checkpoint read_checkpoint(const std::filesystem::path& path) {
         "checkpoint {} was written on a machine of the other byte order; resume it on such a machine", name));
   }
   const std::uint32_t version = head[0];
-  if (version != 2 && version != kVersion) {
+  if (version < 2 || version > kVersion) {
     throw InvalidArgument(fmt::format(
-        "checkpoint {} has format version {}; this tumble reads versions 2 and {}: resume it with the tumble "
+        "checkpoint {} has format version {}; this tumble reads versions 2 to {}: resume it with the tumble "
         "that wrote it",
         name, version, kVersion));
   }
@@ -530,6 +535,13 @@ Checkpoint read_checkpoint(const std::filesystem::path& path) {
   if (version >= 3) {
     c.output_bytes = in.u64();
     c.output_tail_hash = in.u64();
+  }
+  if (version >= 4) {
+    c.crossings.resize(in.count(16));
+    for (auto& [count, first] : c.crossings) {
+      count = in.i64(0, kMaxLong);
+      first = in.f64();
+    }
   }
   c.point = get_point(in);
   if (!in.at_end()) in.corrupt();

@@ -735,15 +735,24 @@ const std::vector<Case>& catalogue() {
        "tumble: warning: m.obj: the mesh is inside-out (signed volume -1 m^3: its triangles wind clockwise "
        "seen from outside); it was integrated with the orientation flipped. Flip the normals in a mesh "
        "editor to silence this warning"},
-      {"mesh: OBJ degenerate triangle",
+      {"mesh: OBJ degenerate triangle, the surface closed without it: left out with a notice",
        {{"m.obj", std::string("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\nf 1 4 "
                               "3\nf 1 3 2\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\nf 3 4 8\nf "
                               "3 8 7\nf 4 1 5\nf 4 5 8\nf 1 1 2\n",
                               168)}},
        "{t} inertia m.obj --density 1",
+       0,
+       "tumble: warning: m.obj: left out 1 degenerate (zero-area) triangle (12), which add nothing to the "
+       "solid: the surface without it is closed. Remove it in a mesh editor to silence this notice"},
+      {"mesh: OBJ zero-area sliver closing a T-junction (the surface without it is open)",
+       {{"m.obj", std::string("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\nv 0.5 "
+                              "0 0\nf 1 4 3\nf 1 3 9\nf 9 3 2\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 "
+                              "7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\nf 1 9 2\n",
+                              186)}},
+       "{t} inertia m.obj --density 1",
        1,
        "tumble: error: m.obj: cannot compute solid mass properties: the mesh has 1 degenerate triangle (a "
-       "repeated vertex or zero area), first: triangle 12 (vertices 0, 0, 1); remove them (e.g. MeshLab: "
+       "repeated vertex or zero area), first: triangle 13 (vertices 0, 8, 1); remove them (e.g. MeshLab: "
        "Remove Duplicate Faces / Remove Zero Area Faces) or re-export the mesh"},
       {"mesh: OBJ points only",
        {{"m.obj", std::string("v 0 0 0\nv 1 0 0\nv 0 1 0\n", 24)}},

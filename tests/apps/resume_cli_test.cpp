@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -79,6 +80,16 @@ size_t lines_of_temporary(const fs::path& dir, const std::string& name) {
   return 0;
 }
 
+/// The closing summary's lines about events ("event NAME (BODY): N crossings, the first at t = ...").
+std::string event_lines(const std::string& output) {
+  std::string lines;
+  std::istringstream in(output);
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("event ", 0) == 0) lines += line + "\n";
+  }
+  return lines;
+}
+
 struct Dir {
   explicit Dir(const std::string& name) : dir(name) {  // NOLINT
     fs::copy_file(fs::path(TUMBLE_SOURCE_DIR) / "examples/meshes/t_handle.stl", dir / "t_handle.stl");
@@ -104,8 +115,7 @@ TEST(ResumeCli, StoppedBySigtermAndResumedTheFilesAreThoseOfAnUninterruptedRun) 
   for (const std::string integrator : {"splitting", "dopri45", "rk4", "midpoint"}) {
     Dir whole("resume_whole_" + integrator);
     const fs::path scene = whole.dir.write("s.toml", scene_text(integrator));
-    const auto full =
-        test::run_tumble("run " + scene.string() + " -o " + (whole.dir / "out.csv").string() + " --quiet");
+    const auto full = test::run_tumble("run " + scene.string() + " -o " + (whole.dir / "out.csv").string());
     ASSERT_EQ(full.status, 0) << full.output;
 
     Dir part("resume_part_" + integrator);
@@ -118,8 +128,14 @@ TEST(ResumeCli, StoppedBySigtermAndResumedTheFilesAreThoseOfAnUninterruptedRun) 
     ASSERT_LT(test::read_text(part.dir / "out.csv").size(), test::read_text(whole.dir / "out.csv").size())
         << integrator << ": the run was stopped mid-way";
 
-    const auto resumed = test::run_tumble("resume " + (part.dir / "run.ckpt").string() + " --quiet");
+    const auto resumed = test::run_tumble("resume " + (part.dir / "run.ckpt").string());
     ASSERT_EQ(resumed.status, 0) << resumed.output;
+    // The closing summary counts every crossing of the run, those before the stop too.
+    EXPECT_EQ(event_lines(resumed.output), event_lines(full.output)) << integrator;
+    long summed = 0;  // over the summary's "N crossing(s)": the events file's 3 rows
+    std::istringstream lines(event_lines(resumed.output));
+    for (std::string line; std::getline(lines, line);) summed += std::stol(line.substr(line.find("): ") + 3));
+    EXPECT_EQ(summed, 3) << resumed.output;
     EXPECT_TRUE(test::read_text(part.dir / "out.csv") == test::read_text(whole.dir / "out.csv"))
         << integrator;
     EXPECT_TRUE(test::read_text(part.dir / "out.diagnostics.csv") ==

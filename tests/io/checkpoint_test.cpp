@@ -37,6 +37,7 @@ Checkpoint sample_checkpoint() {
   c.output_tail_hash = 0xfedcba9876543210ULL;
   c.largest_energy_drift = 2.5e-15;
   c.drift_warning = "energy drifted";
+  c.crossings = {{3, 0.125}, {0, 0.0}, {1, -2.5e-300}};
   c.point.t0 = 0.0;
   c.point.x.t = 1.0 / 3.0;
   c.point.x.bodies.resize(3);
@@ -76,6 +77,7 @@ TEST(Checkpoint, EveryFieldComesBackExactly) {
   EXPECT_EQ(r.largest_energy_drift, c.largest_energy_drift);
   EXPECT_FALSE(r.largest_angular_momentum_drift);
   EXPECT_EQ(r.drift_warning, c.drift_warning);
+  EXPECT_EQ(r.crossings, c.crossings);
   EXPECT_EQ(r.point.x.t, c.point.x.t);
   for (size_t k = 0; k < BodyColumns::kCount; ++k)
     EXPECT_EQ(std::memcmp(r.point.x.bodies[k], c.point.x.bodies[k], 3 * sizeof(double)), 0) << k;

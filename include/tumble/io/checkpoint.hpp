@@ -10,12 +10,13 @@
 // outputs hold at that point, what the drift monitor reported so far and the PID of the process that
 // wrote the outputs (its staged FINAL.tmp-PID holds them until they are committed).
 //
-// Format (version 3; docs/ARCHITECTURE.md): "TUMBLECK", a uint32 version, a uint32 byte-order mark
+// Format (version 4; docs/ARCHITECTURE.md): "TUMBLECK", a uint32 version, a uint32 byte-order mark
 // 0x01020304, then the fields in a fixed order — integers as uint64, doubles as their 8 bytes
 // (exact), strings and arrays as a uint64 length and their bytes; the run settings as every row of the
 // settings table (sim/run_settings.hpp): its key, then 0 and a double or 1 and a name — and last the
 // FNV-1a 64 hash of all bytes before it. Version 1 stored the settings field by field; version 3 added
-// the writer's host and boot and the trajectory's stamp (version 2 is still read, without them). Native byte order: a checkpoint moves between machines of the same byte order only.
+// the writer's host and boot and the trajectory's stamp, version 4 each event's crossings so far
+// (versions 2 and 3 are still read, without them). Native byte order: a checkpoint moves between machines of the same byte order only.
 // Written atomically: CHECKPOINT.tmp-PID, fsync, rename.
 #include <cstdint>
 #include <filesystem>
@@ -62,7 +63,10 @@ struct Checkpoint {
   std::uint64_t output_bytes = 0, output_tail_hash = 0;
   std::optional<double> largest_energy_drift, largest_angular_momentum_drift;
   std::string drift_warning;  ///< the drift monitor's warning so far; empty: none
-  RunPoint point;             ///< point.samples: the samples the outputs hold at the checkpoint
+  /// Per event of the scene, in its order: the crossings so far and the first one's time (unused at 0),
+  /// so that a resumed run's summary counts them all. Empty: not recorded (format versions 2 and 3).
+  std::vector<std::pair<long, double>> crossings;
+  RunPoint point;  ///< point.samples: the samples the outputs hold at the checkpoint
 };
 
 /// How much of the trajectory's end its stamp covers: its last samples' rows.
