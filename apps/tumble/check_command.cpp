@@ -16,6 +16,7 @@ namespace tumble::cli {
 
 Runner add_check_command(CLI::App& app) {
   auto file = std::make_shared<std::string>();
+  auto strict = std::make_shared<bool>(false);
   CLI::App* cmd = app.add_subcommand(
       "check",
       "Validate a scene file without simulating: report the first problem as file:line:column, or "
@@ -26,14 +27,17 @@ Runner add_check_command(CLI::App& app) {
       "values and output columns).\n\nExample:\n"
       "  tumble check examples/t_handle.toml");
   cmd->add_option("scene", *file, "scene file (TOML; see docs/scene-format.md)")->required();
-  return [file] {
+  cmd->add_flag("--strict", *strict,
+                "warnings are errors: exit with status 1 if the scene has any (a density or a mesh size that "
+                "looks like another unit, angles that look like degrees, ...)");
+  return [file, strict] {
     const Scene scene = load_scene(*file);
     // What `tumble run` would refuse (e.g. integrator exact with a torque, a step too small to advance
     // the clock) is refused here too, with the same message.
     validate(scene.settings);
     if (!is_adaptive(scene.settings.integrator))
       make_integrator(scene.settings.integrator)->check(scene.model);
-    print_scene_warnings(scene);
+    print_scene_warnings(scene, *strict);
     print_scene_summary(stdout, scene);
     const RunPlan plan = plan_of(scene, scene.settings, {});
     const std::optional<double> seconds = estimate_seconds(scene, scene.settings, plan);

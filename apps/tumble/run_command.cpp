@@ -446,7 +446,7 @@ int run(const RunOptions& o) {
   body_fields(o.fields);  // an unknown field is named before the scene is read
   Scene scene = load_scene(o.scene);
   const RunSettings settings = settings_for(scene, o);
-  print_scene_warnings(scene);
+  print_scene_warnings(scene, o.strict);
   if (!o.quiet && scene.text.find("[ensemble") != std::string::npos) {
     fmt::print(stderr,
                "tumble: note: {} describes an ensemble; tumble run runs its base scene once (the "
@@ -701,8 +701,10 @@ Runner add_run_command(CLI::App& app) {
   }
   cmd->add_option("--fields,--columns", o->fields, fields_help)->delimiter(',');
   cmd->add_flag("--strict", o->strict,
-                "exit with status 3 (after writing every file) if a conserved quantity drifted past the "
-                "drift threshold; without it such a run warns and exits 0");
+                "warnings are errors: a scene with warnings (a density or a mesh size that looks like "
+                "another unit, angles that look like degrees, ...) is refused before the run (status 1), "
+                "and a run whose conserved quantity drifted past the drift threshold exits with status 3 "
+                "after writing every file; without it both warn and the run exits 0");
   cmd->add_flag("--force", o->force,
                 "run even if it would take more than a day or write more than 100 GB (`tumble check` "
                 "prints the steps, samples, output size and time a run would take)");

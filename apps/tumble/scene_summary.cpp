@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include "tumble/error.hpp"
 #include "tumble/integrate/integrator.hpp"
 #include "tumble/sim/diagnostics.hpp"
 
@@ -74,8 +75,14 @@ void print_scene_summary(std::FILE* out, const Scene& scene) {
                  : std::string(" (drift warning off)"));
 }
 
-void print_scene_warnings(const Scene& scene) {
+void print_scene_warnings(const Scene& scene, bool strict) {
   for (const auto& w : scene.warnings) fmt::print(stderr, "tumble: warning: {}\n", w);
+  if (strict && !scene.warnings.empty()) {
+    throw InvalidArgument(fmt::format(
+        "{} warning{} about the scene, and --strict makes them errors: fix the scene (each warning says how) "
+        "or drop --strict",
+        scene.warnings.size(), scene.warnings.size() == 1 ? "" : "s"));
+  }
 }
 
 }  // namespace tumble::cli

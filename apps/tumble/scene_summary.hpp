@@ -9,7 +9,8 @@ namespace tumble::cli {
 
 void print_scene_summary(std::FILE* out, const Scene& scene);
 
-/// Prints the scene's warnings to stderr, one "tumble: warning: ..." line each.
-void print_scene_warnings(const Scene& scene);
+/// Prints the scene's warnings to stderr, one "tumble: warning: ..." line each; with `strict`, then
+/// throws InvalidArgument if there were any.
+void print_scene_warnings(const Scene& scene, bool strict = false);
 
 }  // namespace tumble::cli

@@ -18,9 +18,15 @@ namespace tumble::scene {
 /// A mesh file as read, and what is computed from the mesh alone, on first use. Thread-safe.
 class CachedMesh {
  public:
-  explicit CachedMesh(LoadedMesh loaded) : loaded_(std::move(loaded)) {}
+  explicit CachedMesh(LoadedMesh loaded) : loaded_(std::move(loaded)) {
+    Eigen::AlignedBox3d box;
+    for (const Vec3& v : loaded_.mesh.vertices) box.extend(v);
+    diagonal_ = loaded_.mesh.vertices.empty() ? 0.0 : box.diagonal().norm();
+  }
   const LoadedMesh& loaded() const { return loaded_; }
   const TriangleMesh& mesh() const { return loaded_.mesh; }
+  /// The diagonal of the mesh's bounding box (m).
+  double diagonal() const { return diagonal_; }
   /// solid_unit_properties(mesh(), name): its checks and integrals once (per name, which its messages
   /// carry); throws as it does.
   MeshMassResult unit_solid(const std::string& name) const;
@@ -29,6 +35,7 @@ class CachedMesh {
 
  private:
   LoadedMesh loaded_;
+  double diagonal_ = 0.0;
   mutable std::mutex lock_;
   mutable std::optional<std::pair<std::string, MeshMassResult>> unit_;
   mutable std::once_flag display_once_;

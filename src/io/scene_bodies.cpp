@@ -50,7 +50,7 @@ void read_body(const toml::table& body, size_t number, const TomlFile& file,
     }
   }();
   const Vec3 position = named.vec3("position", Vec3::Zero(), "m");
-  const Quat orientation = named.rotation("orientation").value_or(Quat::Identity());
+  const Quat orientation = named.rotation("orientation", &scene.warnings).value_or(Quat::Identity());
   const Vec3 velocity = named.vec3("velocity", Vec3::Zero(), "m/s");
   const Vec3 omega = named.vec3("angular_velocity", Vec3::Zero(), "rad/s");
   const Frame omega_frame = named.frame("angular_velocity_frame", Frame::world);

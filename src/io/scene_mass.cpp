@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "mesh_cache.hpp"
+#include "scene_sanity.hpp"
 #include "scene_sections.hpp"
 #include "tumble/mass/density.hpp"
 #include "tumble/mass/mesh_decimate.hpp"
@@ -107,8 +108,9 @@ Polynomial read_polynomial(const TableReader& density) {
   return p;
 }
 
-/// `density` (a number or { polynomial = ... }) or `mass` in table t; Kind::none if neither.
-Material read_material(const TableReader& t) {
+/// `density` (a number or { polynomial = ... }) or `mass` in table t; Kind::none if neither. A uniform
+/// density outside what solids have gets a note in `notes` (scene_sanity.hpp).
+Material read_material(const TableReader& t, std::vector<std::string>& notes) {
   t.at_most_one_of({"density", "mass"});
   Material m;
   if (t.has("mass")) {
@@ -124,6 +126,8 @@ Material read_material(const TableReader& t) {
     } else {
       m.kind = Material::Kind::density;
       m.value = *t.number("density", "kg/m^3", Domain::positive);
+      if (auto note = implausible_density(m.value))
+        notes.push_back(location(t.file(), t.where("density")) + ": " + *note);
     }
   }
   return m;
@@ -270,6 +274,10 @@ MassProperties solid(const TableReader& t, const Material& mat, const Pose& pose
                                     file, e.what()));
     }
     const TriangleMesh& mesh = cached->mesh();
+    if (!t.has("scale")) {
+      if (auto note = implausible_mesh_size(cached->diagonal()))
+        scene.warnings.push_back(location(t.file(), t.where("mesh")) + ": " + file + ": " + *note);
+    }
     source = fmt::format("mesh {} ({} triangles{}){}, {}", file, mesh.triangles.size(),
                          scale != 1.0 ? fmt::format(", scale {:g}", scale) : "", shell, mat.describe());
     display = cached->display();  // shared by every body of this mesh
@@ -350,10 +358,10 @@ void append_placed(TriangleMesh& body, const TriangleMesh& part, const Pose& pos
   for (const auto& t : part.triangles) body.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
 }
 
-Pose read_pose(const TableReader& t) {
+Pose read_pose(const TableReader& t, std::vector<std::string>& notes) {
   Pose p;
   p.t = t.vec3("position", Vec3::Zero(), "m");
-  if (const auto q = t.quaternion("orientation")) p.R = q->toRotationMatrix();
+  if (const auto q = t.quaternion("orientation", &notes)) p.R = q->toRotationMatrix();
   return p;
 }
 
@@ -361,7 +369,7 @@ Pose read_pose(const TableReader& t) {
 
 BodyMass read_body_mass(const TableReader& body, const std::filesystem::path& directory, Scene& scene) {
   body.require_one_of({"shape", "mesh", "inertia", "parts"});
-  const Material material = read_material(body);
+  const Material material = read_material(body, scene.warnings);
   if (!body.has("inertia") && body.has("center_of_mass")) {
     body.fail_at("center_of_mass", "center_of_mass goes with inertia; for shapes and meshes it is computed");
   }
@@ -386,7 +394,7 @@ BodyMass read_body_mass(const TableReader& body, const std::filesystem::path& di
                            {"shape", "mesh", "scale", "thickness", "inertia", "center_of_mass", "density",
                             "mass", "position", "orientation", "hole"});
     part.require_one_of({"shape", "mesh", "inertia"});
-    Material m = read_material(part);
+    Material m = read_material(part, scene.warnings);
     if (m.kind != Material::Kind::none && material.kind == Material::Kind::mass) {
       part.fail_at(m.key,
                    "the body gives its total mass, so its parts cannot have their own density or "
@@ -398,7 +406,7 @@ BodyMass read_body_mass(const TableReader& body, const std::filesystem::path& di
       }
       m = material;  // the body's density (uniform or polynomial)
     }
-    const Pose pose = read_pose(part);
+    const Pose pose = read_pose(part, scene.warnings);
     std::string source;
     std::shared_ptr<const TriangleMesh> shown;
     const MassProperties mp = part.has("inertia") ? explicit_inertia(part, m)

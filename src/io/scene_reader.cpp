@@ -1,5 +1,7 @@
 #include "scene_reader.hpp"
 
+#include "scene_sanity.hpp"
+
 #include "tumble/math/rotations.hpp"
 
 #include <fmt/format.h>
@@ -287,7 +289,7 @@ Vec3 TableReader::vec3(std::string_view key, const Vec3& fallback, const char* u
   return vec3(key, unit, Domain::finite).value_or(fallback);
 }
 
-std::optional<Quat> TableReader::quaternion(std::string_view key) const {
+std::optional<Quat> TableReader::quaternion(std::string_view key, std::vector<std::string>* notes) const {
   const toml::node* n = node(key);
   if (!n) return std::nullopt;
   const toml::array* a = n->as_array();
@@ -297,6 +299,10 @@ std::optional<Quat> TableReader::quaternion(std::string_view key) const {
   Eigen::Vector4d wxyz;
   for (int i = 0; i < 4; ++i) {
     wxyz(i) = number_value(*this, *a->get(static_cast<size_t>(i)), {key, i}, "", Domain::finite);
+  }
+  if (notes) {
+    if (auto note = quaternion_order(key, wxyz))
+      notes->push_back(location(file(), where(key)) + ": " + *note);
   }
   const double norm = wxyz.norm();
   if (!(std::abs(norm - 1.0) <= kQuaternionNormSlack)) {
@@ -312,9 +318,9 @@ std::optional<Quat> TableReader::quaternion(std::string_view key) const {
   return Quat(wxyz(0), wxyz(1), wxyz(2), wxyz(3));
 }
 
-std::optional<Quat> TableReader::rotation(std::string_view key) const {
+std::optional<Quat> TableReader::rotation(std::string_view key, std::vector<std::string>* notes) const {
   const toml::node* n = node(key);
-  if (!n || !n->is_table()) return quaternion(key);
+  if (!n || !n->is_table()) return quaternion(key, notes);
   const TableReader t(*n->as_table(), context_.child(" ", key), *file_,
                       {"euler_zyx", "euler_zxz", "axis", "angle"});
   const bool zyx = t.has("euler_zyx"), zxz = t.has("euler_zxz"), axis = t.has("axis") || t.has("angle");
@@ -324,12 +330,24 @@ std::optional<Quat> TableReader::rotation(std::string_view key) const {
                              "quaternion [w, x, y, z]",
                              key));
   }
-  if (zyx) return Quat(from_euler_zyx(*t.vec3("euler_zyx", "rad")));
-  if (zxz) return Quat(from_euler_zxz(*t.vec3("euler_zxz", "rad")));
+  // Angles beyond a full turn are probably degrees: a note, with the radians they would be.
+  const auto check = [&](std::string_view angles_key, const Eigen::VectorXd& angles) {
+    if (!notes) return;
+    if (auto note = angles_in_degrees(angles_key, angles))
+      notes->push_back(location(file(), t.where(angles_key)) + ": " + *note);
+  };
+  if (zyx || zxz) {
+    const char* const which = zyx ? "euler_zyx" : "euler_zxz";
+    const Vec3 angles = *t.vec3(which, "rad");
+    check(which, angles);
+    return Quat(zyx ? from_euler_zyx(angles) : from_euler_zxz(angles));
+  }
   const Vec3 a = t.vec3("axis", Vec3::Zero(), "");
   if (!(a.norm() > 0))
     t.fail_at(t.has("axis") ? "axis" : "angle", "axis must be a non-zero vector [x, y, z]");
-  return Quat(Eigen::AngleAxisd(t.required_number("angle", "rad"), a.normalized()));
+  const double angle = t.required_number("angle", "rad");
+  check("angle", Eigen::VectorXd::Constant(1, angle));
+  return Quat(Eigen::AngleAxisd(angle, a.normalized()));
 }
 
 Frame TableReader::frame(std::string_view key, Frame fallback) const {

@@ -146,10 +146,12 @@ class TableReader {
   std::optional<Vec3> vec3(std::string_view key, const char* unit, Domain domain = Domain::finite) const;
   Vec3 vec3(std::string_view key, const Vec3& fallback, const char* unit) const;
   /// An array of 4 numbers (w, x, y, z) of norm 1 ± kQuaternionNormSlack: normalised; else an error.
-  std::optional<Quat> quaternion(std::string_view key) const;
+  /// `notes`, if given, receives a note on numbers that look like another order (scene_sanity.hpp).
+  std::optional<Quat> quaternion(std::string_view key, std::vector<std::string>* notes = nullptr) const;
   /// An orientation: a unit quaternion [w, x, y, z], or a table { euler_zyx = [yaw, pitch, roll] },
   /// { euler_zxz = [phi, theta, psi] } or { axis = [x, y, z], angle = a } (rad; math/rotations.hpp).
-  std::optional<Quat> rotation(std::string_view key) const;
+  /// `notes`, if given, receives notes on angles that look like degrees and quaternions like (x, y, z, w).
+  std::optional<Quat> rotation(std::string_view key, std::vector<std::string>* notes = nullptr) const;
   /// "world" or "body".
   Frame frame(std::string_view key, Frame fallback) const;
   /// A sub-table (inline or not) read with its own allowed keys.

@@ -754,6 +754,53 @@ const std::vector<Case>& catalogue() {
        "tumble: error: m.obj: cannot compute solid mass properties: the mesh has 1 degenerate triangle (a "
        "repeated vertex or zero area), first: triangle 13 (vertices 0, 8, 1); remove them (e.g. MeshLab: "
        "Remove Duplicate Faces / Remove Zero Area Faces) or re-export the mesh"},
+      {"units: a density in g/cm^3 typed as kg/m^3 (warned, with the number meant)",
+       {{"s.toml", std::string("[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = "
+                               "\"box\", size = [1, 2, 3] }\ndensity = 2.7\n",
+                               108)}},
+       "{t} check s.toml",
+       0,
+       "tumble: warning: s.toml:6:11: density 2.7 kg/m^3 is lighter than any solid (air is 1.2 kg/m^3): if "
+       "it "
+       "is in g/cm^3, write density = 2700 (kg/m^3)"},
+      {"units: Euler angles in degrees (warned, with the radians)",
+       {{"s.toml", std::string("[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = "
+                               "\"box\", size = [1, 2, 3] }\ndensity = 1000\norientation = { euler_zyx = [0, "
+                               "90, 0] }\n",
+                               150)}},
+       "{t} check s.toml",
+       0,
+       "tumble: warning: s.toml:7:29: euler_zyx[1] = 90 rad is more than a full turn: angles are in radians; "
+       "if these are degrees, write euler_zyx = [0, 1.5708, 0]"},
+      {"units: a quaternion written (x, y, z, w) (a note on the order)",
+       {{"s.toml", std::string("[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = "
+                               "\"box\", size = [1, 2, 3] }\ndensity = 1000\norientation = [0, 0, 0, 1]\n",
+                               136)}},
+       "{t} check s.toml",
+       0,
+       "tumble: warning: s.toml:7:15: orientation = [0, 0, 0, 1] is read as [w, x, y, z] (w first): a "
+       "half-turn about an axis. If it was written [x, y, z, w], reorder it to [1, 0, 0, 0]"},
+      {"units: a mesh drawn in millimetres read without scale (warned; scale = 1.0 says it is metres)",
+       {{"s.toml", std::string("[simulation]\nduration = 0.01\n[[bodies]]\nname = \"part\"\nmesh = "
+                               "\"part.obj\"\ndensity = 2700\n",
+                               87)},
+        {"part.obj", std::string("v 0 0 0\nv 300 0 0\nv 300 200 0\nv 0 200 0\nv 0 0 100\nv 300 0 100\nv 300 "
+                                 "200 100\nv 0 200 100\nf 1 4 3\nf 1 3 2\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 "
+                                 "5\nf 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n",
+                                 184)}},
+       "{t} check s.toml",
+       0,
+       "tumble: warning: s.toml:5:8: part.obj: the mesh is 374.2 m across as its coordinates are read "
+       "(metres): if its file is in millimetres, add scale = 0.001 (inches: 0.0254); if it really is that "
+       "large, say scale = 1.0"},
+      {"units: --strict makes a scene's warnings errors (the error follows the warnings)",
+       {{"s.toml", std::string("[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = "
+                               "\"box\", size = [1, 2, 3] }\ndensity = 2.7\n",
+                               108)}},
+       "set -o pipefail; {t} run s.toml -o o.csv --strict 2>&1 | grep -v '^tumble: warning'",
+       1,
+       "tumble: error: 1 warning about the scene, and --strict makes them errors: fix the scene (each "
+       "warning says how) or drop --strict"},
       {"mesh: OBJ points only",
        {{"m.obj", std::string("v 0 0 0\nv 1 0 0\nv 0 1 0\n", 24)}},
        "{t} inertia m.obj --density 1",
