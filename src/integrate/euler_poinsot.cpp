@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "euler_poinsot_flows.hpp"
+#include "tumble/debug_assert.hpp"
 #include "tumble/error.hpp"
 
 namespace tumble {
@@ -137,8 +138,19 @@ Vec3 EulerPoinsot::omega_w(double t) const {
   const State s = flow().state(t);
   return s.q * s.omega_b;
 }
-Quat EulerPoinsot::q(double t) const { return flow().q(t); }
-EulerPoinsot::State EulerPoinsot::state(double t) const { return flow().state(t); }
+Quat EulerPoinsot::q(double t) const {
+  const Quat q = flow().q(t);
+  // The closed form composes unit quaternions: unit to a few ε whatever t.
+  TUMBLE_DEBUG_ASSERT(std::abs(q.squaredNorm() - 1.0) < 1e-13,
+                      "the exact flow's attitude is a unit quaternion");
+  return q;
+}
+EulerPoinsot::State EulerPoinsot::state(double t) const {
+  const State s = flow().state(t);
+  TUMBLE_DEBUG_ASSERT(std::abs(s.q.squaredNorm() - 1.0) < 1e-13,
+                      "the exact flow's attitude is a unit quaternion");
+  return s;
+}
 double EulerPoinsot::period_omega() const { return flow().period_omega(); }
 double EulerPoinsot::flip_interval() const { return flow().flip_interval(); }
 

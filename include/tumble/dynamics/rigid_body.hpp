@@ -1,8 +1,10 @@
 #pragma once
 // A rigid body as the dynamics sees it: mass m, principal moments Λ, and where its principal frame {b}
 // sits in the user's body reference frame (centre of mass c, principal rotation U: x_ref = c + U x_b).
+#include <cmath>
 #include <string>
 
+#include "tumble/debug_assert.hpp"
 #include "tumble/mass/mass_properties.hpp"
 
 namespace tumble {
@@ -33,7 +35,15 @@ class RigidBody {
 
  private:
   RigidBody(std::string name, double m, const Vec3& Lambda, const Vec3& c, const Mat3& U)
-      : name_(std::move(name)), m_(m), Lambda_(Lambda), c_(c), U_(U), q_U_(U) {}
+      : name_(std::move(name)), m_(m), Lambda_(Lambda), c_(c), U_(U), q_U_(U) {
+    // The factories validate the mass properties (InvalidMassProperties for bad input): what reaches
+    // here is a positive mass, positive moments and a proper rotation, to rounding.
+    TUMBLE_DEBUG_ASSERT(m > 0 && (Lambda.array() > 0).all(),
+                        "a body's mass and principal moments are positive");
+    TUMBLE_DEBUG_ASSERT((U.transpose() * U - Mat3::Identity()).cwiseAbs().maxCoeff() < 1e-12 &&
+                            std::abs(U.determinant() - 1.0) < 1e-12,
+                        "a body's principal axes U are a proper rotation");
+  }
   std::string name_;
   double m_;
   Vec3 Lambda_;
