@@ -168,7 +168,7 @@ void validate(const RunSettings& s) {
   if (is_adaptive(s.integrator)) {
     make_adaptive_integrator(s.integrator, s.tolerances);  // validates the tolerances
   } else {
-    make_integrator(s.integrator);  // throws, listing the names, if unknown
+    (void)make_integrator(s.integrator);  // throws, listing the names, if unknown
   }
 }
 

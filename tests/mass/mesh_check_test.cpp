@@ -23,7 +23,7 @@ TriangleMesh tetrahedron() {
 /// The message of the MeshError that solid_mass_properties throws (fails the test if none).
 std::string solid_error(const TriangleMesh& mesh, const std::string& name = "part.stl") {
   try {
-    solid_mass_properties(mesh, MassSpec::density(1000.0), name);
+    (void)solid_mass_properties(mesh, MassSpec::density(1000.0), name);
   } catch (const MeshError& e) {
     return e.what();
   }

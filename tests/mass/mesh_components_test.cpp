@@ -32,7 +32,7 @@ double volume_of(const TriangleMesh& m) { return solid_unit_properties(m, "m.obj
 
 std::string refusal(const TriangleMesh& m) {
   try {
-    solid_unit_properties(m, "m.obj");
+    (void)solid_unit_properties(m, "m.obj");
   } catch (const MeshError& e) {
     return e.what();
   }

@@ -292,7 +292,7 @@ TEST(MeshPlyBinary, MutatedFilesGiveAMeshOrAFileErrorNeverACrash) {
     }
     write_bytes(dir / "m.ply", s);
     try {
-      solid_mass_properties(load_mesh(dir / "m.ply").mesh, MassSpec::density(1.0));
+      (void)solid_mass_properties(load_mesh(dir / "m.ply").mesh, MassSpec::density(1.0));
       ++loaded;
     } catch (const Error&) {  // FileError, or a MeshError of a mesh that bounds no solid
       ++refused;

@@ -127,7 +127,7 @@ std::vector<std::string> integrator_names();
 bool is_adaptive(const std::string& name);
 /// The fixed-step integrator registered under `name`; throws InvalidArgument listing the names there
 /// are (and saying so for an adaptive name).
-std::unique_ptr<Integrator> make_integrator(const std::string& name);
+[[nodiscard]] std::unique_ptr<Integrator> make_integrator(const std::string& name);
 /// The adaptive integrator registered under `name`; throws InvalidArgument for other names and for
 /// tolerances that are not positive and finite.
 std::unique_ptr<AdaptiveIntegrator> make_adaptive_integrator(const std::string& name,

@@ -15,8 +15,8 @@ struct SystemCoordinates {
   std::vector<ParticleState> particles;
 };
 
-SystemCoordinates to_coordinates(Formulation formulation, const SystemState& state);
-SystemState to_state(Formulation formulation, const SystemCoordinates& x);
+[[nodiscard]] SystemCoordinates to_coordinates(Formulation formulation, const SystemState& state);
+[[nodiscard]] SystemState to_state(Formulation formulation, const SystemCoordinates& x);
 /// The same into `state`, reusing its storage.
 void to_state(Formulation formulation, const SystemCoordinates& x, SystemState& state);
 /// Bodies first … first + n − 1 of x (no particles) into `part`, reusing its storage: one run's state out

@@ -37,7 +37,7 @@ struct PrincipalAxesOptions {
 /// determined by I; tumble then takes the coordinate axis of the reference frame most perpendicular to
 /// the unique axis, projected onto the degenerate plane, as the first axis of the group; for a sphere
 /// (all three equal) U = I₃. The same tensor always yields the same U.
-PrincipalAxes principal_axes(const Mat3& I, const PrincipalAxesOptions& options = {});
+[[nodiscard]] PrincipalAxes principal_axes(const Mat3& I, const PrincipalAxesOptions& options = {});
 
 /// Options for MassProperties::validate().
 struct ValidityOptions {

@@ -82,16 +82,17 @@ struct MeshReport {
 /// coordinate magnitude plus the bounding-box diagonal and ℓ the triangle's longest edge), and the edge
 /// table: boundary, non-manifold and misoriented edges. Triangles with a repeated index are left out
 /// of the edge table. O(n) time: edges are bucketed by their lower vertex (a counting sort).
-MeshReport check_mesh(const TriangleMesh& mesh);
+[[nodiscard]] MeshReport check_mesh(const TriangleMesh& mesh);
 
 /// Only the checks every integration needs: finite coordinates and indices in range (and the
 /// diagonal). Cheap: one pass over vertices and one over indices.
-MeshReport check_mesh_indices(const TriangleMesh& mesh);
+[[nodiscard]] MeshReport check_mesh_indices(const TriangleMesh& mesh);
 
 /// The mesh without its degenerate triangles (as check_mesh judges them; the mesh's indices must be in
 /// range), their indices in `dropped`. A zero-area triangle adds nothing to a solid's integrals, so a
 /// closed surface left by dropping them bounds the same solid.
-TriangleMesh without_degenerate_triangles(const TriangleMesh& mesh, std::vector<std::size_t>& dropped);
+[[nodiscard]] TriangleMesh without_degenerate_triangles(const TriangleMesh& mesh,
+                                                        std::vector<std::size_t>& dropped);
 
 /// One sentence per defect a solid must not have: what, how many, the first few indices, and how to
 /// fix it, joined by "; ". Empty if report.solid().

@@ -60,15 +60,15 @@ struct LoadedMesh {
 /// a point cloud or empty, or when assimp crashed, timed out or ran out of memory on it (one line,
 /// with the signal and how to raise a limit); InvalidArgument for a bad scale, a part that does not
 /// exist, or a limit variable that is not a number.
-LoadedMesh load_mesh(const std::filesystem::path& path, const MeshLoadOptions& options = {});
+[[nodiscard]] LoadedMesh load_mesh(const std::filesystem::path& path, const MeshLoadOptions& options = {});
 
 /// The formats tumble reads itself (OBJ, OFF, ASCII PLY, binary PLY, STL: ASCII by tumble, binary by
 /// assimp from these bytes after its size is checked), from a file's bytes already in memory: what
 /// load_mesh does after reading such a file. `name` picks the format by its extension (case-insensitive)
 /// and names the file in messages; it is not opened. Throws as load_mesh does, and InvalidArgument for
 /// another extension. The fuzz targets (fuzz/) call it.
-LoadedMesh load_mesh_bytes(const std::filesystem::path& name, std::string bytes,
-                           const MeshLoadOptions& options = {});
+[[nodiscard]] LoadedMesh load_mesh_bytes(const std::filesystem::path& name, std::string bytes,
+                                         const MeshLoadOptions& options = {});
 
 /// Writes a binary STL (for tests, benchmarks and examples). Throws FileError on failure.
 void write_binary_stl(const TriangleMesh& mesh, const std::filesystem::path& path);

@@ -24,7 +24,7 @@ inline Mat3 rotation_y(double a) { return Eigen::AngleAxisd(a, Vec3::UnitY()).to
 inline Mat3 rotation_z(double a) { return Eigen::AngleAxisd(a, Vec3::UnitZ()).toRotationMatrix(); }
 
 /// (yaw, pitch, roll) with R = Rz(yaw) Ry(pitch) Rx(roll).
-inline Vec3 euler_zyx(const Mat3& R) {
+[[nodiscard]] inline Vec3 euler_zyx(const Mat3& R) {
   // Third row: (−sin pitch, cos pitch sin roll, cos pitch cos roll). pitch from atan2 keeps its accuracy
   // near ±π/2, where asin(−R(2,0)) would lose half the digits.
   const double c = std::hypot(R(2, 1), R(2, 2));
@@ -40,12 +40,12 @@ inline Vec3 euler_zyx(const Mat3& R) {
   return {yaw, pitch, roll};
 }
 
-inline Mat3 from_euler_zyx(const Vec3& yaw_pitch_roll) {
+[[nodiscard]] inline Mat3 from_euler_zyx(const Vec3& yaw_pitch_roll) {
   return rotation_z(yaw_pitch_roll.x()) * rotation_y(yaw_pitch_roll.y()) * rotation_x(yaw_pitch_roll.z());
 }
 
 /// (φ, θ, ψ) with R = Rz(φ) Rx(θ) Rz(ψ).
-inline Vec3 euler_zxz(const Mat3& R) {
+[[nodiscard]] inline Vec3 euler_zxz(const Mat3& R) {
   // Third row (sin θ sin ψ, sin θ cos ψ, cos θ). As in euler_zyx, ψ comes from entries of size sin θ
   // and φ from entries of size 1 given ψ, so that near θ = 0 or π the rotation is rebuilt to rounding:
   //   cos ψ R(1,0) − sin ψ R(1,1) = sin φ,   cos ψ R(0,0) − sin ψ R(0,1) = cos φ.
@@ -58,7 +58,7 @@ inline Vec3 euler_zxz(const Mat3& R) {
   return {phi, theta, psi};
 }
 
-inline Mat3 from_euler_zxz(const Vec3& phi_theta_psi) {
+[[nodiscard]] inline Mat3 from_euler_zxz(const Vec3& phi_theta_psi) {
   return rotation_z(phi_theta_psi.x()) * rotation_x(phi_theta_psi.y()) * rotation_z(phi_theta_psi.z());
 }
 
@@ -68,7 +68,7 @@ struct AxisAngle {
   double angle = 0.0;  ///< rad
 };
 
-inline AxisAngle axis_angle(const Quat& q) {
+[[nodiscard]] inline AxisAngle axis_angle(const Quat& q) {
   // q = ±(cos(angle/2), sin(angle/2) axis): the sign with w ≥ 0 gives angle ≤ π; atan2 of the vector
   // part's norm and w keeps small angles accurate (acos(w) would not).
   const double sign = q.w() < 0 ? -1.0 : 1.0;
