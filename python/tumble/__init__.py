@@ -259,13 +259,27 @@ def scene_from_dict(scene: dict, path: str | _os.PathLike = "scene.toml") -> Sce
     return parse_scene(text, str(path))
 
 
+def _compact_arrays(text: str) -> str:
+    """tomli_w writes every array over one line per item: a position over five lines. Arrays of scalars,
+    and arrays of such arrays (a polynomial's terms), are put back on one line, [1.0, 2.0, 3.0]. Items
+    with brackets or braces inside (strings that hold them, inline tables) are left as they are."""
+    import re
+    item = r"(?:[^\[\]\n{}]+|\[[^\[\]\n{}]*\])"
+    pattern = re.compile(r"\[\n((?:[ \t]*" + item + r",\n)+)[ \t]*\]")
+    while True:
+        compacted = pattern.sub(lambda m: "[" + ", ".join(line.strip()[:-1] for line in m.group(1).splitlines()) + "]", text)
+        if compacted == text:
+            return text
+        text = compacted
+
+
 def save_scene(scene: Scene | dict, path: str | _os.PathLike) -> None:
     """Write a scene as TOML to `path`: a Scene read from a file or text (its TOML, as given), or a
     dict as scene_from_dict takes (validated first). Scenes made by bodies() from arrays have no TOML:
     give their bodies as a [[body_tables]] CSV file instead."""
     if isinstance(scene, dict):
         import tomli_w
-        text = tomli_w.dumps(scene)
+        text = _compact_arrays(tomli_w.dumps(scene))
         parse_scene(text, str(path))  # refuse what could not be loaded back
     else:
         text = scene.text

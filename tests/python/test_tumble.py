@@ -208,6 +208,17 @@ def test_a_scene_built_as_a_dict_is_the_scene_file(tmp_path):
     tumble.save_scene(d, tmp_path / "box.toml")
     c = tumble.simulate(tumble.load_scene(str(tmp_path / "box.toml")))
     assert np.array_equal(a.orientation, c.orientation)
+    # Written as a person would: each vector on its line, a polynomial's terms on one line too.
+    saved = (tmp_path / "box.toml").read_text()
+    assert "size = [0.1, 0.2, 0.3]\n" in saved and "angular_velocity = [0, 10, 0.01]\n" in saved, saved
+    poly = {"simulation": {"duration": 0.1}, "bodies": [{"name": "p", "shape": {"type": "sphere", "radius": 0.5},
+                                                         "density": {"polynomial": [[2500.0, 0, 0, 0], [-0.016, 2, 0, 0]]}}]}
+    tumble.save_scene(poly, tmp_path / "poly.toml")
+    assert "polynomial = [[2500.0, 0, 0, 0], [-0.016, 2, 0, 0]]\n" in (tmp_path / "poly.toml").read_text()
+    poly["bodies"][0]["angular_velocity"] = [1.0, 2.0, 3.0]  # the moments (from the polynomial) matter
+    tumble.save_scene(poly, tmp_path / "poly.toml")
+    assert np.array_equal(tumble.simulate(tumble.load_scene(str(tmp_path / "poly.toml"))).omega_world,
+                          tumble.simulate(tumble.scene_from_dict(poly)).omega_world)
     # The file's checks and messages, for a dict too.
     d["bodies"][0]["densty"] = 1
     with pytest.raises(ValueError, match="unknown key 'densty'; did you mean 'density'"):
