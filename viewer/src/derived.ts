@@ -47,17 +47,19 @@ export function comTrack(r: Report, body: number): Float32Array {
 }
 
 /**
- * Where the L arrow of a body comes from. For a lone body the report's system L (about the world
- * origin) is that body's; with several bodies each one's own L about its centre of mass is
- * R U diag(Λ) ω_p, from its principal rates and moments. Particles spin about nothing: no arrow.
+ * Where the L arrow of a body comes from: always the body's own L about its centre of mass,
+ * R U diag(Λ) ω_p (docs/report.md), from its principal rates, or from ω in the world when the report
+ * has only that. Never the system's L about the world origin, which holds m r × v of the orbit (a lone
+ * satellite's is 1e13 along the orbit normal); the plots show that one, labelled as the system's.
+ * Particles spin about nothing: no arrow.
  */
-export type LSource = 'system' | 'principal' | null;
+export type LSource = 'principal' | 'world' | null;
 
 export function lSource(r: Report, body: number): LSource {
   const b = r.bodies[body];
   if (b.kind !== 'body') return null;
-  if (r.bodies.length === 1 && r.system.angular_momentum) return 'system';
   if (r.series.omega_principal) return 'principal';
+  if (r.series.omega_world) return 'world';
   return null;
 }
 
@@ -66,6 +68,26 @@ export function angularMomentumWorld(b: Body, q: QuatWXYZ, omegaPrincipal: Vec3)
   const m = b.principal_moments;
   const lPrincipal: Vec3 = [m[0] * omegaPrincipal[0], m[1] * omegaPrincipal[1], m[2] * omegaPrincipal[2]];
   return rotate(q, matVec(b.principal_axes, lPrincipal));
+}
+
+/**
+ * The body the camera follows when the page opens: a lone body (a thrown box leaves a view framed on
+ * its start within a second, an orbiting satellite at once), else none (the view is framed on every
+ * body's start, and the grid and far plane cover the whole run). The "follow" control switches.
+ */
+export function defaultFollow(r: Report): number {
+  return r.bodies.length === 1 && r.bodies[0].kind === 'body' ? 0 : -1;
+}
+
+/** The principal rates from ω in the world: ω_p = Uᵀ Rᵀ ω (when the report has no omega_principal). */
+export function omegaPrincipalFromWorld(b: Body, q: QuatWXYZ, omegaWorld: Vec3): Vec3 {
+  const v = rotate([q[0], -q[1], -q[2], -q[3]], omegaWorld);
+  const U = b.principal_axes;
+  return [
+    U[0][0] * v[0] + U[1][0] * v[1] + U[2][0] * v[2],
+    U[0][1] * v[0] + U[1][1] * v[1] + U[2][1] * v[2],
+    U[0][2] * v[0] + U[1][2] * v[1] + U[2][2] * v[2],
+  ];
 }
 
 /** ω in the world from the principal rates: R U ω_p (when the report has no omega_world). */
@@ -78,8 +100,6 @@ export interface BodyVectors {
   omega: Vec3 | null;
   L: Vec3 | null;
 }
-
-const tmp3: number[] = [0, 0, 0];
 
 /** ω and L of `body` at a segment (interpolated between two samples). */
 export function bodyVectors(r: Report, body: number, seg: Segment, q?: QuatWXYZ): BodyVectors {
@@ -99,10 +119,10 @@ export function bodyVectors(r: Report, body: number, seg: Segment, q?: QuatWXYZ)
   }
   let L: Vec3 | null = null;
   const src = lSource(r, body);
-  if (src === 'system') {
-    L = lerpRow(r.system.angular_momentum!, 1, 0, 3, seg, tmp3).slice() as Vec3;
-  } else if (src === 'principal' && wp) {
+  if (src === 'principal' && wp) {
     L = angularMomentumWorld(b, rot, wp);
+  } else if (src === 'world' && omega) {
+    L = angularMomentumWorld(b, rot, omegaPrincipalFromWorld(b, rot, omega));
   }
   return { omega, L };
 }
@@ -110,7 +130,8 @@ export function bodyVectors(r: Report, body: number, seg: Segment, q?: QuatWXYZ)
 /**
  * The largest |ω| and |L| of a body over the run. Arrows are drawn at a fixed scale per body (the
  * largest value maps to a fixed length), so a change of magnitude shows as a change of length.
- * Rotations keep lengths, so |ω| = |ω_p| and |L| = |Λ ω_p|: no orientation is needed here.
+ * Rotations keep lengths, so |ω| = |ω_p| and |L| = |Λ ω_p|: no orientation is needed, but to find ω_p
+ * from ω in the world when the report has only that.
  */
 export function vectorMaxima(r: Report, body: number): { omega: number; L: number } {
   const b = r.bodies[body];
@@ -130,10 +151,14 @@ export function vectorMaxima(r: Report, body: number): { omega: number; L: numbe
   }
   let L = 0;
   const src = lSource(r, body);
-  if (src === 'system') {
-    const l = r.system.angular_momentum!;
+  if (src === 'world' && ww) {
+    // |L| = |Λ ω_p| with ω_p = Uᵀ Rᵀ ω: the orientation is needed here.
+    const quat = r.series.quaternion;
     for (let i = 0; i < T; i++) {
-      const v = Math.hypot(l[3 * i], l[3 * i + 1], l[3 * i + 2]);
+      const a = (i * N + body) * 3;
+      const q = quat.subarray((i * N + body) * 4, (i * N + body) * 4 + 4);
+      const w = omegaPrincipalFromWorld(b, [q[0], q[1], q[2], q[3]], [ww[a], ww[a + 1], ww[a + 2]]);
+      const v = Math.hypot(m1 * w[0], m2 * w[1], m3 * w[2]);
       if (v > L) L = v;
     }
   } else if (src === 'principal' && wp) {

@@ -1,6 +1,7 @@
 // Entry point: reads the embedded data, builds the views and ties them to one playback clock.
 // Every failure ends in a message on the page (and in window.__tumble.error), never a blank page.
 
+import { defaultFollow } from './derived';
 import { bodyPicker } from './bodypicker';
 import './style.css';
 import { bodyColor } from './colors';
@@ -97,6 +98,7 @@ function start(report: Report): void {
   const viewEl = document.getElementById('view')!;
   try {
     scene = new Scene3D(viewEl, report);
+    scene.setFollow(defaultFollow(report));
   } catch (e) {
     // No WebGL (blocked, or a machine without it): the plots and facts still work.
     const note = document.createElement('div');

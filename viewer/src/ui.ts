@@ -3,7 +3,7 @@
 
 import { bodyPicker, CROWD } from './bodypicker';
 import { COLORS } from './colors';
-import { lSource } from './derived';
+import { defaultFollow, lSource } from './derived';
 import { SPEEDS, type Playback } from './playback';
 import type { Report } from './types';
 
@@ -74,7 +74,7 @@ export class Controls {
     if (report.bodies.length > CROWD) trailsLabel.title = "the followed body's trail (one of a crowd)";
 
     const followLabel = el('label', { textContent: 'follow ' });
-    followLabel.appendChild(bodyPicker(report, -1, opts.onFollow, 'follow', '— free camera —'));
+    followLabel.appendChild(bodyPicker(report, defaultFollow(report), opts.onFollow, 'follow', '— free camera —'));
 
     const legend = el('span', { className: 'legend' });
     const key = (color: string, text: string) => {

@@ -1,6 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { decodeReport } from '../src/data';
-import { angularMomentumWorld, bodyVectors, comTrack, lSource, magnitudes3, samplesNote, vectorMaxima } from '../src/derived';
+import { angularMomentumWorld, bodyVectors, comTrack, defaultFollow, lSource, magnitudes3, samplesNote, vectorMaxima } from '../src/derived';
 import { formatTick, plotDefs, toPlotValues } from '../src/plotdata';
 import { normalizeQ, rotate } from '../src/quat';
 import type { Body, Meta } from '../src/types';
@@ -35,9 +35,15 @@ describe('derived quantities', () => {
     close(angularMomentumWorld(body, q, [0, 5, 0]), [0, -10, 0], 1e-12);
   });
 
-  it('draws a lone body with the system L and several with their own', () => {
-    const one = decodeReport(syntheticReport({ T: 5, particle: false }));
-    expect(lSource(one, 0)).toBe('system');
+  it("draws each body's own L about its centre of mass, a lone one too", () => {
+    // A lone body whose system L (about the world origin) is an orbit's m r × v, 1e13 along z: the
+    // arrow must still be the body's own L = I₂ ω n, not that.
+    const lone = syntheticReport({ T: 5, particle: false }) as Record<string, any>;
+    const orbit = new Float64Array(5 * 3).map((_, i) => (i % 3 === 2 ? 2.3e13 : 0));
+    lone.system.angular_momentum.base64 = Buffer.from(orbit.buffer).toString('base64');
+    const one = decodeReport(lone);
+    close(one.system.angular_momentum!.subarray(0, 3), [0, 0, 2.3e13], 1);
+    expect(lSource(one, 0)).toBe('principal');
     const two = decodeReport(syntheticReport({ T: 5 }));
     expect(lSource(two, 0)).toBe('principal');
     expect(lSource(two, 1)).toBeNull();
@@ -48,6 +54,14 @@ describe('derived quantities', () => {
       close(v.omega!, AXIS.map((a: number) => W * a), 1e-6);
     }
     expect(bodyVectors(two, 1, { i: 0, s: 0 })).toEqual({ omega: null, L: null });
+  });
+
+  it('derives L from ω in the world when the principal rates are absent', () => {
+    const j = syntheticReport({ T: 5 }) as Record<string, any>;
+    delete j.series.omega_principal;
+    const r = decodeReport(j);
+    expect(lSource(r, 0)).toBe('world');
+    close(bodyVectors(r, 0, { i: 2, s: 0.3 }).L!, AXIS.map((a: number) => MOMENTS[1] * W * a), 1e-6);
   });
 
   it('derives ω from the principal rates when omega_world is absent', () => {
@@ -63,6 +77,11 @@ describe('derived quantities', () => {
     for (let i = 0; i < 9; i++) close(track.subarray(3 * i, 3 * i + 3), COM_WORLD, 1e-6);
     const max = vectorMaxima(r, 0);
     expect(max.omega).toBeCloseTo(W, 5);
+  });
+
+  it('follows a lone body from the start, and no one of several', () => {
+    expect(defaultFollow(decodeReport(syntheticReport({ T: 5, particle: false })))).toBe(0);
+    expect(defaultFollow(decodeReport(syntheticReport({ T: 5 })))).toBe(-1);
   });
 
   it('takes |L| per sample, NaN staying NaN', () => {
