@@ -272,10 +272,56 @@ std::vector<Lane> lanes_per_body(const Model& model, std::vector<Model>& lane_mo
   return lanes;
 }
 
+using Rows = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+/// The state to start from instead of the scene's: at time t, each row's reference-frame origin,
+/// orientation (w first, reference -> world), origin velocity and ω in world axes, as a trajectory's
+/// position, orientation, velocity and angular_velocity hold them (rows: bodies, then particles, whose
+/// orientation and ω are not read). python/tumble/__init__.py checks the shapes.
+SystemState initial_state(const Model& model, double t, const Rows& position, const Rows& orientation,
+                          const Rows& velocity, const Rows& omega) {
+  const auto p = position.unchecked<2>(), q = orientation.unchecked<2>(), v = velocity.unchecked<2>(),
+             w = omega.unchecked<2>();
+  const size_t n = model.bodies.size();
+  const auto row3 = [](const auto& a, size_t i) { return Vec3(a(i, 0), a(i, 1), a(i, 2)); };
+  const auto finite = [](const auto& a, size_t i, py::ssize_t width) {
+    for (py::ssize_t k = 0; k < width; ++k)
+      if (!std::isfinite(a(i, k))) return false;
+    return true;
+  };
+  if (!std::isfinite(t))
+    throw InvalidArgument(fmt::format("initial t = {} is not a time: give a finite one", t));
+  SystemState s;
+  s.t = t;
+  for (size_t i = 0; i < n + model.particles.size(); ++i) {
+    const bool body = i < n;
+    const std::string& name = body ? model.bodies[i].name() : model.particles[i - n].name;
+    if (!finite(p, i, 3) || !finite(v, i, 3) || (body && (!finite(q, i, 4) || !finite(w, i, 3)))) {
+      throw InvalidArgument(fmt::format("the initial state of {} '{}' (row {}) is not finite",
+                                        body ? "body" : "particle", name, i));
+    }
+    if (!body) {
+      s.particles.push_back(ParticleState{row3(p, i), row3(v, i)});
+      continue;
+    }
+    const Quat q_ref(q(i, 0), q(i, 1), q(i, 2), q(i, 3));
+    // A trajectory's quaternions are unit to rounding; one far from it is not an orientation.
+    if (std::abs(q_ref.norm() - 1.0) > 1e-6) {
+      throw InvalidArgument(
+          fmt::format("the initial orientation of body '{}' (row {}) has norm {}, not 1: give "
+                      "a unit quaternion (w, x, y, z)",
+                      name, i, q_ref.norm()));
+    }
+    s.bodies.push_back(state_from_reference(model.bodies[i], row3(p, i), q_ref, row3(v, i), row3(w, i)));
+  }
+  return s;
+}
+
 py::dict simulate(const Scene& scene_in, const py::dict& settings,
                   std::optional<std::vector<std::string>> field_names, std::optional<py::function> force,
                   const std::vector<EventSpec>& event_specs, const std::vector<py::tuple>& python_events,
-                  const std::vector<bool>& every_body) {
+                  const std::vector<bool>& every_body, std::vector<double> sample_times,
+                  std::optional<py::tuple> initial) {
   // A Python force joins a copy of the model (the force list is shared, the bodies copied); what it
   // conserves is unknown, so no drift is judged, and it runs on one thread (one interpreter).
   std::optional<Scene> with_force;
@@ -287,6 +333,7 @@ py::dict simulate(const Scene& scene_in, const py::dict& settings,
   const Scene& scene = with_force ? *with_force : scene_in;
   RunSettings s = settings_with(scene, settings);
   if (force) s.threads = 1;
+  s.sample_times = std::move(sample_times);
   const std::vector<const BodyField*> fields =
       body_fields(field_names ? *field_names : scene.output_fields);  // names checked here
   const Model& model = scene.model;
@@ -295,7 +342,9 @@ py::dict simulate(const Scene& scene_in, const py::dict& settings,
   // Room for every planned sample at once: growing by doubling would hold up to twice the final size.
   // Up to 1 GiB per array reserved (address space, touched only as samples arrive); beyond, or for an
   // adaptive run's extra samples, the vectors grow.
-  const double planned = plan_run(s, model.bodies.size(), model.particles.size()).samples;
+  const double planned = s.sample_times.empty()
+                             ? plan_run(s, model.bodies.size(), model.particles.size()).samples
+                             : static_cast<double>(s.sample_times.size() + 1);
   const auto reserve = [planned](std::vector<double>& v, double per_sample) {
     v.reserve(static_cast<size_t>(std::min(planned * per_sample, 0x1p27)));
   };
@@ -335,7 +384,11 @@ py::dict simulate(const Scene& scene_in, const py::dict& settings,
   // gets with the KeyboardInterrupt (python/tumble/trajectory.py).
   bool interrupted = false;
   auto next_check = std::chrono::steady_clock::now();
-  Run run(model, scene.initial, s, scene.conserved);
+  const SystemState start = initial ? initial_state(model, (*initial)[0].cast<double>(),
+                                                    (*initial)[1].cast<Rows>(), (*initial)[2].cast<Rows>(),
+                                                    (*initial)[3].cast<Rows>(), (*initial)[4].cast<Rows>())
+                                    : scene.initial;
+  Run run(model, start, s, scene.conserved);
   std::vector<bool> every(specs.size(), false);  // the scene's own events first: on their bodies
   std::copy(every_body.begin(), every_body.end(),
             every.end() - static_cast<std::ptrdiff_t>(every_body.size()));
@@ -453,7 +506,8 @@ void bind_scene(py::module_& m) {
   m.def("parse_scene", &parse_scene, py::arg("text"), py::arg("path") = "scene.toml",
         "A scene from TOML text; `path` names it in messages and anchors relative mesh paths.");
   m.def("_simulate", &simulate, py::arg("scene"), py::arg("settings"), py::arg("fields"), py::arg("force"),
-        py::arg("event_specs"), py::arg("python_events"), py::arg("every_body"));
+        py::arg("event_specs"), py::arg("python_events"), py::arg("every_body"), py::arg("sample_times"),
+        py::arg("initial"));
   m.def(
       "_run_settings",
       [] {

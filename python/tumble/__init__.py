@@ -36,7 +36,7 @@ from ._tumble import (  # noqa: F401  (re-exported)
     sphere,
     torus,
 )
-from . import _tumble
+from . import _dict_toml, _tumble
 from .model import (  # noqa: F401
     Body, Damping, Drag, Event, Gravity, GravityGradient, Part, Particle, PointForce, Shape, Spring, Torque,
     make_scene, scene_dict, spring_end,
@@ -60,7 +60,8 @@ def simulate(scene: Scene | str | _os.PathLike, integrator: str | None = None, f
              timestep: float | None = None, duration: float | None = None, output_interval: float | None = None,
              rtol: float | None = None, atol: float | None = None, threads: int | None = None,
              fields: Sequence[str] | None = None, force: Callable | None = None,
-             events: Sequence[Event | dict] | None = None, drift_threshold: float | None = None) -> Trajectory:
+             events: Sequence[Event | dict] | None = None, drift_threshold: float | None = None,
+             t_eval: Sequence[float] | None = None, initial: Trajectory | dict | None = None) -> Trajectory:
     """Run a scene and return its Trajectory. Arguments left None take the scene's [simulation]
     values (as `tumble run` options do): integrator (e.g. "rk4", "splitting", "dopri45", "exact"),
     formulation ("world", "mixed", "body"), timestep and duration and output_interval (s; 0 = every
@@ -78,7 +79,16 @@ def simulate(scene: Scene | str | _os.PathLike, integrator: str | None = None, f
 
     events: Event objects (or dicts with the keys of [[events]]) watched besides the scene's own; their
     crossings are Trajectory.events. Ctrl-C stops the run and raises tumble.Interrupted (a
-    KeyboardInterrupt) whose .trajectory holds the samples computed so far."""
+    KeyboardInterrupt) whose .trajectory holds the samples computed so far.
+
+    t_eval: the times to sample at (s, ascending, from the start on), instead of every output_interval;
+    the run ends at the last (duration, if given, must agree). Fixed steps land on each of them (the
+    step before a sample is shortened), adaptive ones sample their dense output there.
+
+    initial: where to start instead of the scene's initial state: a Trajectory (its last sample, e.g.
+    to continue a run) or a dict with t (s) and, one row per body then particle, position (N, 3),
+    orientation (N, 4, w first), velocity (N, 3) and angular_velocity (N, 3, world) as a Trajectory
+    holds them. The run then starts at that t; its drifts are measured from there."""
     if isinstance(scene, (str, bytes)) or hasattr(scene, "__fspath__"):
         scene = load_scene(scene)
     specs, python_events, every = [], [], []
@@ -118,15 +128,81 @@ def simulate(scene: Scene | str | _os.PathLike, integrator: str | None = None, f
         fields = ["position", "orientation", "velocity", "angular_velocity", "angular_velocity_reference",
                   "angular_velocity_principal"]
     # The settings by their keys (sim/run_settings.hpp, as `tumble run --KEY` and [simulation] name them).
+    start = None if initial is None else _initial_state(scene, initial)
+    t0 = 0.0 if start is None else start[0]
+    sample_times, drop_start = [], False
+    if t_eval is not None:
+        sample_times, duration, drop_start = _sample_times(t_eval, t0, duration, output_interval)
     settings = dict(integrator=integrator, formulation=formulation, timestep=timestep, duration=duration,
                     output_interval=output_interval, rtol=rtol, atol=atol, threads=threads,
                     drift_threshold=drift_threshold)
     raw = _tumble._simulate(scene, settings, None if fields is None else list(fields), force, specs,
-                            python_events, every)
+                            python_events, every, sample_times, start)
     trajectory = Trajectory._from_run(raw)
+    if drop_start:
+        trajectory = trajectory._from(1)
     if not trajectory.complete:
         raise Interrupted(trajectory)
     return trajectory
+
+
+def _sample_times(t_eval, t0, duration, output_interval):
+    """t_eval as the run's sample times after the start, its duration, and whether the start (sampled
+    by every run) is to be dropped because t_eval does not hold it."""
+    if output_interval is not None:
+        raise ValueError("give t_eval or output_interval, not both: t_eval says where every sample is")
+    times = _np.asarray(t_eval, dtype=float)
+    if times.ndim != 1 or times.size == 0:
+        raise ValueError(f"t_eval must be a non-empty list of times; got an array of shape {times.shape}")
+    bad = _np.flatnonzero(~_np.isfinite(times) | (_np.diff(times, prepend=-_np.inf) <= 0))
+    if bad.size:
+        k = int(bad[0])
+        raise ValueError(f"t_eval[{k}] = {times[k]!r}: give finite times in increasing order")
+    if times[0] < t0:
+        raise ValueError(f"t_eval[0] = {times[0]!r} s is before the start of the run ({t0!r} s)")
+    end = float(times[-1]) - t0
+    if duration is not None and abs(duration - end) > 4e-16 * max(abs(times[-1]), abs(t0), 1.0):
+        raise ValueError(f"duration={duration!r} but t_eval ends {end!r} s after the start: the run ends at "
+                         f"the last of t_eval; leave duration out")
+    drop_start = times[0] != t0
+    return [float(x) for x in times[0 if drop_start else 1:]], end, drop_start
+
+
+def _initial_state(scene, initial):
+    """(t, position, orientation, velocity, angular_velocity) from a Trajectory's last sample or a dict,
+    one row per body then particle."""
+    rows = list(scene.bodies) + list(scene.particles)
+    keys = ("position", "orientation", "velocity", "angular_velocity")
+    if isinstance(initial, Trajectory):
+        if len(initial.t) == 0:
+            raise ValueError("initial: the trajectory has no samples to start from")
+        missing = [k for k in keys if k not in initial.fields]
+        if missing:
+            raise ValueError(f"initial: the trajectory holds no {', '.join(missing)}: run it with these fields "
+                             f"(the defaults hold them) to continue from it")
+        if list(initial.names) != rows:
+            raise ValueError(f"initial: the trajectory's bodies and particles {list(initial.names)} are not the "
+                             f"scene's {rows}")
+        return (float(initial.t[-1]),) + tuple(_np.ascontiguousarray(initial.fields[k][-1]) for k in keys)
+    if not isinstance(initial, dict):
+        raise TypeError(f"initial must be a Trajectory or a dict; got {type(initial).__name__}")
+    from .trajectory import ALIASES
+    given = {ALIASES.get(k, k): v for k, v in initial.items()}
+    unknown = sorted(set(given) - set(keys) - {"t"})
+    if unknown:
+        raise ValueError(f"initial: unknown key(s) {unknown}; give t, {', '.join(keys)}")
+    if "t" not in given:
+        raise ValueError("initial: give t, the time the state is at (s)")
+    arrays = []
+    for k, width in zip(keys, (3, 4, 3, 3)):
+        if k not in given:
+            raise ValueError(f"initial: give {k}, one row of {width} per body then particle ({len(rows)} rows)")
+        a = _np.atleast_2d(_np.asarray(given[k], dtype=float))
+        if a.shape != (len(rows), width):
+            raise ValueError(f"initial: {k} has shape {a.shape}; the scene needs ({len(rows)}, {width}): one row "
+                             f"per body then particle ({', '.join(rows)})")
+        arrays.append(_np.ascontiguousarray(a))
+    return (float(given["t"]),) + tuple(arrays)
 
 
 def _event_specs(scene, tables):
@@ -249,28 +325,17 @@ def scene_from_dict(scene: dict, path: str | _os.PathLike = "scene.toml") -> Sce
     """A scene built in Python: a dict with the keys of a scene file (docs/scene-format.md), e.g.
     {"simulation": {"duration": 10.0}, "bodies": [{"name": "a", "shape": {"type": "box", "size":
     [0.1, 0.2, 0.3]}, "density": 2700}]}. It is written as TOML (tomli_w) and read by the same
-    reader as a file, so every check and message is the file's; `path` anchors mesh paths."""
-    import tomli_w
+    reader as a file, so every check is the file's; a mistake is named by its place in the dict
+    ("scene dict at bodies[0].shape.size[2]"). `path` anchors mesh paths."""
+    return _parse_dict(scene, path)
+
+
+def _parse_dict(scene: dict, path: str | _os.PathLike) -> Scene:
+    text = _dict_toml.dumps(scene)
     try:
-        text = tomli_w.dumps(scene)
-    except RecursionError:
-        raise ValueError("the scene dict contains itself (a table nested in its own value): a scene is a tree "
-                         "of tables, lists and values; give each table once") from None
-    return parse_scene(text, str(path))
-
-
-def _compact_arrays(text: str) -> str:
-    """tomli_w writes every array over one line per item: a position over five lines. Arrays of scalars,
-    and arrays of such arrays (a polynomial's terms), are put back on one line, [1.0, 2.0, 3.0]. Items
-    with brackets or braces inside (strings that hold them, inline tables) are left as they are."""
-    import re
-    item = r"(?:[^\[\]\n{}]+|\[[^\[\]\n{}]*\])"
-    pattern = re.compile(r"\[\n((?:[ \t]*" + item + r",\n)+)[ \t]*\]")
-    while True:
-        compacted = pattern.sub(lambda m: "[" + ", ".join(line.strip()[:-1] for line in m.group(1).splitlines()) + "]", text)
-        if compacted == text:
-            return text
-        text = compacted
+        return parse_scene(text, str(path))
+    except ValueError as e:
+        raise ValueError(_dict_toml.located(str(e), text, str(path))) from None
 
 
 def save_scene(scene: Scene | dict, path: str | _os.PathLike) -> None:
@@ -278,9 +343,7 @@ def save_scene(scene: Scene | dict, path: str | _os.PathLike) -> None:
     dict as scene_from_dict takes (validated first). Scenes made by bodies() from arrays have no TOML:
     give their bodies as a [[body_tables]] CSV file instead."""
     if isinstance(scene, dict):
-        import tomli_w
-        text = _compact_arrays(tomli_w.dumps(scene))
-        parse_scene(text, str(path))  # refuse what could not be loaded back
+        text = _parse_dict(scene, path).text  # refuse what could not be loaded back
     else:
         text = scene.text
         if not text:

@@ -8,7 +8,7 @@ import os
 
 import numpy as np
 
-from . import _tumble
+from . import _dict_toml, _tumble
 
 
 class EnsembleResult:
@@ -41,7 +41,6 @@ def ensemble(scene, ensemble=None, threads=0):
     parameters), outputs) adds or replaces the file's [ensemble] table. Runs on `threads` threads (0: one
     per core); run i's draws depend only on (seed, i), so the table does not depend on them. Ctrl-C
     stops it with KeyboardInterrupt. Returns an EnsembleResult."""
-    import tomli_w
     path = "scene.toml"
     if isinstance(scene, dict):
         table = dict(scene)
@@ -54,7 +53,15 @@ def ensemble(scene, ensemble=None, threads=0):
         table["ensemble"] = ensemble
     if "ensemble" not in table:
         raise ValueError("the scene has no [ensemble] table: give ensemble={'runs': N, 'vary': [...]}")
-    raw = _tumble._ensemble(tomli_w.dumps(table), path, int(threads))
+    if ensemble is None and not isinstance(scene, dict):
+        with open(path, encoding="utf-8") as f:
+            raw = _tumble._ensemble(f.read(), path, int(threads))  # the file as written: messages cite its lines
+    else:
+        text = _dict_toml.dumps(table)
+        try:
+            raw = _tumble._ensemble(text, path, int(threads))
+        except ValueError as e:
+            raise ValueError(_dict_toml.located(str(e), text, path)) from None
     return EnsembleResult(raw["columns"], raw["summary"])
 
 

@@ -75,6 +75,12 @@ class Trajectory:
                    raw["integrator"], raw["formulation"], raw["timestep"], raw.get("warning"),
                    complete=not raw["interrupted"])
 
+    def _from(self, k):
+        """The samples from the k-th on (views of the same arrays); events and settings as they are."""
+        return Trajectory(self.t[k:], self.names, {n: a[k:] for n, a in self.fields.items()}, self.units,
+                          self.frames, {n: a[k:] for n, a in self.diagnostics.items()}, self.events,
+                          self.integrator, self.formulation, self.timestep, self.warning, self.complete)
+
     def __getattr__(self, name):
         fields = self.__dict__.get("fields", {})
         key = ALIASES.get(name, name)

@@ -172,6 +172,35 @@ void validate(const RunSettings& s) {
   }
 }
 
+namespace {
+
+/// The sample times of a run that starts at t0, if given: finite, ascending, after the start, apart by
+/// more than the rounding of the step grid (1e-9 h, FixedSteps), the last where the run ends.
+void check_sample_times(const RunSettings& s, double t0) {
+  const std::vector<double>& times = s.sample_times;
+  if (times.empty()) return;
+  const double tiny = 1e-9 * s.timestep;
+  double before = t0;
+  for (size_t k = 0; k < times.size(); ++k) {
+    require(std::isfinite(times[k]), fmt::format("sample time #{} is {}: give finite times", k, times[k]));
+    require(times[k] - before > tiny,
+            fmt::format("sample time #{} ({} s) is not after {} ({} s): give times in increasing order, "
+                        "after the start, more than 1e-9 of a timestep apart",
+                        k, times[k],
+                        k == 0 ? std::string("the start") : fmt::format("sample time #{}", k - 1), before));
+    before = times[k];
+  }
+  // The end is t₀ + duration as the settings say it: to rounding of that sum, the last time.
+  const double end = t0 + s.duration,
+               slack = 4 * 2.220446049250313e-16 * std::max(std::abs(t0), std::abs(end));
+  require(std::abs(end - times.back()) <= slack,
+          fmt::format("the last sample time ({} s) is not where the run ends (start {} s + duration {} s); "
+                      "give duration = the last sample time minus the start",
+                      times.back(), t0, s.duration));
+}
+
+}  // namespace
+
 SystemState simulate(const Model& model, SystemState state, const RunSettings& settings,
                      const SampleSink& on_sample, IntegratorStats* stats,
                      const std::function<bool()>& stop_requested) {
@@ -287,10 +316,19 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
     throw InvalidArgument(fmt::format("{} state of {} is not finite", from ? "the resumed" : "initial", bad));
   }
   const double t0 = state.t;
-  const double t_end = t0 + settings.duration;
+  const std::vector<double>& times = settings.sample_times;
+  check_sample_times(settings, t0);
+  const double t_end = times.empty() ? t0 + settings.duration : times.back();
   const double h = settings.timestep;
-  // Sample times are t₀ + k·Δ, computed from k (not accumulated) so they do not drift.
+  // Sample k ≥ 1 is at t₀ + k·Δ, computed from k (not accumulated) so the times do not drift; or at the
+  // k-th time given. Sample 0 is the start.
   const double dt_out = settings.output_interval > 0 ? settings.output_interval : h;
+  const auto sample_time = [&](long k) {
+    if (k == 0) return t0;
+    if (!times.empty())
+      return times[static_cast<size_t>(std::min<long>(k, static_cast<long>(times.size()))) - 1];
+    return std::min(t0 + static_cast<double>(k) * dt_out, t_end);
+  };
   long k_out = from ? from->next_sample : 1;
   // Samples handed over, counted for run points (a resumed run continues the count).
   long samples = from ? from->samples : 0;
@@ -427,7 +465,7 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
     RunPoint& p = *hooks.run_point;
     p.t0 = t0;
     p.next_sample = k_out;
-    p.t_last_sample = std::min(t0 + static_cast<double>(k_out - 1) * dt_out, t_end);
+    p.t_last_sample = sample_time(k_out - 1);
     p.samples = samples;
     p.event_values.clear();
     for (const Watch& w : watches) p.event_values.push_back(w.g_prev);
@@ -492,7 +530,7 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
     const auto finish = [&] { return batch ? to_state(F, stepper.end()) : std::move(state); };
     if (!from) keep(stepper);
     while (!stepper.finished()) {
-      const double t_sample = std::min(t0 + static_cast<double>(k_out) * dt_out, t_end);
+      const double t_sample = sample_time(k_out);
       if (const long n = stepper.chunk(t_sample); n > 0) {  // full steps between samples, taken together
         check(stepper.end(), stepper.stats().steps, settings.timestep, n, stepper.t_start());
         if (stats) *stats = stepper.stats();
@@ -514,7 +552,7 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
       }
       bool sampled = false, ended_on_sample = false;
       while (true) {
-        const double t_next = std::min(t0 + static_cast<double>(k_out) * dt_out, t_end);
+        const double t_next = sample_time(k_out);
         const double limit = std::min(t_next, t_b);
         for (const size_t r : runs_hit) {
           RunInBatch& run = runs[r];

@@ -13,6 +13,7 @@
 #include "../support/random.hpp"
 #include "tumble/error.hpp"
 #include "tumble/forces/forces.hpp"
+#include "tumble/integrate/euler_poinsot.hpp"
 #include "tumble/sim/event_specs.hpp"
 #include "tumble/sim/run.hpp"
 #include "tumble/sim/simulate.hpp"
@@ -94,6 +95,71 @@ TEST(Simulate, SamplesEqualThoseOfSteppingOneStepAtATimeBitForBit) {
   settings.duration = 0;
   const SystemState end = simulate(model, s0, settings);
   EXPECT_TRUE(same_state(end, to_state(settings.formulation, to_coordinates(settings.formulation, s0))));
+}
+
+TEST(Simulate, GivenSampleTimesAreSampledWhereGiven) {
+  // A free body (torque-free: Jacobi's closed form, EulerPoinsot, is the reference), started at t0 ≠ 0.
+  const Vec3 Lambda(1.0, 2.0, 3.0), w0(0.3, 2.0, 0.1);
+  Model model;
+  model.add_body(RigidBody::from_principal_moments(1.0, Lambda, "b"));
+  SystemState s0;
+  s0.t = 0.25;
+  s0.bodies.push_back(BodyState{Vec3::Zero(), Quat::Identity(), Vec3(1, 0, 0), w0});
+  const EulerPoinsot exact(Lambda, Quat::Identity(), w0);
+  RunSettings settings;
+  settings.timestep = 1e-3;
+  settings.integrator = "rk4";
+
+  // Times on the output grid: the same samples as the grid's, bit for bit (steps fused between them).
+  settings.output_interval = 0.05;
+  settings.duration = 0.5;
+  std::vector<SystemState> on_grid, given;
+  simulate(model, s0, settings, [&](const SystemState& s) { return on_grid.push_back(s), true; });
+  for (long k = 1; k <= 10; ++k) settings.sample_times.push_back(std::min(s0.t + k * 0.05, s0.t + 0.5));
+  simulate(model, s0, settings, [&](const SystemState& s) { return given.push_back(s), true; });
+  ASSERT_EQ(given.size(), on_grid.size());
+  for (size_t k = 0; k < given.size(); ++k) EXPECT_TRUE(same_state(given[k], on_grid[k])) << "sample " << k;
+
+  // Times off any grid, some closer than a step: sampled at exactly those times, on the closed form.
+  // RK4's global error, O((|ω| h)⁴) per unit time, and dopri45's (rtol 1e-9 a step, its dense output
+  // between steps) stay below 1e-10 and 1e-7 here, with room; a sample a step (1e-3 s) off its time
+  // would be off by |dω/dt| 1e-3 ~ 1e-3.
+  test::Random rng(7);
+  settings.sample_times.clear();
+  double t = s0.t;
+  for (int k = 0; k < 40; ++k) settings.sample_times.push_back(t += rng.uniform(1e-5, 0.05));
+  settings.duration = settings.sample_times.back() - s0.t;
+  for (const char* integrator : {"rk4", "dopri45"}) {
+    settings.integrator = integrator;
+    given.clear();
+    simulate(model, s0, settings, [&](const SystemState& s) { return given.push_back(s), true; });
+    ASSERT_EQ(given.size(), settings.sample_times.size() + 1) << integrator;
+    for (size_t k = 1; k < given.size(); ++k) {
+      const double tk = settings.sample_times[k - 1];
+      EXPECT_TRUE(same_bits(given[k].t, tk)) << integrator << ", sample " << k;
+      const double tol = std::string(integrator) == "rk4" ? 1e-10 : 1e-7;
+      EXPECT_LT((given[k].bodies[0].omega_w - exact.omega_w(tk - s0.t)).norm(), tol)
+          << integrator << " at " << tk;
+      EXPECT_LT((given[k].bodies[0].o - Vec3(tk - s0.t, 0, 0)).norm(), tol) << integrator << " at " << tk;
+    }
+  }
+
+  // Times that cannot be sampled are refused, saying which and why.
+  const auto refused = [&](std::vector<double> times, double duration, const std::string& says) {
+    settings.sample_times = std::move(times);
+    settings.duration = duration;
+    try {
+      simulate(model, s0, settings);
+      ADD_FAILURE() << "accepted: " << says;
+    } catch (const InvalidArgument& e) {
+      EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+    }
+  };
+  settings.integrator = "rk4";
+  refused({0.25, 0.5}, 0.25, "sample time #0 (0.25 s) is not after the start (0.25 s)");
+  refused({0.5, 0.4, 0.6}, 0.35, "sample time #1 (0.4 s) is not after sample time #0 (0.5 s)");
+  refused({0.5, NAN}, 0.25, "sample time #1 is nan");
+  refused({0.5, 0.75}, 1.0, "the last sample time (0.75 s) is not where the run ends");
 }
 
 TEST(Simulate, ABlowUpInsideAChunkNamesTheBodyAndTheInterval) {

@@ -70,15 +70,6 @@ export function angularMomentumWorld(b: Body, q: QuatWXYZ, omegaPrincipal: Vec3)
   return rotate(q, matVec(b.principal_axes, lPrincipal));
 }
 
-/**
- * The body the camera follows when the page opens: a lone body (a thrown box leaves a view framed on
- * its start within a second, an orbiting satellite at once), else none (the view is framed on every
- * body's start, and the grid and far plane cover the whole run). The "follow" control switches.
- */
-export function defaultFollow(r: Report): number {
-  return r.bodies.length === 1 && r.bodies[0].kind === 'body' ? 0 : -1;
-}
-
 /** The principal rates from ω in the world: ω_p = Uᵀ Rᵀ ω (when the report has no omega_principal). */
 export function omegaPrincipalFromWorld(b: Body, q: QuatWXYZ, omegaWorld: Vec3): Vec3 {
   const v = rotate([q[0], -q[1], -q[2], -q[3]], omegaWorld);

@@ -13,6 +13,8 @@ export interface TumbleHook {
   pause(): void;
   /** Body i's orientation as drawn, [w, x, y, z]. */
   bodyQuaternion(i: number): QuatWXYZ;
+  /** Body i's centre of mass as drawn, in normalised device coordinates: on screen when |x|, |y| ≤ 1. */
+  bodyOnScreen(i: number): [number, number, number];
   /** Points in plot i (the samples shown) and the number of plots shown. */
   plotPointCount(plotIndex: number): number;
   plotCount(): number;
@@ -40,6 +42,7 @@ export function installHook(): TumbleHook {
     play: notReady,
     pause: notReady,
     bodyQuaternion: notReady,
+    bodyOnScreen: notReady,
     plotPointCount: notReady,
     plotCount: notReady,
   };

@@ -1,13 +1,13 @@
 // Entry point: reads the embedded data, builds the views and ties them to one playback clock.
 // Every failure ends in a message on the page (and in window.__tumble.error), never a blank page.
 
-import { defaultFollow } from './derived';
 import { bodyPicker } from './bodypicker';
 import './style.css';
 import { bodyColor } from './colors';
 import { readEmbedded } from './data';
 import { buildFacts } from './facts';
 import { formatFragment, parseFragment } from './fragment';
+import { defaultFollow, runFraming } from './framing';
 import { installHook } from './hook';
 import { Playback } from './playback';
 import { Plots } from './plots';
@@ -70,6 +70,8 @@ function start(report: Report): void {
   if (scenePath) document.title = `tumble report — ${scenePath}`;
 
   const timeline = new Timeline(report.t);
+  const framing = runFraming(report);
+  const follow = defaultFollow(report, framing);
   const playback = new Playback(timeline);
   let scene: Scene3D | null = null;
 
@@ -79,6 +81,7 @@ function start(report: Report): void {
   new Controls(document.getElementById('controls')!, report, playback, {
     onTrails: (on) => scene?.setTrails(on),
     onFollow: (b) => scene?.setFollow(b),
+    follow,
   });
   installKeys(playback);
   let plotBody = defaultPlotBody(report);
@@ -97,8 +100,8 @@ function start(report: Report): void {
 
   const viewEl = document.getElementById('view')!;
   try {
-    scene = new Scene3D(viewEl, report);
-    scene.setFollow(defaultFollow(report));
+    scene = new Scene3D(viewEl, report, framing);
+    scene.setFollow(follow);
   } catch (e) {
     // No WebGL (blocked, or a machine without it): the plots and facts still work.
     const note = document.createElement('div');
@@ -147,6 +150,10 @@ function start(report: Report): void {
   hook.bodyQuaternion = (i) => {
     if (!scene) throw new Error('no 3D view');
     return scene.bodyQuaternion(i);
+  };
+  hook.bodyOnScreen = (i) => {
+    if (!scene) throw new Error('no 3D view');
+    return scene.bodyOnScreen(i);
   };
   hook.plotCount = () => plots!.count();
   hook.plotPointCount = (i) => plots!.pointCount(i);

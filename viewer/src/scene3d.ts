@@ -14,6 +14,7 @@ import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { COLORS, bodyColor } from './colors';
 import { bodyVectors, comTrack, principalAxes, toWorld, vectorMaxima } from './derived';
+import { FOLLOW_ALL, FRAME_MARGIN, type Framing, sizesOf, sphereNow } from './framing';
 import { norm, wxyzToXyzw, xyzwToWxyz } from './quat';
 import { lerpRow, quatAtSegment, type Segment } from './timeline';
 import type { Body, Mesh, QuatWXYZ, Report, Vec3 } from './types';
@@ -124,10 +125,16 @@ export class Scene3D {
   private resizeObserver: ResizeObserver;
   /** Radius of the bodies at the start: the unit for default sizes. */
   readonly radius: number;
+  /** Each body's size and centre of mass as last drawn (3 per body), for keeping all of them in view. */
+  private readonly sizes: Float64Array;
+  private coms: Float64Array;
+  /** Whether update() has posed the bodies yet. */
+  private posed = false;
 
   constructor(
     private container: HTMLElement,
     private report: Report,
+    framing: Framing,
   ) {
     this.renderer = createRenderer();
     this.renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, 2));
@@ -135,52 +142,22 @@ export class Scene3D {
     container.appendChild(this.renderer.domElement);
 
     const N = report.bodies.length;
-    // Frame the bodies as they are at the start; the far plane and the grid cover the whole run.
-    // The run's extent comes from the reference-frame origins, widened by each body's reach (|com|
-    // + size): no orientation is needed, which matters over 1e5+ samples before the first frame.
-    const start = new THREE.Box3();
-    const all = new THREE.Box3();
-    const pos = report.series.position;
-    const seg0 = { i: 0, s: 0 };
-    for (let b = 0; b < N; b++) {
-      const body = report.bodies[b];
-      const size = Math.max(body.size, 0);
-      const reach = Math.hypot(...body.com) + size;
-      const lo = [Infinity, Infinity, Infinity];
-      const hi = [-Infinity, -Infinity, -Infinity];
-      for (let i = b * 3; i < pos.length; i += N * 3) {
-        for (let k = 0; k < 3; k++) {
-          const v = pos[i + k];
-          // NaN fails both tests: a sample that blew up does not stretch the view to infinity.
-          if (v < lo[k]) lo[k] = v;
-          if (v > hi[k]) hi[k] = v;
-        }
-      }
-      if (lo[0] <= hi[0] && lo[1] <= hi[1] && lo[2] <= hi[2]) {
-        all.expandByPoint(new THREE.Vector3(lo[0] - reach, lo[1] - reach, lo[2] - reach));
-        all.expandByPoint(new THREE.Vector3(hi[0] + reach, hi[1] + reach, hi[2] + reach));
-      }
-      const x0 = lerpRow(pos, N, b, 3, seg0, [0, 0, 0]) as Vec3;
-      const c = toWorld(x0, quatAtSegment(report.series.quaternion, N, b, seg0), body.com);
-      const c0 = new THREE.Vector3(c[0], c[1], c[2]);
-      if (Number.isFinite(c0.x + c0.y + c0.z)) {
-        start.expandByPoint(c0.clone().addScalar(size));
-        start.expandByPoint(c0.clone().addScalar(-size));
-      }
-    }
-    if (start.isEmpty()) start.set(new THREE.Vector3(-1, -1, -1), new THREE.Vector3(1, 1, 1));
-    if (all.isEmpty()) all.copy(start);
-    const sphere = start.getBoundingSphere(new THREE.Sphere());
+    // The view is framed on the bodies as they are at the start; the far plane and the grid cover the
+    // whole run (following moves the camera, never its near and far planes).
+    const { start, run } = framing;
+    const sphere = new THREE.Sphere(new THREE.Vector3(...start.center), start.radius);
+    const allSphere = new THREE.Sphere(new THREE.Vector3(...run.center), run.radius);
     this.radius = Math.max(sphere.radius, 1e-3);
-    const allSphere = all.getBoundingSphere(new THREE.Sphere());
+    this.sizes = sizesOf(report);
+    this.coms = new Float64Array(3 * N);
 
     this.camera = new THREE.PerspectiveCamera(40, 1, this.radius * 0.01, 1);
     this.camera.up.set(0, 0, 1);
-    const fov = THREE.MathUtils.degToRad(this.camera.fov);
-    const dist = (this.radius / Math.sin(fov / 2)) * 1.15;
+    const dist = this.distanceToShow(this.radius);
     const dir = new THREE.Vector3(1, -1.6, 0.9).normalize();
     this.camera.position.copy(sphere.center).addScaledVector(dir, dist);
-    this.camera.far = (dist + allSphere.radius + allSphere.center.distanceTo(sphere.center)) * 20;
+    // Far enough for the camera that keeps every body in view (FOLLOW_ALL) over the whole run.
+    this.camera.far = (this.distanceToShow(allSphere.radius) + dist + allSphere.radius + allSphere.center.distanceTo(sphere.center)) * 20;
     this.camera.updateProjectionMatrix();
 
     this.controls = new OrbitControls(this.camera, this.renderer.domElement);
@@ -189,7 +166,7 @@ export class Scene3D {
     this.controls.addEventListener('change', () => (this.dirty = true));
 
     this.addLights();
-    this.addGrid(all, sphere);
+    this.addGrid(framing.runBox, sphere);
     this.crowd = N > CROWD;
     if (this.crowd) {
       this.views = new Array<BodyView | null>(N).fill(null);
@@ -213,17 +190,18 @@ export class Scene3D {
     this.scene.add(this.camera);
   }
 
-  private addGrid(all: THREE.Box3, start: THREE.Sphere): void {
-    const extent = Math.max(all.max.x - all.min.x, all.max.y - all.min.y, start.radius * 4);
+  private addGrid(run: Framing['runBox'], start: THREE.Sphere): void {
+    const lo = run?.lo ?? start.center.clone().subScalar(start.radius).toArray();
+    const hi = run?.hi ?? start.center.clone().addScalar(start.radius).toArray();
+    const extent = Math.max(hi[0] - lo[0], hi[1] - lo[1], start.radius * 4);
     const cell = niceCeil(extent / 12);
     const divisions = 24;
     const grid = new THREE.GridHelper(cell * divisions, divisions, 0x5a6270, 0x3a404a);
     grid.rotation.x = Math.PI / 2; // GridHelper lies in xz (y-up); tumble's ground is the xy-plane
-    const cx = Math.round((all.min.x + all.max.x) / 2 / cell) * cell;
-    const cy = Math.round((all.min.y + all.max.y) / 2 / cell) * cell;
-    // Just below the lowest point any body reaches.
-    const z = Number.isFinite(all.min.z) ? all.min.z - start.radius * 0.05 : 0;
-    grid.position.set(Number.isFinite(cx) ? cx : 0, Number.isFinite(cy) ? cy : 0, z);
+    // Centred under the run, just below the lowest point any body reaches.
+    const cx = Math.round((lo[0] + hi[0]) / 2 / cell) * cell;
+    const cy = Math.round((lo[1] + hi[1]) / 2 / cell) * cell;
+    grid.position.set(cx, cy, lo[2] - start.radius * 0.05);
     this.scene.add(grid);
   }
 
@@ -386,6 +364,8 @@ export class Scene3D {
       const x = lerpRow(r.series.position, N, b, 3, seg, [0, 0, 0]) as Vec3;
       const q = quatAtSegment(r.series.quaternion, N, b, seg);
       poses.push({ x, q });
+      const com = toWorld(x, q, r.bodies[b].com);
+      this.coms.set(com, 3 * b);
       const slot = this.crowdSlots[b];
       if (slot) {
         this.crowdPoses.set([x[0], x[1], x[2], q[0], q[1], q[2], q[3]], 7 * b);
@@ -396,7 +376,6 @@ export class Scene3D {
       if (!v) continue;
       v.group.position.set(x[0], x[1], x[2]);
       v.group.quaternion.fromArray(wxyzToXyzw(q));
-      const com = toWorld(x, q, r.bodies[b].com);
       const vec = bodyVectors(r, b, seg, q);
       if (v.omegaArrow) setArrow(v.omegaArrow, com, vec.omega, v.omegaScale, v.head);
       if (v.LArrow) setArrow(v.LArrow, com, vec.L, v.LScale, v.head);
@@ -413,12 +392,29 @@ export class Scene3D {
       });
       attr.needsUpdate = true;
     }
+    this.posed = true;
     this.applyFollow();
     this.dirty = true;
   }
 
-  /** Keeps the camera's target on the followed body's centre of mass, moving the camera with it. */
+  /**
+   * Moves the camera with what it follows: the followed body's centre of mass stays the orbit target;
+   * or (FOLLOW_ALL) the centre of the bodies now does, and the camera backs off when they spread
+   * beyond its view (it never closes in by itself: the user's zoom stays).
+   */
   private applyFollow(): void {
+    if (this.followIndex === FOLLOW_ALL) {
+      const now = sphereNow(this.coms, this.sizes);
+      if (!now) return;
+      const center = new THREE.Vector3(...now.center);
+      this.camera.position.add(center.clone().sub(this.controls.target));
+      this.controls.target.copy(center);
+      const away = this.camera.position.clone().sub(center);
+      const needed = this.distanceToShow(now.radius);
+      if (away.length() < needed) this.camera.position.copy(center).addScaledVector(away.normalize(), needed);
+      this.controls.update();
+      return;
+    }
     if (this.followIndex < 0) return;
     const p = this.comOf(this.followIndex);
     const delta = p.clone().sub(this.followPoint);
@@ -426,6 +422,14 @@ export class Scene3D {
     this.camera.position.add(delta);
     this.controls.target.add(delta);
     this.controls.update();
+  }
+
+  /** How far from a sphere's centre the camera shows all of it, with the default margin. */
+  private distanceToShow(radius: number): number {
+    // The narrower of the two angles of view: the vertical one, or the horizontal one of a tall view.
+    const halfVertical = THREE.MathUtils.degToRad(this.camera.fov) / 2;
+    const half = Math.atan(Math.tan(halfVertical) * Math.min(1, this.camera.aspect));
+    return (radius / Math.sin(half)) * FRAME_MARGIN;
   }
 
   private comOf(b: number): THREE.Vector3 {
@@ -442,11 +446,15 @@ export class Scene3D {
     return [new THREE.Vector3(p[0], p[1], p[2]), new THREE.Quaternion(p[4], p[5], p[6], p[3])];
   }
 
-  /** Follow body `b` (its centre of mass becomes the orbit target), or stop following with -1. */
+  /** Follow body `b` (its centre of mass becomes the orbit target), all of them (FOLLOW_ALL), or none. */
   setFollow(b: number): void {
     // In a crowd the followed body alone gets its axes, arrows (and trail).
     if (this.crowd && this.followIndex !== b && this.followIndex >= 0) this.dropView(this.followIndex);
     this.followIndex = b;
+    if (b === FOLLOW_ALL && this.posed) {
+      this.applyFollow();
+      this.dirty = true;
+    }
     if (b < 0) return;
     if (this.crowd && !this.views[b]) {
       this.views[b] = this.makeBody(b, false);
@@ -490,6 +498,14 @@ export class Scene3D {
   /** The orientation as drawn, read back from the three.js object: [w, x, y, z]. */
   bodyQuaternion(b: number): QuatWXYZ {
     return xyzwToWxyz(this.poseOf(b)[1].toArray());
+  }
+
+  /** Where body b's centre of mass is drawn, in normalised device coordinates (x, y in [-1, 1] and z < 1
+   * when in view), with the camera as it is now (following a body moves it at each frame). */
+  bodyOnScreen(b: number): Vec3 {
+    this.camera.updateMatrixWorld();
+    const p = this.comOf(b).project(this.camera);
+    return [p.x, p.y, p.z];
   }
 
   private resize(): void {

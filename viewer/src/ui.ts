@@ -3,7 +3,8 @@
 
 import { bodyPicker, CROWD } from './bodypicker';
 import { COLORS } from './colors';
-import { defaultFollow, lSource } from './derived';
+import { lSource } from './derived';
+import { FOLLOW_ALL, FREE_CAMERA } from './framing';
 import { SPEEDS, type Playback } from './playback';
 import type { Report } from './types';
 
@@ -22,6 +23,8 @@ export function formatSpeed(s: number): string {
 export interface ControlsOptions {
   onTrails: (on: boolean) => void;
   onFollow: (body: number) => void;
+  /** What the camera follows at first: a body's index, FOLLOW_ALL or FREE_CAMERA (framing.ts). */
+  follow: number;
 }
 
 export class Controls {
@@ -74,7 +77,9 @@ export class Controls {
     if (report.bodies.length > CROWD) trailsLabel.title = "the followed body's trail (one of a crowd)";
 
     const followLabel = el('label', { textContent: 'follow ' });
-    followLabel.appendChild(bodyPicker(report, defaultFollow(report), opts.onFollow, 'follow', '— free camera —'));
+    const cameras = [{ index: FREE_CAMERA, label: '— free camera —', typed: '' }];
+    if (report.bodies.length > 1) cameras.push({ index: FOLLOW_ALL, label: '— all bodies —', typed: 'all' });
+    followLabel.appendChild(bodyPicker(report, opts.follow, opts.onFollow, 'follow', cameras));
 
     const legend = el('span', { className: 'legend' });
     const key = (color: string, text: string) => {

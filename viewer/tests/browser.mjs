@@ -225,6 +225,23 @@ async function checkReport(context, file, { synthetic = false } = {}) {
   check('no network requests', external.length === 0, external.slice(0, 3).join(' '));
   await page.close();
 
+  // The camera keeps the bodies in view over the whole run (a lone body is followed, several are kept
+  // in view together when they leave their start): opened at several times, every body's centre of
+  // mass is drawn inside the view, and the view is not empty.
+  for (const f of [0.05, 0.35, 0.65, 1]) {
+    const at = t[Math.min(T - 1, Math.round(f * (T - 1)))];
+    const opened = await open(context, file, `#t=${at}`);
+    const outside = [];
+    for (const b of bodies) {
+      const [x, y, z] = await opened.page.evaluate((i) => window.__tumble.bodyOnScreen(i), b);
+      if (!(Math.abs(x) <= 1 && Math.abs(y) <= 1 && z > -1 && z < 1)) outside.push(`${data.bodies[b].name} at (${x.toFixed(2)}, ${y.toFixed(2)}, ${z.toFixed(2)})`);
+    }
+    const drawn = await grab(opened.page, `at-${f}`);
+    check(`at #t=${at} every body is in view`, outside.length === 0 && drawn.nonBackground > 0.001 * drawn.width * drawn.height,
+      `${outside.length ? `outside: ${outside.slice(0, 3).join(', ')}; ` : ''}${drawn.nonBackground} pixels drawn`);
+    await opened.page.close();
+  }
+
   // #t= opens paused at that time; &play=1 plays from there.
   const at = t[Math.floor(T / 2)];
   const paused = await open(context, file, `#t=${at}`);

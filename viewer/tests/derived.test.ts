@@ -1,6 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { decodeReport } from '../src/data';
-import { angularMomentumWorld, bodyVectors, comTrack, defaultFollow, lSource, magnitudes3, samplesNote, vectorMaxima } from '../src/derived';
+import { angularMomentumWorld, bodyVectors, comTrack, lSource, magnitudes3, samplesNote, vectorMaxima } from '../src/derived';
 import { formatTick, plotDefs, toPlotValues } from '../src/plotdata';
 import { normalizeQ, rotate } from '../src/quat';
 import type { Body, Meta } from '../src/types';
@@ -77,11 +77,6 @@ describe('derived quantities', () => {
     for (let i = 0; i < 9; i++) close(track.subarray(3 * i, 3 * i + 3), COM_WORLD, 1e-6);
     const max = vectorMaxima(r, 0);
     expect(max.omega).toBeCloseTo(W, 5);
-  });
-
-  it('follows a lone body from the start, and no one of several', () => {
-    expect(defaultFollow(decodeReport(syntheticReport({ T: 5, particle: false })))).toBe(0);
-    expect(defaultFollow(decodeReport(syntheticReport({ T: 5 })))).toBe(-1);
   });
 
   it('takes |L| per sample, NaN staying NaN', () => {

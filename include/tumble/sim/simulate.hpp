@@ -24,6 +24,10 @@ struct RunSettings {
                           ///< Results are bit-identical for any count.
   /// Relative drift of a conserved energy or angular momentum past which a run warns (0: never).
   double drift_threshold = 1e-6;
+  /// Times to sample at (s, the clock's own, not from the start), instead of every output interval:
+  /// ascending, after the start, and the run ends at the last, so duration must be that time minus the
+  /// start (to rounding). The start is sampled as ever. Empty: every output_interval.
+  std::vector<double> sample_times;
 };
 
 /// Throws InvalidArgument unless duration ≥ 0, timestep > 0, output_interval ≥ 0, drift_threshold ≥ 0,
