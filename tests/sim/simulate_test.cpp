@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -158,7 +159,7 @@ TEST(Simulate, GivenSampleTimesAreSampledWhereGiven) {
   settings.integrator = "rk4";
   refused({0.25, 0.5}, 0.25, "sample time #0 (0.25 s) is not after the start (0.25 s)");
   refused({0.5, 0.4, 0.6}, 0.35, "sample time #1 (0.4 s) is not after sample time #0 (0.5 s)");
-  refused({0.5, NAN}, 0.25, "sample time #1 is nan");
+  refused({0.5, std::numeric_limits<double>::quiet_NaN()}, 0.25, "sample time #1 is nan");
   refused({0.5, 0.75}, 1.0, "the last sample time (0.75 s) is not where the run ends");
 }
 
