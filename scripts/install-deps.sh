@@ -3,7 +3,7 @@
 set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config g++ clang-14 libclang-rt-14-dev clang-format-14
-  libeigen3-dev libxsimd-dev libomp-14-dev libboost-dev libfmt-dev libcli11-dev libassimp-dev libtomlplusplus-dev libhdf5-dev nlohmann-json3-dev librandom123-dev libopenmpi-dev openmpi-bin
+  libeigen3-dev libxsimd-dev libomp-14-dev libboost-dev libfmt-dev libcli11-dev libassimp-dev libtomlplusplus-dev libpugixml-dev libhdf5-dev nlohmann-json3-dev librandom123-dev libopenmpi-dev openmpi-bin
   libgtest-dev libgmock-dev libbenchmark-dev
   chromium
   python3 python3-numpy python3-h5py python3-dev python3-pybind11 python3-pytest python3-venv python3-pip python3-setuptools python3-tomli-w python3-matplotlib python3-mpmath

@@ -20,5 +20,7 @@ Runner add_report_command(CLI::App& app);
 Runner add_ensemble_command(CLI::App& app);
 /// `tumble check`: validate a scene file and summarise it (check_command.cpp).
 Runner add_check_command(CLI::App& app);
+/// `tumble model check|fix`: robot descriptions' inertials against their geometry (model_command.cpp).
+Runner add_model_command(CLI::App& app);
 
 }  // namespace tumble::cli

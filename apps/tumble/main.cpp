@@ -133,6 +133,7 @@ int main(int argc, char** argv) {
   const tumble::cli::Runner inertia = tumble::cli::add_inertia_command(app);
   const tumble::cli::Runner report = tumble::cli::add_report_command(app);
   const tumble::cli::Runner ensemble = tumble::cli::add_ensemble_command(app);
+  const tumble::cli::Runner model = tumble::cli::add_model_command(app);
 
   try {
     if (const std::string empty = empty_argument(argc, argv); !empty.empty()) {
@@ -155,6 +156,7 @@ int main(int argc, char** argv) {
       return finish_stdout(report());
     }
     if (app.got_subcommand("ensemble")) return finish_stdout(ensemble());
+    if (app.got_subcommand("model")) return finish_stdout(model());
   } catch (const std::bad_alloc&) {
     // No allocation here: the message is a literal (building a string could throw again and end the
     // process by std::terminate).

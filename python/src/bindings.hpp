@@ -9,5 +9,6 @@ void bind_scene(pybind11::module_& m);          // scene.cpp: Scene, load_scene,
 void bind_euler_poinsot(pybind11::module_& m);  // euler_poinsot.cpp: the analytic free motion
 void bind_arrays(pybind11::module_& m);         // arrays.cpp: N bodies from NumPy arrays
 void bind_ensemble(pybind11::module_& m);       // ensemble.cpp: Monte Carlo studies
+void bind_robot(pybind11::module_& m);          // robot.cpp: robot descriptions' inertials audited
 
 }  // namespace tumble::python

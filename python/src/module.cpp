@@ -21,4 +21,5 @@ PYBIND11_MODULE(_tumble, m) {
   tumble::python::bind_euler_poinsot(m);
   tumble::python::bind_arrays(m);
   tumble::python::bind_ensemble(m);
+  tumble::python::bind_robot(m);
 }

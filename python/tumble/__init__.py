@@ -50,7 +50,7 @@ __all__ = [
     "Body", "Damping", "Drag", "EnsembleResult", "Event", "EventCrossing", "ensemble", "read_ensemble", "Gravity", "GravityGradient", "Interrupted",
     "MassProperties", "MeshMassProperties", "Part", "Particle", "PointForce", "Scene", "Shape", "Spring",
     "Torque", "Trajectory", "bodies", "box", "capsule", "cone", "cylinder", "ellipsoid", "euler_poinsot",
-    "field_table", "from_xyzw", "inertia", "load_scene", "make_scene", "mesh_mass_properties",
+    "field_table", "from_xyzw", "inertia", "load_scene", "make_scene", "mesh_mass_properties", "model_check",
     "output_fields", "parse_scene", "read_trajectory", "save_scene", "scene_dict", "scene_from_dict",
     "simulate", "sphere", "spring_end", "to_xyzw", "torus",
 ]
@@ -336,6 +336,22 @@ def _parse_dict(scene: dict, path: str | _os.PathLike) -> Scene:
         return parse_scene(text, str(path))
     except ValueError as e:
         raise ValueError(_dict_toml.located(str(e), text, str(path))) from None
+
+
+def model_check(path: str | _os.PathLike, package_path: Sequence[str | _os.PathLike] = (),
+                geometry: str = "collision", density: float | None = None, lump_fixed: bool = False) -> dict:
+    """The audit of a robot description (URDF, MJCF or SDF) that `tumble model check --json` prints, as a
+    dict: {"model", "format", "path", "links": [{"name", "line", "authored": {mass, com, inertia, ...} or
+    None, "computed": {volume, mass, com, inertia, geometry, mass_from} or None, "findings": [{"code",
+    "severity", "message"}]}], "notes", "errors", "warnings"}. package_path: directories where package://
+    and model:// meshes are; geometry: "collision" or "visual" (URDF, SDF); density (kg/m^3): every link's
+    mass from it; lump_fixed: also the bodies fixed joints weld together. docs/robot-models.md lists the
+    finding codes and their thresholds."""
+    import json
+    if isinstance(package_path, (str, bytes)) or hasattr(package_path, "__fspath__"):
+        package_path = [package_path]
+    return json.loads(_tumble._model_check(_os.fspath(path), [_os.fspath(p) for p in package_path], geometry,
+                                           density, bool(lump_fixed)))
 
 
 def save_scene(scene: Scene | dict, path: str | _os.PathLike) -> None:

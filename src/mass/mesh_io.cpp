@@ -1,6 +1,6 @@
 // Loading mesh files. OBJ, OFF, PLY (ASCII and binary) and ASCII STL are read by tumble's own readers
 // (mesh_read_*.cpp: every decimal digit kept, every binary value as stored, every count checked against
-// the file's size); binary STL, whose size is checked first, and every other format go through assimp
+// the file's size; binary STL, a fixed record, once its size is checked); every other format goes through assimp
 // (every mesh of the scene, node transforms applied, polygons triangulated), in a child process that
 // may crash, hang or run out of memory without taking tumble along (mesh_assimp.hpp). Either way the file must
 // be a regular file within the input limit (input_file.hpp), parts are counted (and one may be
@@ -192,14 +192,14 @@ LoadedMesh load_stl(const std::filesystem::path& path, std::string bytes, const 
   if (size >= 84) {
     for (int i = 3; i >= 0; --i) declared = (declared << 8) | static_cast<unsigned char>(bytes[80 + i]);
   }
-  // A binary STL is exactly 84 + 50·n bytes; its 80-byte header may well start with "solid". assimp
-  // reads it from these bytes, whose size is now known to match.
+  // A binary STL is exactly 84 + 50·n bytes; its 80-byte header may well start with "solid".
   if (size == 84 && declared == 0) {
     throw FileError(
         fmt::format("{}: a binary STL of 0 triangles (its 84-byte header only): no surface", path.string()));
   }
   if (size >= 84 && 84 + 50 * declared == size) {
-    return load_with_assimp(path, options, "binary STL", "float32, the format's own", {}, size, bytes, "stl");
+    return finish(path, mesh_text::read_binary_stl(path, bytes, declared, options.scale), options,
+                  "binary STL", "float32, the format's own");
   }
   refuse_wide_text(path, bytes);
   if (!starts_with_solid(bytes)) {

@@ -121,6 +121,10 @@ constexpr std::uint64_t kMaxVertices = 0xfffffffeULL;
 RawMesh read_obj(const Text& text);
 RawMesh read_off(const Text& text);
 RawMesh read_ascii_stl(const Text& text);
+/// A binary STL's `triangles` records (its size already checked: 84 + 50 n bytes), scaled. Throws
+/// FileError naming the triangle and its bytes for a corner that is not finite.
+RawMesh read_binary_stl(const std::filesystem::path& path, std::string_view bytes, std::uint64_t triangles,
+                        double scale);
 
 /// The header of a PLY file, ASCII or binary.
 struct PlyProperty {

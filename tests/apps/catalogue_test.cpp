@@ -1275,6 +1275,44 @@ const std::vector<Case>& catalogue() {
        1,
        "tumble: error: run 1 (bodies.b.mass = -0.60834419961370922): s.toml, the drawn value: body 'b': mass "
        "is -0.6083441996137092 kg: it must be positive"},
+      {"model: a xacro template (Debian has no xacro: expanded first)",
+       {{"arm.urdf.xacro",
+         "<robot name=\"arm\" xmlns:xacro=\"http://www.ros.org/wiki/xacro\">\n"
+         "  <xacro:property name=\"l\" value=\"0.3\"/>\n</robot>\n"}},
+       "{t} model check arm.urdf.xacro",
+       1,
+       "tumble: error: arm.urdf.xacro:1: <robot>: this is a xacro template, not yet a robot description: "
+       "expand "
+       "it first, e.g. `xacro arm.urdf.xacro > arm.urdf` (ROS) or `python3 -m xacro arm.urdf.xacro -o "
+       "arm.urdf`, "
+       "and give tumble arm.urdf"},
+      {"model: a document type declaration (entities could expand without bound)",
+       {{"r.urdf",
+         "<?xml version=\"1.0\"?>\n<!DOCTYPE r [<!ENTITY a \"aaaaaaaa\">]>\n<robot "
+         "name=\"r\"/>\n"}},
+       "{t} model check r.urdf",
+       1,
+       "tumble: error: r.urdf:2:1: a document type declaration (<!DOCTYPE ...>) is refused: its entities "
+       "could "
+       "expand without bound; remove it (robot descriptions need none)"},
+      {"model: XML that is not well-formed",
+       {{"r.urdf", "<robot name=\"r\">\n  <link name=\"a\">\n</robot>\n"}},
+       "{t} model check r.urdf",
+       1,
+       "tumble: error: r.urdf:3:3: not well-formed XML: Start-end tags mismatch"},
+      {"model: a file whose root is not a robot",
+       {{"r.xml", "<scene/>\n"}},
+       "{t} model check r.xml",
+       1,
+       "tumble: error: r.xml:1: <scene>: is not a robot description's root: tumble reads URDF (<robot>), "
+       "MJCF "
+       "(<mujoco>) and SDF (<sdf>)"},
+      {"model fix: the output is the input",
+       {{"r.urdf", "<robot name=\"r\"><link name=\"a\"/></robot>\n"}},
+       "{t} model fix r.urdf -o ./r.urdf",
+       1,
+       "tumble: error: the fixed model ./r.urdf is the input r.urdf: tumble never overwrites an input; give "
+       "another output file"},
       {"scene: arrays nested 40 deep under a small stack (refused before the parser recurses)",
        {{"s.toml", "a = [[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]\n"}},
        "ulimit -s 256; {t} check s.toml",
@@ -1286,9 +1324,7 @@ const std::vector<Case>& catalogue() {
        "{t} simulate x.toml",
        2,
        "tumble: error: unknown command 'simulate': the commands are run, resume, check, inertia, report, "
-       "ensemble; see "
-       "tumble "
-       "--help"},
+       "ensemble, model; see tumble --help"},
       {"cli: unknown option",
        {{"s.toml", std::string("[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = "
                                "\"box\", size = [1, 2, 3] }\ndensity = 1000\n",

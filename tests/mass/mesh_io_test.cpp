@@ -211,7 +211,7 @@ TEST(MeshIo, NonFiniteCoordinateNamesTheVertex) {
   write_text(dir / "nan.obj", "v 0 0 0\nv 1 0 0\nv 0 nan 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\n");
   std::string msg = file_error(dir / "nan.obj");
   EXPECT_NE(msg.find("nan.obj:3:5: y coordinate 'nan' is not finite"), std::string::npos) << msg;
-  // Binary STL (through assimp): the first face that uses the vertex. Its second corner is (0, nan, 0).
+  // Binary STL: the first triangle that has the corner, and its bytes. Its second corner is (0, nan, 0).
   // (Written by hand: write_binary_stl refuses non-finite vertices.)
   const float nan = std::nanf("");
   const float corners[4][3][3] = {{{0, 0, 0}, {0, nan, 0}, {1, 0, 0}},
@@ -228,7 +228,8 @@ TEST(MeshIo, NonFiniteCoordinateNamesTheVertex) {
   }
   write_text(dir / "nan.stl", stl);
   msg = file_error(dir / "nan.stl");
-  EXPECT_NE(msg.find("corner 1 of face 0 of mesh 0 has non-finite coordinates (0, nan, 0)"),
+  EXPECT_NE(msg.find(
+                "nan.stl: corner 1 of triangle 0 (bytes 108 to 119) has non-finite coordinates (0, nan, 0)"),
             std::string::npos)
       << msg;
 }

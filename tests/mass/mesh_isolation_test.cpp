@@ -453,20 +453,20 @@ TEST(MeshIsolation, AHangIsCutAtTheTimeout) {
 
 TEST(MeshIsolation, AValidFileTimesOutUnderATinyLimit) {
   TestDir dir;
-  write_binary_stl(tessellate(Sphere{1.0}, 200), dir / "sphere.stl");
+  write_bytes(dir / "cubes.dae", cube_dae(200));
   const ScopedEnv timeout(kLoaderTimeoutVariable, "0.001");
-  EXPECT_HAS(load_error(dir / "sphere.stl"),
-             "sphere.stl: the mesh loader (assimp) did not finish within 0.001 s");
+  EXPECT_HAS(load_error(dir / "cubes.dae"),
+             "cubes.dae: the mesh loader (assimp) did not finish within 0.001 s");
 }
 
 TEST(MeshIsolation, RunningOutOfMemoryIsNamedWithTheLimit) {
   if (TUMBLE_TEST_ASAN) GTEST_SKIP() << "AddressSanitizer's allocator reports a failed allocation itself";
   TestDir dir;
-  write_binary_stl(tessellate(Sphere{1.0}, 100), dir / "sphere.stl");
+  write_bytes(dir / "cubes.dae", cube_dae(20));
   const ScopedEnv memory(kLoaderMemoryVariable, "64k");
   EXPECT_EQ(
-      load_error(dir / "sphere.stl"),
-      (dir / "sphere.stl").string() +
+      load_error(dir / "cubes.dae"),
+      (dir / "cubes.dae").string() +
           ": the mesh loader (assimp) ran out of memory on this file (limit 64 KiB; "
           "TUMBLE_LOADER_MEMORY_BYTES raises it): the file is malformed or too large for assimp; convert "
           "it to OBJ, PLY or STL");

@@ -1,8 +1,8 @@
 #pragma once
 // Reading triangle meshes from files. The text formats (OBJ, OFF, ASCII PLY, ASCII STL) are read by
 // tumble itself, every coordinate to the double nearest its decimal text, and so is binary PLY, every
-// value as the file stores it (a double stays a double); binary STL (float32 by its format) and the
-// other formats assimp knows go through assimp, which keeps float32 coordinates. Only regular files
+// value as the file stores it (a double stays a double), and binary STL, its float32 corners exactly;
+// the other formats assimp knows go through assimp, which keeps float32 coordinates. Only regular files
 // within the input limit are read (input_file.hpp: TUMBLE_MAX_INPUT_BYTES).
 //
 // assimp runs in a child process (fuzzing made it segfault, abort and loop forever on mutated DAE, X,
@@ -26,7 +26,7 @@ constexpr const char* kLoaderTimeoutVariable = "TUMBLE_LOADER_TIMEOUT_S";
 constexpr const char* kLoaderMemoryVariable = "TUMBLE_LOADER_MEMORY_BYTES";
 
 /// The assimp child's time limit for a file of `file_bytes`: TUMBLE_LOADER_TIMEOUT_S if set, else 30 s
-/// plus 1 s per MiB (rounded up; assimp parses binary STL at about 250 MiB/s, Collada text at about
+/// plus 1 s per MiB (rounded up; assimp parses binary formats at about 250 MiB/s, Collada text at about
 /// 20). Throws InvalidArgument when the variable is not a positive number of seconds.
 double loader_timeout_seconds(std::uint64_t file_bytes);
 
@@ -62,8 +62,8 @@ struct LoadedMesh {
 /// exist, or a limit variable that is not a number.
 [[nodiscard]] LoadedMesh load_mesh(const std::filesystem::path& path, const MeshLoadOptions& options = {});
 
-/// The formats tumble reads itself (OBJ, OFF, ASCII PLY, binary PLY, STL: ASCII by tumble, binary by
-/// assimp from these bytes after its size is checked), from a file's bytes already in memory: what
+/// The formats tumble reads itself (OBJ, OFF, ASCII PLY, binary PLY, ASCII and binary STL), from a
+/// file's bytes already in memory: what
 /// load_mesh does after reading such a file. `name` picks the format by its extension (case-insensitive)
 /// and names the file in messages; it is not opened. Throws as load_mesh does, and InvalidArgument for
 /// another extension. The fuzz targets (fuzz/) call it.
