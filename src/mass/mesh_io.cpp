@@ -108,6 +108,21 @@ void note_parts(const std::filesystem::path& path, const std::vector<std::string
                   ignored ? fmt::format(" (nor have its {} line or point elements)", ignored) : ""));
 }
 
+/// Whether every vertex of `raw` is a corner of some triangle.
+bool every_vertex_used(const RawMesh& raw) {
+  std::vector<bool> used(raw.vertices.size(), false);
+  std::size_t count = 0;
+  for (const auto& t : raw.triangles) {
+    for (const std::uint32_t v : t) {
+      if (v < used.size() && !used[v]) {
+        used[v] = true;
+        ++count;
+      }
+    }
+  }
+  return count == raw.vertices.size();
+}
+
 /// Part selection, dropping unused vertices, welding.
 LoadedMesh finish(const std::filesystem::path& path, RawMesh raw, const MeshLoadOptions& options,
                   std::string format, std::string precision) {
@@ -119,7 +134,12 @@ LoadedMesh finish(const std::filesystem::path& path, RawMesh raw, const MeshLoad
   out.companions = std::move(raw.companions);
   note_parts(path, raw.part_names, raw.part_word, options.part, out);
 
-  // The triangles of the chosen part(s), with only the vertices they use, in the file's order.
+  // The triangles of the chosen part(s), with only the vertices they use, in the file's order: the raw
+  // mesh itself when that is all of it (a binary STL's corners, every one used), without a copy.
+  if (options.part == 0 && every_vertex_used(raw)) {
+    out.mesh = weld_identical_vertices(TriangleMesh{std::move(raw.vertices), std::move(raw.triangles)});
+    return out;
+  }
   TriangleMesh m;
   constexpr std::uint32_t kUnused = 0xffffffffu;
   std::vector<std::uint32_t> renumber(raw.vertices.size(), kUnused);

@@ -249,8 +249,24 @@ ModelAudit audit_model(const std::filesystem::path& path, const AuditOptions& op
   audit.model = read_robot_model(path);
   audit.notes = audit.model.notes;
   MeshLibrary meshes;
-  for (const Link& link : audit.model.links)
-    audit.links.push_back(audit_link(audit.model, link, options, meshes, audit.notes));
+  std::vector<std::pair<std::filesystem::path, Vec3>> files;
+  for (const Link& link : audit.model.links) {
+    for (const Geometry* g : mass_geometries(link, audit.model.format, options.geometry)) {
+      std::string why;  // a mesh that cannot be found is a finding, made when its link is weighed
+      if (g->shape) continue;
+      const std::filesystem::path file = resolve_mesh(*g, audit.model.path.parent_path(), options.package_paths, why);
+      if (!file.empty()) files.emplace_back(file, g->scale);
+    }
+  }
+  meshes.preload(files);
+  // The links one per thread: each reads the meshes (all read by now) and writes only its own audit.
+  const std::vector<Link>& links = audit.model.links;
+  std::vector<std::vector<std::string>> notes(links.size());
+  audit.links.resize(links.size());
+  for_each_index(links.size(), 0, [&](std::size_t i) {
+    audit.links[i] = audit_link(audit.model, links[i], options, meshes, notes[i]);
+  });
+  for (const std::vector<std::string>& n : notes) audit.notes.insert(audit.notes.end(), n.begin(), n.end());
   if (options.lump_fixed) lump_fixed(audit.model, audit);
   return audit;
 }

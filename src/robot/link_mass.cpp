@@ -1,7 +1,10 @@
 #include "link_mass.hpp"
 
 #include <array>
+#include <atomic>
 #include <cstdlib>
+#include <set>
+#include <thread>
 #include <system_error>
 
 #include <fmt/format.h>
@@ -106,11 +109,58 @@ fs::path resolve_mesh(const Geometry& g, const fs::path& model_dir,
   return {};
 }
 
-const std::pair<std::optional<MeshSolid>, std::string>& MeshLibrary::get(const fs::path& file,
-                                                                         const Vec3& scale) {
-  const auto key = std::make_pair(file.string(), std::array<double, 3>{scale.x(), scale.y(), scale.z()});
-  if (const auto it = solids_.find(key); it != solids_.end()) return it->second;
-  auto& entry = solids_[key];
+MeshLibrary::Key MeshLibrary::key_of(const fs::path& file, const Vec3& scale) {
+  return {file.string(), std::array<double, 3>{scale.x(), scale.y(), scale.z()}};
+}
+
+const MeshLibrary::Entry& MeshLibrary::get(const fs::path& file, const Vec3& scale) {
+  const Key key = key_of(file, scale);
+  {
+    const std::lock_guard<std::mutex> guard(lock_);
+    if (const auto it = solids_.find(key); it != solids_.end()) return it->second;
+  }
+  Entry entry = load(file, scale);  // not preloaded: read here, the lock free meanwhile
+  const std::lock_guard<std::mutex> guard(lock_);
+  return solids_.try_emplace(key, std::move(entry)).first->second;  // a map's elements never move
+}
+
+void for_each_index(std::size_t n, unsigned threads, const std::function<void(std::size_t)>& f) {
+  std::atomic<std::size_t> next{0};
+  std::exception_ptr failed;
+  std::mutex failure;
+  const auto work = [&] {
+    for (std::size_t i = next++; i < n; i = next++) {
+      try {
+        f(i);
+      } catch (...) {
+        const std::lock_guard<std::mutex> guard(failure);
+        if (!failed) failed = std::current_exception();
+      }
+    }
+  };
+  const unsigned wanted = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
+  const auto count = static_cast<unsigned>(std::min<std::size_t>(wanted, n));
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < count; ++t) pool.emplace_back(work);
+  work();
+  for (std::thread& t : pool) t.join();
+  if (failed) std::rethrow_exception(failed);
+}
+
+void MeshLibrary::preload(const std::vector<std::pair<fs::path, Vec3>>& meshes, unsigned threads) {
+  std::vector<std::pair<fs::path, Vec3>> todo;
+  std::set<Key> seen;
+  for (const auto& [file, scale] : meshes) {
+    const Key key = key_of(file, scale);
+    if (!solids_.count(key) && seen.insert(key).second) todo.emplace_back(file, scale);
+  }
+  std::vector<Entry> loaded(todo.size());
+  for_each_index(todo.size(), threads, [&](std::size_t i) { loaded[i] = load(todo[i].first, todo[i].second); });
+  for (std::size_t i = 0; i < todo.size(); ++i) solids_[key_of(todo[i].first, todo[i].second)] = std::move(loaded[i]);
+}
+
+MeshLibrary::Entry MeshLibrary::load(const fs::path& file, const Vec3& scale) {
+  Entry entry;
   try {
     LoadedMesh loaded = load_mesh(file);
     MeshSolid solid;
@@ -123,6 +173,8 @@ const std::pair<std::optional<MeshSolid>, std::string>& MeshLibrary::get(const f
     entry.first = std::move(solid);
   } catch (const Error& e) {  // unreadable, open, non-manifold: the mesh's own report
     entry.second = e.what();
+  } catch (const std::bad_alloc&) {
+    entry.second = "not enough memory to read and integrate it";
   }
   return entry;
 }

@@ -4,7 +4,9 @@
 // link's mass; and the points of its surface for the COM test. Mesh URIs are resolved here.
 #include <array>
 #include <filesystem>
+#include <functional>
 #include <map>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <utility>
@@ -28,16 +30,26 @@ struct MeshSolid {
   std::vector<std::string> notes;  ///< the reader's and integrator's warnings
 };
 
+/// Calls f(i) for i in [0, n) on `threads` threads (0: one per core), each index once.
+void for_each_index(std::size_t n, unsigned threads, const std::function<void(std::size_t)>& f);
+
 /// Each mesh file read and integrated once, whatever number of links use it (keyed by file and scale).
+/// get() may be called from several threads.
 class MeshLibrary {
  public:
+  using Entry = std::pair<std::optional<MeshSolid>, std::string>;
   /// The solid, or the reason it is none (unreadable, open, non-manifold: the mesh's own report).
-  const std::pair<std::optional<MeshSolid>, std::string>& get(const std::filesystem::path& file,
-                                                              const Vec3& scale);
+  const Entry& get(const std::filesystem::path& file, const Vec3& scale);
+  /// Reads and integrates these meshes on `threads` threads (0: one per core), so that get() finds them:
+  /// a robot's meshes are independent files, and reading them is most of an audit.
+  void preload(const std::vector<std::pair<std::filesystem::path, Vec3>>& meshes, unsigned threads = 0);
 
  private:
-  std::map<std::pair<std::string, std::array<double, 3>>, std::pair<std::optional<MeshSolid>, std::string>>
-      solids_;
+  using Key = std::pair<std::string, std::array<double, 3>>;
+  static Key key_of(const std::filesystem::path& file, const Vec3& scale);
+  static Entry load(const std::filesystem::path& file, const Vec3& scale);
+  std::map<Key, Entry> solids_;
+  std::mutex lock_;
 };
 
 /// A link's geometry as solids in the link's frame: for the test of whether a point is inside it.
