@@ -15,7 +15,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:?usage: bench/fuzz.sh SECONDS [TARGET...]}
 shift
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(fuzz_scene fuzz_obj fuzz_off fuzz_ply fuzz_stl fuzz_mass)
+[ ${#targets[@]} -gt 0 ] || targets=(fuzz_scene fuzz_obj fuzz_off fuzz_ply fuzz_stl fuzz_mass fuzz_robot)
 
 bash scripts/install-deps.sh >/dev/null
 command -v clang++ >/dev/null || ln -sf /usr/bin/clang++-14 /usr/local/bin/clang++
@@ -31,7 +31,7 @@ status=0
 printf '%-11s %9s %8s %6s %6s %7s  %s\n' target runs execs/s cov ft corpus findings
 for t in "${targets[@]}"; do
   case "$t" in
-    fuzz_scene) max_len=8192 ;;
+    fuzz_scene | fuzz_robot) max_len=8192 ;;
     fuzz_mass) max_len=2048 ;;
     *) max_len=4096 ;;
   esac

@@ -43,11 +43,13 @@ int main(int argc, char** argv) {
     const MassProperties mp = solid_mass_properties(mesh, MassSpec::density(2700.0)).properties;
     const Mat3& I = mp.inertia;
     urdf += fmt::format(
-        "  <link name=\"link{}\">\n    <inertial>\n      <origin xyz=\"{} {} {}\"/>\n      <mass value=\"{}\"/>\n"
-        "      <inertia ixx=\"{}\" ixy=\"{}\" ixz=\"{}\" iyy=\"{}\" iyz=\"{}\" izz=\"{}\"/>\n    </inertial>\n"
+        "  <link name=\"link{}\">\n    <inertial>\n      <origin xyz=\"{} {} {}\"/>\n      <mass "
+        "value=\"{}\"/>\n"
+        "      <inertia ixx=\"{}\" ixy=\"{}\" ixz=\"{}\" iyy=\"{}\" iyz=\"{}\" izz=\"{}\"/>\n    "
+        "</inertial>\n"
         "    <collision><geometry><mesh filename=\"{}\"/></geometry></collision>\n  </link>\n",
-        i, mp.center_of_mass.x(), mp.center_of_mass.y(), mp.center_of_mass.z(), mp.mass, I(0, 0), I(0, 1), I(0, 2),
-        I(1, 1), I(1, 2), I(2, 2), file);
+        i, mp.center_of_mass.x(), mp.center_of_mass.y(), mp.center_of_mass.z(), mp.mass, I(0, 0), I(0, 1),
+        I(0, 2), I(1, 1), I(1, 2), I(2, 2), file);
   }
   urdf += "</robot>\n";
   std::ofstream(dir / "big.urdf") << urdf;
@@ -63,9 +65,11 @@ int main(int argc, char** argv) {
     for (const auto& l : audit.links) findings += l.findings.size();
   }
   std::sort(seconds.begin(), seconds.end());
-  std::printf("machine: %s, %u hardware threads\n", bench::cpu_model().c_str(), std::thread::hardware_concurrency());
-  std::printf("model: %d links, each a binary STL of %zu triangles (%.0f MB of meshes in all), %zu findings\n", links,
-              triangles, links * (84 + 50.0 * static_cast<double>(triangles)) / 1e6, findings);
+  std::printf("machine: %s, %u hardware threads\n", bench::cpu_model().c_str(),
+              std::thread::hardware_concurrency());
+  std::printf(
+      "model: %d links, each a binary STL of %zu triangles (%.0f MB of meshes in all), %zu findings\n", links,
+      triangles, links * (84 + 50.0 * static_cast<double>(triangles)) / 1e6, findings);
   std::printf("audit_model: min %.3f s, median %.3f s over %d repetitions (target: < 1 s)\n", seconds.front(),
               seconds[seconds.size() / 2], repetitions);
   return 0;

@@ -46,7 +46,8 @@ RawMesh read_binary_stl(const std::filesystem::path& path, std::string_view byte
                         "{}, {}); fix the file",
                         path.string(), corner, t, at, at + 11, x, y, z));
       }
-      mesh.vertices.emplace_back(scale * double{x}, scale * double{y}, scale * double{z});
+      mesh.vertices.emplace_back(scale * static_cast<double>(x), scale * static_cast<double>(y),
+                                 scale * static_cast<double>(z));
     }
     mesh.triangles.push_back({first, first + 1, first + 2});
   }

@@ -2,6 +2,9 @@
 // (findings.cpp); fixed joints welded on request.
 #include "tumble/robot/audit.hpp"
 
+#include <algorithm>
+#include <map>
+
 #include <fmt/format.h>
 
 #include "findings.hpp"
@@ -31,19 +34,25 @@ std::string plural(std::size_t n, const char* one, const char* many) {
 
 /// What a link's geometry was made of, in words: "2 collision meshes and a box".
 std::string describe(const std::vector<const Geometry*>& used) {
-  std::size_t meshes = 0;
-  std::vector<std::string> shapes;
+  // Each kind once, counted, in the order it first appears: "collision 1 mesh, 20 boxes, cylinder".
+  std::vector<std::pair<std::string, std::size_t>> kinds;
   for (const Geometry* g : used) {
-    if (g->shape) {
-      shapes.push_back(shape_name(*g->shape));
+    const std::string kind = g->shape ? shape_name(*g->shape) : "mesh";
+    auto it = std::find_if(kinds.begin(), kinds.end(), [&](const auto& k) { return k.first == kind; });
+    if (it == kinds.end()) {
+      kinds.emplace_back(kind, 1);
     } else {
-      ++meshes;
+      ++it->second;
     }
   }
   std::string out = used.empty() ? "" : used.front()->element + " ";
-  if (meshes > 0) out += plural(meshes, "mesh", "meshes");
-  for (std::size_t i = 0; i < shapes.size(); ++i)
-    out += fmt::format("{}{}", meshes > 0 || i > 0 ? ", " : "", shapes[i]);
+  for (std::size_t i = 0; i < kinds.size(); ++i) {
+    const auto& [kind, n] = kinds[i];
+    const std::string many = kind == "torus"                   ? "tori"
+                             : kind == "box" || kind == "mesh" ? kind + "es"
+                                                               : kind + "s";
+    out += (i > 0 ? ", " : "") + (n == 1 && kind != "mesh" ? kind : plural(n, kind.c_str(), many.c_str()));
+  }
   return out;
 }
 
@@ -160,6 +169,7 @@ LinkAudit audit_link(const RobotModel& model, const Link& link, const AuditOptio
   audit.name = link.name;
   audit.line = link.line;
   audit.authored = link.inertial;
+  audit.skipped = link.skipped;
   const std::optional<LinkSolids> solids = weigh(model, link, options, meshes, audit);
   if (solids) {
     for (const std::string& n : solids->notes) notes.push_back(n);
@@ -254,7 +264,8 @@ ModelAudit audit_model(const std::filesystem::path& path, const AuditOptions& op
     for (const Geometry* g : mass_geometries(link, audit.model.format, options.geometry)) {
       std::string why;  // a mesh that cannot be found is a finding, made when its link is weighed
       if (g->shape) continue;
-      const std::filesystem::path file = resolve_mesh(*g, audit.model.path.parent_path(), options.package_paths, why);
+      const std::filesystem::path file =
+          resolve_mesh(*g, audit.model.path.parent_path(), options.package_paths, why);
       if (!file.empty()) files.emplace_back(file, g->scale);
     }
   }

@@ -37,6 +37,7 @@ std::string audit_json(const ModelAudit& audit) {
   for (const LinkAudit& l : audit.links) {
     json link = {{"name", l.name}, {"line", l.line}};
     if (!l.parts.empty()) link["lumped"] = l.parts;
+    link["skipped"] = l.skipped;
     if (l.authored) {
       // The COM in the link's frame, the tensor about it in the link's axes (the inertial's rotation
       // applied), and as written.
@@ -81,12 +82,14 @@ std::string audit_table(const ModelAudit& audit) {
                                 audit.model.links.size() == 1 ? "" : "s");
   std::size_t width = 4;
   for (const LinkAudit& l : audit.links) width = std::max(width, l.name.size());
-  out += fmt::format("  {:<{}}  {:>12}  {:>12}  {:>10}  {:<28}  {}\n", "link", width, "mass kg", "volume m³",
-                     "ρ kg/m³", "computed from", "findings");
+  // The authored mass as written; the computed one as the geometry gives it (MJCF: MuJoCo's inference).
+  out += fmt::format("  {:<{}}  {:>12}  {:>12}  {:>12}  {:>10}  {:<28}  {}\n", "link", width, "mass kg",
+                     "computed kg", "volume m³", "ρ kg/m³", "computed from", "findings");
   for (const LinkAudit& l : audit.links) {
     const std::string mass = l.authored ? l.authored->mass_text : "—";
-    std::string volume = "—", density = "—", from = "no geometry";
+    std::string computed = "—", volume = "—", density = "—", from = "no geometry";
     if (l.computed) {
+      computed = fmt::format("{:.6g}", l.computed->properties.mass);
       volume = fmt::format("{:.4g}", l.computed->properties.volume);
       from = l.computed->geometry;
       if (l.authored && l.authored->mass > 0 && l.computed->properties.volume > 0)
@@ -98,12 +101,14 @@ std::string audit_table(const ModelAudit& audit) {
     if (errors) findings += fmt::format("{} error{}", errors, errors == 1 ? "" : "s");
     if (warnings)
       findings += fmt::format("{}{} warning{}", errors ? ", " : "", warnings, warnings == 1 ? "" : "s");
-    out += fmt::format("  {:<{}}  {:>12}  {:>12}  {:>10}  {:<28}  {}\n", l.name, width, mass, volume, density,
-                       from, findings);
+    out += fmt::format("  {:<{}}  {:>12}  {:>12}  {:>12}  {:>10}  {:<28}  {}\n", l.name, width, mass,
+                       computed, volume, density, from, findings);
   }
   for (const LinkAudit& l : audit.links)
     for (const Finding& f : l.findings)
       out += fmt::format("{} [{}] {}\n", severity_name(f.severity), f.code, f.message);
+  for (const LinkAudit& l : audit.links)
+    for (const std::string& s : l.skipped) out += fmt::format("note: link '{}': {}\n", l.name, s);
   for (const std::string& n : audit.notes) out += fmt::format("note: {}\n", n);
   const std::size_t errors = count(audit, Severity::error), warnings = count(audit, Severity::warning);
   out += fmt::format("{} error{}, {} warning{}\n", errors, errors == 1 ? "" : "s", warnings,

@@ -224,7 +224,10 @@ void judge(const RobotModel& model, const Link& link, const LinkAudit& audit, co
   for (const Vec3& p : computed.points) box.extend(p);
   if (!box.isEmpty()) size = box.diagonal().norm();
   bool com_judged = false;
-  if (size > 0 && !solids->contains(com, 1e-9 * size)) {
+  // A COM where the geometry's own is (to 1 % of the link's size) is right for a uniform link whatever
+  // its shape, inside the solid or not (a U-shaped link's is between its arms): only another is tested.
+  const bool at_geometry_com = (com - computed.properties.center_of_mass).norm() <= 0.01 * size;
+  if (size > 0 && !at_geometry_com && !solids->contains(com, 1e-9 * size)) {
     // Tessellated primitives fall inside their surfaces by < 0.9 % of a radius (audit.cpp): 1 % of the
     // size keeps a COM on a cylinder's wall from counting as outside its hull.
     const double d = distance_to_hull(computed.points, com);

@@ -4,8 +4,8 @@
 #include <atomic>
 #include <cstdlib>
 #include <set>
-#include <thread>
 #include <system_error>
+#include <thread>
 
 #include <fmt/format.h>
 
@@ -155,8 +155,10 @@ void MeshLibrary::preload(const std::vector<std::pair<fs::path, Vec3>>& meshes, 
     if (!solids_.count(key) && seen.insert(key).second) todo.emplace_back(file, scale);
   }
   std::vector<Entry> loaded(todo.size());
-  for_each_index(todo.size(), threads, [&](std::size_t i) { loaded[i] = load(todo[i].first, todo[i].second); });
-  for (std::size_t i = 0; i < todo.size(); ++i) solids_[key_of(todo[i].first, todo[i].second)] = std::move(loaded[i]);
+  for_each_index(todo.size(), threads,
+                 [&](std::size_t i) { loaded[i] = load(todo[i].first, todo[i].second); });
+  for (std::size_t i = 0; i < todo.size(); ++i)
+    solids_[key_of(todo[i].first, todo[i].second)] = std::move(loaded[i]);
 }
 
 MeshLibrary::Entry MeshLibrary::load(const fs::path& file, const Vec3& scale) {

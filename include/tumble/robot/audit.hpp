@@ -58,6 +58,7 @@ struct LinkAudit {
   std::optional<Inertial> authored;
   std::optional<ComputedMass> computed;  ///< none: no usable geometry (the findings say why)
   std::vector<std::string> parts;        ///< a lumped body's links; empty for a link of the file
+  std::vector<std::string> skipped;      ///< geometries that carry no mass, and why (Link::skipped)
   std::vector<Finding> findings;
 };
 
