@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -24,6 +25,7 @@ struct ModelOptions {
   std::string geometry = "collision";
   std::optional<double> density;
   bool lump_fixed = false;
+  bool all = false;
   std::string out;
   std::string keep = "mass";
   std::vector<std::string> only;
@@ -79,7 +81,7 @@ robot::Keep keep_of(const std::string& k) {
 int run_fix(const ModelOptions& o) {
   const robot::AuditOptions a = audit_options(o);
   const robot::ModelAudit audit = robot::audit_model(o.model, a);
-  const robot::FixResult fixed = robot::fix_model(audit, {keep_of(o.keep), o.only}, a);
+  const robot::FixResult fixed = robot::fix_model(audit, {keep_of(o.keep), o.only, o.all}, a);
   const std::filesystem::path inputs[] = {o.model};
   write_text_file(o.out, fixed.text, inputs, "the fixed model");
   // The report goes where the model does not: stderr when the model went to stdout.
@@ -109,6 +111,32 @@ int run_fix(const ModelOptions& o) {
                          changed == 1 ? "" : "s")
                  .c_str(),
              report);
+  // Nothing but the inertials changes, so mesh paths relative to MODEL's directory stay as written: name
+  // the one that no longer resolves from OUT's.
+  if (o.out != "-") {
+    std::error_code ec;
+    const auto dir = [&](const std::string& f) {
+      return std::filesystem::weakly_canonical(std::filesystem::absolute(f, ec).parent_path(), ec);
+    };
+    if (dir(o.out) != dir(o.model)) {
+      for (const robot::Link& link : audit.model.links) {
+        for (const auto* list : {&link.collision, &link.visual}) {
+          for (const robot::Geometry& g : *list) {
+            if (g.mesh_uri.empty() || g.mesh_uri.find("://") != std::string::npos ||
+                std::filesystem::path(g.mesh_uri).is_absolute())
+              continue;
+            std::fputs(fmt::format("note: {} names its meshes relative to its directory (\"{}\", link '{}'), "
+                                   "and {} is "
+                                   "in another: put it beside {} for them to resolve\n",
+                                   o.model, g.mesh_uri, link.name, o.out, o.model)
+                           .c_str(),
+                       report);
+            return 0;
+          }
+        }
+      }
+    }
+  }
   return 0;
 }
 
@@ -162,7 +190,12 @@ Runner add_model_command(CLI::App& app) {
          "tensor from the geometry), mass+com (the tensor about the authored COM), none (all from "
          "--density; MJCF: from the geoms' densities)")
       ->check(CLI::IsMember({"mass", "mass+com", "none"}));
-  fix->add_option("--only", o->only, "fix only these links (comma-separated names)")->delimiter(',');
+  fix->add_option(
+         "--only", o->only,
+         "rewrite these links (comma-separated names), findings or not; by default those whose findings "
+         "a recomputed inertial answers")
+      ->delimiter(',');
+  fix->add_flag("--all", o->all, "rewrite every link whose geometry can be used, findings or not");
 
   return [o, check, fix]() -> int {
     if (check->parsed()) return run_check(*o);

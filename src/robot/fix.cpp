@@ -113,6 +113,12 @@ FixResult fix_model(const ModelAudit& audit, const FixOptions& options, const Au
     std::string text;
   };
   std::vector<Edit> edits;
+  // What a recomputed inertial answers: its tensor and COM always; its mass only when not kept.
+  const auto answered = [&](const Finding& f) {
+    if (f.code == "implied_density" || f.code == "zero_mass_with_geometry") return options.keep == Keep::none;
+    return f.code != "missing_mesh" && f.code != "open_mesh" && f.code != "mesh_scale" &&
+           f.code != "bad_geometry";
+  };
   for (const LinkAudit& l : audit.links) {
     if (!l.parts.empty()) continue;  // a lumped body is a view, not an element of the file
     if (!options.only.empty() &&
@@ -130,6 +136,11 @@ FixResult fix_model(const ModelAudit& audit, const FixOptions& options, const Au
     } else if (l.authored->mass <= 0 && options.keep != Keep::none) {
       fix.reason =
           "its mass is 0 (a massless frame?); --keep none --density RHO gives it one from its geometry";
+    } else if (!options.all && options.only.empty() &&
+               std::none_of(l.findings.begin(), l.findings.end(), answered)) {
+      fix.reason = l.findings.empty()
+                       ? "no finding (--all recomputes it anyway)"
+                       : "its findings are about its mass, which is kept (--keep none recomputes it)";
     } else {
       const Inertial& in = *l.authored;
       const MassProperties& c = l.computed->properties;

@@ -55,8 +55,10 @@ TEST(ModelCli, FixWritesANewFileAndNeverTheInput) {
   EXPECT_EQ(slurp(input), before);
   const test::CommandResult fixed = test::run_tumble("model fix " + input + " -o " + dir + "/fixed.urdf");
   EXPECT_EQ(fixed.status, 0) << fixed.output;
-  EXPECT_NE(fixed.output.find("9 inertials rewritten, nothing else changed"), std::string::npos)
+  EXPECT_NE(fixed.output.find("7 inertials rewritten, nothing else changed"), std::string::npos)
       << fixed.output;
+  EXPECT_EQ(fixed.output.find("note:"), std::string::npos)
+      << fixed.output;  // beside the input: meshes resolve
   EXPECT_NE(fixed.output.find("link 'open_mesh' (line 160): left as it was"), std::string::npos)
       << fixed.output;
   EXPECT_EQ(slurp(input), before);
@@ -71,6 +73,18 @@ TEST(ModelCli, FixWritesANewFileAndNeverTheInput) {
           << link["name"] << ": " << f["message"];
     }
   }
+}
+
+TEST(ModelCli, FixSaysWhenTheMeshesNoLongerResolveFromTheOutput) {
+  const std::string dir = testing::TempDir() + "/model_cli_elsewhere";
+  std::filesystem::create_directories(dir);
+  const test::CommandResult fixed =
+      test::run_tumble("model fix " + kModels + "arm_flawed.urdf -o " + dir + "/fixed.urdf");
+  EXPECT_EQ(fixed.status, 0) << fixed.output;
+  EXPECT_NE(fixed.output.find(
+                "names its meshes relative to its directory (\"meshes/bar_mm.obj\", link 'mesh_scale')"),
+            std::string::npos)
+      << fixed.output;
 }
 
 TEST(ModelCli, UsageErrorsExitTwo) {

@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdio>
 #include <map>
 #include <set>
 #include <string>
@@ -87,7 +86,6 @@ TEST(ModelAuditFormats, TheCleanArmHasNoFindingInMjcfNorSdf) {
       // make_models.py formed in another order: a few ulps, 2e-15 relative. COM and tensor: rounding only
       // (the mesh and the sphere sum in another order), 1e-15 m and 1e-13 relative, as for arm.urdf.
       const MassProperties& c = l.computed->properties;
-      printf("%s %s dm=%.3g dc=%.3g dI=%.3g\n", clean.file, l.name.c_str(), c.mass/l.authored->mass-1, (c.center_of_mass - l.authored->frame.p).norm(), relative(c.inertia, l.authored->inertia_link()));
       EXPECT_NEAR(c.mass, l.authored->mass, 2e-15 * l.authored->mass) << l.name;
       EXPECT_LT((c.center_of_mass - l.authored->frame.p).norm(), 1e-15) << l.name;
       EXPECT_LT(relative(c.inertia, l.authored->inertia_link()), 1e-13) << l.name;
@@ -104,7 +102,6 @@ TEST(ModelAuditFormats, TheCleanArmHasNoFindingInMjcfNorSdf) {
     // and the reader composes inverse(parent) ∘ child, so the rotations through sin and cos of π/2 and
     // 0.5 agree to a few ulps of the unit entries: 1e-15.
     const std::map<std::string, Pose> poses = link_poses(a.model);
-    for (const auto& [name, pose] : urdf_poses) printf("pose %s dR=%.3g dp=%.3g\n", name.c_str(), (poses.at(name).R - pose.R).cwiseAbs().maxCoeff(), (poses.at(name).p - pose.p).norm());
     for (const auto& [name, pose] : urdf_poses) {
       EXPECT_LT((poses.at(name).R - pose.R).cwiseAbs().maxCoeff(), 1e-15) << name;
       EXPECT_LT((poses.at(name).p - pose.p).norm(), 1e-15) << name;
@@ -197,7 +194,6 @@ TEST(ModelAuditFormats, TheToolWeldedToForeLumpsIntoOneBody) {
     const Vec3 c = (fore.authored->mass * fore.authored->frame.p + tool.authored->mass * Vec3(0.355, 0, 0)) /
                    m;
     EXPECT_LT((lumped.authored->frame.p - c).norm(), 1e-15);
-    printf("lump dc=%.3g dm=%.3g dIa=%.3g dIc=%.3g\n", (lumped.authored->frame.p - c).norm(), lumped.computed->properties.mass/m-1, 0.0, 0.0);
     const auto about = [](double mass, const Vec3& d) {
       return mass * (d.dot(d) * Mat3::Identity() - d * d.transpose());
     };

@@ -10,6 +10,7 @@
 #include <map>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "tumble/robot/fix.hpp"
 
@@ -62,6 +63,14 @@ std::string written(const std::string& name, const std::string& text) {
   return path;
 }
 
+/// Every link's name: FixOptions::only, so that each link is rewritten whatever its findings (a clean
+/// one too) unless its geometry or its mass forbids it.
+std::vector<std::string> every_link(const RobotModel& m) {
+  std::vector<std::string> out;
+  for (const Link& l : m.links) out.push_back(l.name);
+  return out;
+}
+
 /// The closed forms make_models.py wrote the clean inertials from: a box a x b x c of mass m about its
 /// centre, in its own axes.
 Mat3 box(double m, double a, double b, double c) {
@@ -101,7 +110,7 @@ void check_fix(const std::string& file, Format format, const std::set<std::strin
   SCOPED_TRACE(file);
   const ModelAudit before = audit_model(kModels + file);
   ASSERT_EQ(before.model.format, format);
-  const FixResult fixed = fix_model(before, {Keep::mass, {}}, {});
+  const FixResult fixed = fix_model(before, {Keep::mass, every_link(before.model)}, {});
   const std::string path = written("fixed." + file, fixed.text);
   const ModelAudit after = audit_model(path);
   std::remove(path.c_str());
@@ -192,7 +201,7 @@ TEST(ModelFixFormats, TheCleanArmFixedIsTheSameArm) {
   for (const std::string file : {"arm.xml", "arm.sdf"}) {
     SCOPED_TRACE(file);
     const ModelAudit before = audit_model(kModels + file);
-    const FixResult fixed = fix_model(before, {}, {});
+    const FixResult fixed = fix_model(before, {Keep::mass, every_link(before.model)}, {});
     for (const LinkFix& l : fixed.links) EXPECT_TRUE(l.changed) << l.name << ": " << l.reason;
     const std::string path = written("fixed." + file, fixed.text);
     const ModelAudit again = audit_model(path);

@@ -2,6 +2,7 @@
 // the rewritten elements as it was (checked against spans found by parsing the fixed file afresh).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -61,7 +62,10 @@ TEST(ModelFix, ChangesOnlyTheInertialsAndKeepsTheMassAsWritten) {
   std::map<std::string, std::string> reasons;
   for (const LinkFix& l : fixed.links)
     if (!l.changed) reasons[l.name] = l.reason;
-  EXPECT_EQ(reasons.size(), 4u);  // zero mass, mesh in mm, missing and open meshes
+  EXPECT_EQ(reasons.size(),
+            6u);  // clean, a density (mass kept), zero mass, mesh in mm, missing and open meshes
+  EXPECT_NE(reasons["clean"].find("no finding"), std::string::npos);
+  EXPECT_NE(reasons["implied_density"].find("about its mass, which is kept"), std::string::npos);
   EXPECT_NE(reasons["mesh_scale"].find("scale"), std::string::npos);
   EXPECT_NE(reasons["missing_mesh"].find("could not be used"), std::string::npos);
   EXPECT_NE(reasons["zero_mass_with_geometry"].find("mass is 0"), std::string::npos);
@@ -118,8 +122,11 @@ TEST(ModelFix, RefusesWhatItCannotDo) {
   const ModelAudit a = audit_model(kModels + "arm.urdf");
   EXPECT_THROW((void)fix_model(a, {Keep::mass, {"no_such_link"}}, {}), InvalidArgument);
   EXPECT_THROW((void)fix_model(a, {Keep::none, {}}, {}), InvalidArgument);  // no density
-  // A clean model fixed is the same model, values rewritten to the same numbers.
-  const FixResult same = fix_model(a, {}, {});
+  // A clean model fixed is the same file, byte for byte; with --all, values rewritten to the same numbers.
+  EXPECT_EQ(fix_model(a, {}, {}).text, a.model.text);
+  const FixResult same = fix_model(a, {Keep::mass, {}, true}, {});
+  EXPECT_EQ(std::count_if(same.links.begin(), same.links.end(), [](const LinkFix& l) { return l.changed; }),
+            4);
   const std::string path = written("fixed3.tmp.urdf", same.text);
   const ModelAudit again = audit_model(path);
   std::remove(path.c_str());

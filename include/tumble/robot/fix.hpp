@@ -17,7 +17,8 @@ enum class Keep {
 
 struct FixOptions {
   Keep keep = Keep::mass;
-  std::vector<std::string> only;  ///< links to fix; empty: every link
+  std::vector<std::string> only;  ///< links to fix, whatever their findings; empty: those with findings
+  bool all = false;               ///< every link with usable geometry, findings or not
 };
 
 /// What the fix did to one link.
@@ -34,9 +35,10 @@ struct FixResult {
   std::vector<LinkFix> links;
 };
 
-/// The model's text with the inertials of `audit`'s links recomputed. A link without an inertial gets
-/// none; one whose geometry could not be used, or whose authored mass is 0 under Keep::mass, keeps its
-/// own (LinkFix::reason says why). Throws InvalidArgument for a name in `only` that is no link, and for
+/// The model's text with the inertials of `audit`'s links recomputed: those with a finding the new
+/// inertial answers (all of them with FixOptions::all; those named in FixOptions::only). A link without
+/// an inertial gets none; one whose geometry could not be used, whose mesh is in other units, or whose
+/// authored mass is 0 under Keep::mass, keeps its own (LinkFix::reason says why). Throws InvalidArgument for a name in `only` that is no link, and for
 /// Keep::none without a density in a URDF or SDF file.
 [[nodiscard]] FixResult fix_model(const ModelAudit& audit, const FixOptions& options,
                                   const AuditOptions& audit_options);
