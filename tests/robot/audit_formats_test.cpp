@@ -111,8 +111,8 @@ TEST(ModelAuditFormats, TheCleanArmHasNoFindingInMjcfNorSdf) {
 }
 
 TEST(ModelAuditFormats, EachPlantedDefectIsFoundOnItsLinkWithItsCode) {
-  // Both files plant the defects of arm_flawed.urdf on links named after them. MJCF has no massless link
-  // (MuJoCo's inertial mass must be positive for a moving body); its inertial_rotation is a diaginertia,
+  // Both files plant the defects of arm_flawed.urdf on links named after them. MJCF plants no massless link
+  // (MuJoCo refuses a moving body without mass); its inertial_rotation is a diaginertia,
   // already right in the body's axes, under an euler turn; its product_sign a fullinertia.
   std::map<std::string, std::set<std::string>> expected = {
       {"clean", {}},

@@ -119,12 +119,11 @@ flawed.append(urdf_link("not_positive_definite", inertial("2", "0 0 0", [[0.01, 
 flawed.append(urdf_link("triangle_inequality", inertial("2", "0 0 0", [[0.001, 0, 0], [0, 0.001, 0], [0, 0, 0.01]]), collision(box)))
 flawed.append(urdf_link("zero_mass_with_geometry", inertial("0", "0 0 0", [[0] * 3] * 3), collision(box)))
 flawed.append(urdf_link("implied_density", inertial("0.03", "0 0 0", box_I(F(3, 100), F(1, 10), F(1, 10), F(1, 10))), collision(box)))
-mmI = box_I(F(432, 1000), F(3, 10), F(4, 100), F(4, 100))  # 2700 kg/m³ had the mesh been read in m
+mmI = box_I(F(432, 1000), F(3, 10), F(4, 100), F(4, 100))  # 900 kg/m³ had the mesh been in metres
 flawed.append(urdf_link("mesh_scale", inertial("0.432", "0 0 0", mmI), collision('<mesh filename="meshes/bar_mm.obj"/>')))
 flawed.append(urdf_link("tensor_about_origin", inertial("2", "0 0 0.2", shift(bI, F(2), (0, 0, F(2, 10)))),
                         collision(box, "0 0 0.2")))
 flawed.append(urdf_link("com_outside_geometry", inertial("2", "1 0 0", bI), collision(box)))
-rI = box_I(F(2), F(3, 10), F(1, 10), F(1, 10))  # 0.3 x 0.1 x 0.1, 6000 kg/m³... use 1.8 kg below
 rI = box_I(F(18, 10), F(3, 10), F(1, 10), F(1, 10))  # 600 kg/m³
 flawed.append(urdf_link("tensor_mismatch", inertial("1.8", "0 0 0", [[rI[1][1], 0, 0], [0, rI[0][0], 0], [0, 0, rI[2][2]]]),
                         collision('<box size="0.3 0.1 0.1"/>')))
