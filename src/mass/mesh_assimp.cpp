@@ -198,6 +198,9 @@ void parse_and_send(int fd, const std::filesystem::path& path, double scale, std
     importer.SetIOHandler(files);
     // Points and lines carry no surface: SortByPType splits them off and this drops them.
     importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+    // Mass properties are in the file's own axes: a Collada file's <up_axis>Z_UP</up_axis> (robot meshes
+    // say so) must not turn it into assimp's y-up. Its <unit> still scales it to metres.
+    importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
     const unsigned flags = aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_SortByPType;
     const aiScene* scene =
         memory.empty() ? importer.ReadFile(std::filesystem::absolute(path).string(), flags)  // as mesh_

@@ -74,6 +74,20 @@ std::optional<std::pair<double, const char*>> implied_scale(double rho) {
   return std::nullopt;
 }
 
+/// How the format says a mesh's scale: the words to fix it with.
+std::string scale_text(Format format, double s) {
+  const std::string v = fmt::format("{} {} {}", s, s, s);
+  switch (format) {
+    case Format::urdf:
+      return fmt::format("scale=\"{}\" (<mesh filename=... scale=\"{}\"/>)", v, v);
+    case Format::mjcf:
+      return fmt::format("scale=\"{}\" (on its <asset><mesh>)", v);
+    case Format::sdf:
+      return fmt::format("<scale>{}</scale> (in its <mesh>)", v);
+  }
+  return v;
+}
+
 /// The explanation of a tensor that differs from the computed one, if one of the usual mistakes
 /// accounts for it: its text, or empty.
 std::string explain(const Inertial& in, const Mat3& I_authored, const Mat3& I_computed, const Vec3& com,
@@ -91,7 +105,7 @@ std::string explain(const Inertial& in, const Mat3& I_authored, const Mat3& I_co
   if (in.rotated) {
     if (matches(in.inertia_written)) {
       code = "inertial_rotation";
-      return "it is right in the link's own axes: the inertial's rotation (rpy) should be zero, or the "
+      return "it is right in the link's own axes: the inertial's rotation should be none, or the "
              "tensor "
              "was rotated before it was written and the rotation applied again";
     }
@@ -101,7 +115,7 @@ std::string explain(const Inertial& in, const Mat3& I_authored, const Mat3& I_co
     }
     if (matches(R.transpose() * in.inertia_written * R)) {
       code = "inertial_rotation";
-      return "it is right with the inertial's rotation inverted (rpy of the wrong sign or order)";
+      return "it is right with the inertial's rotation inverted (its angles of the wrong sign or order)";
     }
   }
   // A permuted diagonal: the moments written for the wrong axes.
@@ -201,9 +215,8 @@ void judge(const RobotModel& model, const Link& link, const LinkAudit& audit, co
     findings.push_back(
         {"mesh_scale", Severity::error,
          fmt::format("{}: the mass {} kg over the geometry's {:.4g} m³ is {:.3g} kg/m³: the mesh is probably "
-                     "in {} "
-                     "and read as metres. Give the mesh scale=\"{} {} {}\"",
-                     who, in.mass_text, V, rho, scale->second, scale->first, scale->first, scale->first)});
+                     "in {} and read as metres. Give the mesh {}",
+                     who, in.mass_text, V, rho, scale->second, scale_text(model.format, scale->first))});
     return;  // the tensors of a geometry 1000 times too large say nothing more
   }
   if (!(rho >= kDensityPlausibleLow && rho <= kDensityPlausibleHigh)) {
@@ -234,17 +247,18 @@ void judge(const RobotModel& model, const Link& link, const LinkAudit& audit, co
     const bool outside_hull = d > 0.01 * size;
     findings.push_back(
         {"com_outside_geometry", outside_hull ? Severity::error : Severity::warning,
-         fmt::format(
-             "{}: the centre of mass ({:.6g}, {:.6g}, {:.6g}) is outside the link's {}{}; the geometry's is "
-             "at ({:.6g}, {:.6g}, {:.6g}). {}",
-             who, com.x(), com.y(), com.z(), computed.geometry,
-             outside_hull ? fmt::format(", {:.3g} m beyond its convex hull", d)
-                          : " but inside its convex hull",
-             computed.properties.center_of_mass.x(), computed.properties.center_of_mass.y(),
-             computed.properties.center_of_mass.z(),
-             outside_hull ? "No body's centre of mass is outside its convex hull: fix <origin xyz> (tumble "
-                            "model fix)"
-                          : "A hollow or U-shaped link can have it so; check it")});
+         fmt::format("{}: the centre of mass ({:.6g}, {:.6g}, {:.6g}) is outside the link's {}{}; the "
+                     "geometry's is "
+                     "at ({:.6g}, {:.6g}, {:.6g}). {}",
+                     who, com.x(), com.y(), com.z(), computed.geometry,
+                     outside_hull ? fmt::format(", {:.3g} m beyond its convex hull", d)
+                                  : " but inside its convex hull",
+                     computed.properties.center_of_mass.x(), computed.properties.center_of_mass.y(),
+                     computed.properties.center_of_mass.z(),
+                     outside_hull ? "No body's centre of mass is outside its convex hull: fix the inertial's "
+                                    "position (tumble "
+                                    "model fix)"
+                                  : "A hollow or U-shaped link can have it so; check it")});
     com_judged = true;
   }
   if (!com_judged && size > 0 && (com - computed.properties.center_of_mass).norm() > kComWarning * size) {

@@ -462,7 +462,7 @@ TEST(MeshIsolation, AValidFileTimesOutUnderATinyLimit) {
 TEST(MeshIsolation, RunningOutOfMemoryIsNamedWithTheLimit) {
   if (TUMBLE_TEST_ASAN) GTEST_SKIP() << "AddressSanitizer's allocator reports a failed allocation itself";
   TestDir dir;
-  write_bytes(dir / "cubes.dae", cube_dae(20));
+  write_bytes(dir / "cubes.dae", cube_dae(400));  // large enough that parsing it needs more than 64 KiB
   const ScopedEnv memory(kLoaderMemoryVariable, "64k");
   EXPECT_EQ(
       load_error(dir / "cubes.dae"),

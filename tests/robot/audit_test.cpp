@@ -4,7 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+
+#include <Eigen/Geometry>
+#include <fmt/format.h>
 #include <map>
 #include <set>
 #include <string>
@@ -121,13 +125,76 @@ TEST(ModelAudit, FixedJointsLumpIntoOneBodyExactly) {
   const Vec3 c = (fore.authored->mass * fore.authored->frame.p + tool.authored->mass * Vec3(0.355, 0, 0)) / m;
   EXPECT_LT((lumped.authored->frame.p - c).norm(), 1e-15);
   // A cube's tensor is isotropic: turning it changes nothing; the parallel-axis terms by hand.
-  const auto about = [](double mass, const Vec3& d) {
+  const auto about = [](double mass, const Vec3& d) -> Mat3 {
     return mass * (d.dot(d) * Mat3::Identity() - d * d.transpose());
   };
   const Mat3 I = fore.authored->inertia_link() + about(fore.authored->mass, fore.authored->frame.p - c) +
                  tool.authored->inertia_link() + about(tool.authored->mass, Vec3(0.355, 0, 0) - c);
   EXPECT_LT(relative(lumped.authored->inertia_written, I), 1e-14);
   EXPECT_LT(relative(lumped.computed->properties.inertia, I), 1e-13);
+}
+
+/// Writes a model beside a link to the test models' meshes; returns its path.
+std::string model_file(const std::string& name, const std::string& text) {
+  const std::filesystem::path dir = std::filesystem::path(testing::TempDir()) / "robot_audit";
+  std::filesystem::create_directories(dir);
+  std::error_code ec;
+  std::filesystem::create_directory_symlink(kModels + "meshes", dir / "meshes", ec);  // exists: fine
+  std::ofstream(dir / name) << text;
+  return (dir / name).string();
+}
+
+TEST(ModelAudit, ABodyWeldedThroughARotatedJointIsComposedExactly) {
+  // A 0.4 x 0.1 x 0.1 box (4 kg) with a 0.1 x 0.3 x 0.1 box (3 kg) welded 0.25 m along x, turned 0.3 rad
+  // about z: the lumped body by hand, I = Σ R_i I_i R_iᵀ + m_i((d·d)I₃ − d dᵀ), d from the joint COM.
+  const auto box = [](double m, const Vec3& s) -> Mat3 {  // (a Mat3, not an Eigen expression of temporaries)
+    return Vec3(s.y() * s.y() + s.z() * s.z(), s.x() * s.x() + s.z() * s.z(), s.x() * s.x() + s.y() * s.y())
+               .asDiagonal() *
+           (m / 12);
+  };
+  const Mat3 Ia = box(4, Vec3(0.4, 0.1, 0.1)), Ib = box(3, Vec3(0.1, 0.3, 0.1));
+  const auto urdf_inertia = [](const Mat3& I) {
+    return fmt::format("ixx=\"{}\" ixy=\"0\" ixz=\"0\" iyy=\"{}\" iyz=\"0\" izz=\"{}\"", I(0, 0), I(1, 1),
+                       I(2, 2));
+  };
+  const std::string text = fmt::format(
+      "<robot name='w'>\n"
+      "<link name='a'><inertial><mass value='4'/><inertia {}/></inertial>\n"
+      "  <collision><geometry><box size='0.4 0.1 0.1'/></geometry></collision></link>\n"
+      "<link name='b'><inertial><mass value='3'/><inertia {}/></inertial>\n"
+      "  <collision><geometry><box size='0.1 0.3 0.1'/></geometry></collision></link>\n"
+      "<joint name='weld' type='fixed'><parent link='a'/><child link='b'/><origin xyz='0.25 0 0' rpy='0 0 "
+      "0.3'/></joint>\n"
+      "</robot>\n",
+      urdf_inertia(Ia), urdf_inertia(Ib));
+  AuditOptions o;
+  o.lump_fixed = true;
+  const ModelAudit a = audit_model(model_file("welded.urdf", text), o);
+  const LinkAudit& lumped = link(a, "a (lumped)");
+  const Mat3 R = Eigen::AngleAxisd(0.3, Vec3::UnitZ()).toRotationMatrix();
+  const Vec3 c = 3.0 * Vec3(0.25, 0, 0) / 7.0;
+  const auto shift = [](double m, const Vec3& d) -> Mat3 {
+    return m * (d.dot(d) * Mat3::Identity() - d * d.transpose());
+  };
+  const Mat3 I = Ia + shift(4, -c) + R * Ib * R.transpose() + shift(3, Vec3(0.25, 0, 0) - c);
+  EXPECT_LT((lumped.authored->frame.p - c).norm(), 1e-16);
+  // The authored values are written with 17 digits (fmt's shortest round trip): rounding only.
+  EXPECT_LT(relative(lumped.authored->inertia_written, I), 1e-14);
+  EXPECT_LT(relative(lumped.computed->properties.inertia, I), 1e-14);
+  EXPECT_TRUE(lumped.findings.empty());
+}
+
+TEST(ModelAudit, ACollidaMeshInMillimetresIsReadAtItsUnit) {
+  // cube_mm.dae: a 1000 x 1000 x 1000 cube with <unit meter="0.001">: 1 m³ (assimp applies the unit).
+  const ModelAudit a = audit_model(model_file(
+      "dae.urdf",
+      "<robot name='d'><link name='c'><inertial><mass value='1000'/>"
+      "<origin xyz='0.5 0.5 0.5'/><inertia ixx='166.66666666666666' iyy='166.66666666666666' "
+      "izz='166.66666666666666'/></inertial><collision><geometry><mesh filename='meshes/cube_mm.dae'/>"
+      "</geometry></collision></link></robot>"));
+  ASSERT_TRUE(link(a, "c").computed);
+  EXPECT_NEAR(link(a, "c").computed->properties.volume, 1.0, 1e-15);  // float32 corners 0 and 1000: exact
+  EXPECT_TRUE(link(a, "c").findings.empty()) << link(a, "c").findings.at(0).message;
 }
 
 TEST(ModelAudit, BadInputIsACleanErrorWithTheLine) {
