@@ -6,6 +6,7 @@ packages=(
   libeigen3-dev libxsimd-dev libomp-14-dev libboost-dev libfmt-dev libcli11-dev libassimp-dev libtomlplusplus-dev libpugixml-dev libhdf5-dev nlohmann-json3-dev librandom123-dev libopenmpi-dev openmpi-bin
   libgtest-dev libgmock-dev libbenchmark-dev
   chromium
+  libmujoco-dev libmujoco-samples  # MuJoCo's sample models and MuJoCo itself, as a reference in one test only
   python3 python3-numpy python3-h5py python3-dev python3-pybind11 python3-pytest python3-venv python3-pip python3-setuptools python3-tomli-w python3-matplotlib python3-mpmath
 )
 # The report viewer (viewer/) is built with node and npm: the machine's own where present (Debian's npm
