@@ -13,27 +13,12 @@
 
 #include "tumble/robot/audit.hpp"
 
+#include "robot_support.hpp"
+
 namespace tumble::robot {
 namespace {
 
-const std::string kModels = std::string(TUMBLE_SOURCE_DIR) + "/tests/robot/models/";
-
-std::set<std::string> codes(const LinkAudit& l) {
-  std::set<std::string> out;
-  for (const Finding& f : l.findings) out.insert(f.code);
-  return out;
-}
-
-const LinkAudit& link(const ModelAudit& a, const std::string& name) {
-  for (const LinkAudit& l : a.links)
-    if (l.name == name) return l;
-  throw std::runtime_error("no link " + name);
-}
-
-/// The largest entry of |A − B| over the largest of |B|.
-double relative(const Mat3& A, const Mat3& B) {
-  return (A - B).cwiseAbs().maxCoeff() / B.cwiseAbs().maxCoeff();
-}
+using namespace test;
 
 /// Each link's frame in the frame of its tree's root (the link no joint of the model hangs from another
 /// link), composed from the joints' origins.

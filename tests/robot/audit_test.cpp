@@ -16,26 +16,15 @@
 #include "tumble/error.hpp"
 #include "tumble/robot/audit.hpp"
 
+#include "robot_support.hpp"
+
 namespace tumble::robot {
 namespace {
 
-const std::string kModels = std::string(TUMBLE_SOURCE_DIR) + "/tests/robot/models/";
+using namespace test;
 
-std::set<std::string> codes(const LinkAudit& l) {
-  std::set<std::string> out;
-  for (const Finding& f : l.findings) out.insert(f.code);
-  return out;
-}
-
-const LinkAudit& link(const ModelAudit& a, const std::string& name) {
-  for (const LinkAudit& l : a.links)
-    if (l.name == name) return l;
-  throw std::runtime_error("no link " + name);
-}
-
-/// The largest entry of |A − B| over the largest of |B|.
-double relative(const Mat3& A, const Mat3& B) {
-  return (A - B).cwiseAbs().maxCoeff() / B.cwiseAbs().maxCoeff();
+std::string model_file(const std::string& name, const std::string& text) {
+  return written_beside_meshes("robot_audit", name, text);
 }
 
 TEST(ModelAudit, TheCleanArmHasNoFindingAndItsGeometryGivesTheClosedForms) {
@@ -132,16 +121,6 @@ TEST(ModelAudit, FixedJointsLumpIntoOneBodyExactly) {
                  tool.authored->inertia_link() + about(tool.authored->mass, Vec3(0.355, 0, 0) - c);
   EXPECT_LT(relative(lumped.authored->inertia_written, I), 1e-14);
   EXPECT_LT(relative(lumped.computed->properties.inertia, I), 1e-13);
-}
-
-/// Writes a model beside a link to the test models' meshes; returns its path.
-std::string model_file(const std::string& name, const std::string& text) {
-  const std::filesystem::path dir = std::filesystem::path(testing::TempDir()) / "robot_audit";
-  std::filesystem::create_directories(dir);
-  std::error_code ec;
-  std::filesystem::create_directory_symlink(kModels + "meshes", dir / "meshes", ec);  // exists: fine
-  std::ofstream(dir / name) << text;
-  return (dir / name).string();
 }
 
 TEST(ModelAudit, ABodyWeldedThroughARotatedJointIsComposedExactly) {

@@ -14,19 +14,15 @@
 
 #include "tumble/robot/fix.hpp"
 
+#include "robot_support.hpp"
+
 namespace tumble::robot {
 namespace {
 
-const std::string kModels = std::string(TUMBLE_SOURCE_DIR) + "/tests/robot/models/";
+using namespace test;
 
-const Link& link_of(const RobotModel& m, const std::string& name) {
-  for (const Link& l : m.links)
-    if (l.name == name) return l;
-  throw std::runtime_error("no link " + name);
-}
-
-double relative(const Mat3& A, const Mat3& B) {
-  return (A - B).cwiseAbs().maxCoeff() / B.cwiseAbs().maxCoeff();
+std::string written(const std::string& name, const std::string& text) {
+  return written_beside_meshes("robot_fix_formats", name, text);
 }
 
 /// The text with every inertial element taken out and, before each, the text `lead` names for its link:
@@ -48,19 +44,6 @@ std::string outside_inertials(const RobotModel& m, const std::map<std::string, s
     at = s.end;
   }
   return out + m.text.substr(at);
-}
-
-/// Writes `text` to a scratch directory of these tests beside a link to the models' meshes (found
-/// relative to it: MJCF through <compiler meshdir="meshes">, SDF's relative URIs through the file's
-/// directory).
-std::string written(const std::string& name, const std::string& text) {
-  const std::filesystem::path dir = std::filesystem::path(testing::TempDir()) / "robot_fix_formats";
-  std::filesystem::create_directories(dir);
-  std::error_code ec;
-  std::filesystem::create_directory_symlink(kModels + "meshes", dir / "meshes", ec);  // exists: fine
-  const std::string path = (dir / name).string();
-  std::ofstream(path, std::ios::binary) << text;
-  return path;
 }
 
 /// Every link's name: FixOptions::only, so that each link is rewritten whatever its findings (a clean

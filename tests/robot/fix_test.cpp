@@ -10,10 +10,16 @@
 #include "tumble/error.hpp"
 #include "tumble/robot/fix.hpp"
 
+#include "robot_support.hpp"
+
 namespace tumble::robot {
 namespace {
 
-const std::string kModels = std::string(TUMBLE_SOURCE_DIR) + "/tests/robot/models/";
+using namespace test;
+
+std::string written(const std::string& name, const std::string& text) {
+  return written_beside_meshes("robot_fix", name, text);
+}
 
 /// The text with every inertial element taken out.
 std::string outside_inertials(const RobotModel& m) {
@@ -25,27 +31,6 @@ std::string outside_inertials(const RobotModel& m) {
     at = l.inertial->span.end;
   }
   return out + m.text.substr(at);
-}
-
-const Link& link_of(const RobotModel& m, const std::string& name) {
-  for (const Link& l : m.links)
-    if (l.name == name) return l;
-  throw std::runtime_error("no link " + name);
-}
-
-double relative(const Mat3& A, const Mat3& B) {
-  return (A - B).cwiseAbs().maxCoeff() / B.cwiseAbs().maxCoeff();
-}
-
-/// Writes `text` to a scratch directory beside a link to the models' meshes (found relative to it).
-std::string written(const std::string& name, const std::string& text) {
-  const std::filesystem::path dir = std::filesystem::path(testing::TempDir()) / "robot_fix";
-  std::filesystem::create_directories(dir);
-  std::error_code ec;
-  std::filesystem::create_directory_symlink(kModels + "meshes", dir / "meshes", ec);  // exists: fine
-  const std::string path = (dir / name).string();
-  std::ofstream(path, std::ios::binary) << text;
-  return path;
 }
 
 TEST(ModelFix, ChangesOnlyTheInertialsAndKeepsTheMassAsWritten) {
