@@ -158,7 +158,8 @@ std::optional<LinkSolids> weigh(const RobotModel& model, const Link& link, const
     computed.basis = "1000 kg/m³ (no authored mass)";
   }
   computed.properties.volume = unit_total.mass;
-  computed.points = solids.points;
+  computed.points =
+      std::move(solids.points);  // the hull test reads them there; contains() needs only the solids
   audit.computed = std::move(computed);
   return solids;
 }
