@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "tumble/error.hpp"
+#include "tumble/mass/winding_number.hpp"
 
 namespace tumble::detail {
 namespace {
@@ -52,17 +53,12 @@ std::vector<Surface> surfaces_of(const TriangleMesh& mesh) {
   return out;
 }
 
-/// The winding number of a closed surface about p (not on it): the solid angle its triangles subtend,
-/// over 4π, each by Van Oosterom and Strackee's tan(Ω/2) = a·(b × c) / (|a||b||c| + (a·b)|c| +
-/// (a·c)|b| + (b·c)|a|), with a, b, c the corners relative to p. +1 inside an outward surface.
+/// The winding number of one closed surface of the mesh about p (not on it), winding_number.hpp's.
 double winding_number(const TriangleMesh& mesh, const Surface& s, const Vec3& p) {
   double omega = 0.0;
   for (const std::size_t t : s.triangles) {
     const auto& f = mesh.triangles[t];
-    const Vec3 a = mesh.vertices[f[0]] - p, b = mesh.vertices[f[1]] - p, c = mesh.vertices[f[2]] - p;
-    const double la = a.norm(), lb = b.norm(), lc = c.norm();
-    omega += 2.0 *
-             std::atan2(a.dot(b.cross(c)), la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la);
+    omega += triangle_solid_angle(mesh.vertices[f[0]] - p, mesh.vertices[f[1]] - p, mesh.vertices[f[2]] - p);
   }
   return omega / (4.0 * std::numbers::pi);
 }

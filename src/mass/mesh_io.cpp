@@ -110,6 +110,7 @@ void note_parts(const std::filesystem::path& path, const std::vector<std::string
 
 /// Whether every vertex of `raw` is a corner of some triangle.
 bool every_vertex_used(const RawMesh& raw) {
+  if (raw.every_vertex_used) return true;
   std::vector<bool> used(raw.vertices.size(), false);
   std::size_t count = 0;
   for (const auto& t : raw.triangles) {

@@ -29,6 +29,7 @@ float float_at(std::string_view bytes, std::size_t at) {
 RawMesh read_binary_stl(const std::filesystem::path& path, std::string_view bytes, std::uint64_t triangles,
                         double scale) {
   RawMesh mesh;
+  mesh.every_vertex_used = true;  // every vertex is a corner
   mesh.part_word = "solid";
   mesh.part_names.push_back("(binary STL)");
   mesh.vertices.reserve(3 * triangles);

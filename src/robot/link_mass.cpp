@@ -12,6 +12,7 @@
 #include "tumble/error.hpp"
 #include "tumble/mass/mesh_io.hpp"
 #include "tumble/mass/mesh_mass.hpp"
+#include "tumble/mass/winding_number.hpp"
 
 namespace tumble::robot {
 
@@ -206,20 +207,6 @@ bool contains(const Shape& shape, const Vec3& x, double tolerance) {
     }
   };
   return std::visit(Inside{x, tolerance}, shape);
-}
-
-double winding_number(const TriangleMesh& mesh, const Vec3& x) {
-  // The solid angle each triangle subtends at x (Van Oosterom and Strackee, 1983), summed over 4π:
-  // 1 inside a closed outward-oriented surface, 0 outside, whatever its shape.
-  double total = 0.0;
-  for (const auto& t : mesh.triangles) {
-    const Vec3 a = mesh.vertices[t[0]] - x, b = mesh.vertices[t[1]] - x, c = mesh.vertices[t[2]] - x;
-    const double la = a.norm(), lb = b.norm(), lc = c.norm();
-    const double numerator = a.dot(b.cross(c));
-    const double denominator = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
-    total += 2 * std::atan2(numerator, denominator);
-  }
-  return total / (4 * M_PI);
 }
 
 bool LinkSolids::contains(const Vec3& x, double tolerance) const {

@@ -69,8 +69,6 @@ struct LinkSolids {
 
 /// Whether x (in the shape's own frame, shapes.hpp) is in the solid shape, or within `tolerance` of it.
 bool contains(const Shape& shape, const Vec3& x, double tolerance);
-/// The generalised winding number of a closed, outward-oriented mesh at x: 1 inside, 0 outside.
-double winding_number(const TriangleMesh& mesh, const Vec3& x);
 /// The distance from x to the convex hull of `points` (0 inside it).
 double distance_to_hull(const std::vector<Vec3>& points, const Vec3& x);
 
