@@ -37,8 +37,8 @@ const fs::path& directory() {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const fs::path model = directory() / "fuzz.xml";
-  std::ofstream(model, std::ios::binary | std::ios::trunc).write(reinterpret_cast<const char*>(data),
-                                                               static_cast<std::streamsize>(size));
+  std::ofstream(model, std::ios::binary | std::ios::trunc)
+      .write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
   tumble::fuzz::refused_or_ok([&] {
     const tumble::robot::ModelAudit audit = tumble::robot::audit_model(model);
     for (const auto& link : audit.links)

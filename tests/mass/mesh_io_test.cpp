@@ -159,9 +159,9 @@ TEST(MeshIo, ScaleMultipliesCoordinates) {
                               one.properties.inertia * std::pow(s, 5), one.properties.volume * s * s * s};
     test::expect_close(scaled.properties, want, 1e-13, s * 10.0, fmt::format("scale {}", s));
   }
-  EXPECT_THROW(load_mesh(dir / "handle_cm.stl", {.scale = 0.0}), InvalidArgument);
-  EXPECT_THROW(load_mesh(dir / "handle_cm.stl", {.scale = -1.0}), InvalidArgument);
-  EXPECT_THROW(load_mesh(dir / "handle_cm.stl", {.scale = std::nan("")}), InvalidArgument);
+  EXPECT_THROW((void)load_mesh(dir / "handle_cm.stl", {.scale = 0.0}), InvalidArgument);
+  EXPECT_THROW((void)load_mesh(dir / "handle_cm.stl", {.scale = -1.0}), InvalidArgument);
+  EXPECT_THROW((void)load_mesh(dir / "handle_cm.stl", {.scale = std::nan("")}), InvalidArgument);
 }
 
 std::string file_error(const std::filesystem::path& path) {

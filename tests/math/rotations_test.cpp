@@ -90,7 +90,8 @@ Eigen::Matrix<long double, 3, 3> rebuilt_long(int first, int second, int third, 
     M(j, k) = -M(k, j);
     return M;
   };
-  return axis(first, a.x()) * axis(second, a.y()) * axis(third, a.z());
+  return axis(first, static_cast<long double>(a.x())) * axis(second, static_cast<long double>(a.y())) *
+         axis(third, static_cast<long double>(a.z()));
 }
 
 double largest_entry_error(const Eigen::Matrix<long double, 3, 3>& A, const Mat3& R) {
