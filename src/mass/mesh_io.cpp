@@ -138,7 +138,8 @@ LoadedMesh finish(const std::filesystem::path& path, RawMesh raw, const MeshLoad
   // The triangles of the chosen part(s), with only the vertices they use, in the file's order: the raw
   // mesh itself when that is all of it (a binary STL's corners, every one used), without a copy.
   if (options.part == 0 && every_vertex_used(raw)) {
-    out.mesh = weld_identical_vertices(TriangleMesh{std::move(raw.vertices), std::move(raw.triangles)});
+    TriangleMesh all{std::move(raw.vertices), std::move(raw.triangles)};
+    out.mesh = raw.welded ? std::move(all) : weld_identical_vertices(all);
     return out;
   }
   TriangleMesh m;

@@ -5,6 +5,7 @@
 // to it cost 0.2 s for a 5 MB file — most of reading a robot's hundred meshes. The corners are the
 // float32 values exactly (a double holds every float); the normal is not used (the winding says which
 // side is out).
+#include <array>
 #include <bit>
 #include <cmath>
 
@@ -12,6 +13,7 @@
 
 #include "mesh_text.hpp"
 #include "tumble/error.hpp"
+#include "tumble/mass/mesh_weld.hpp"
 
 namespace tumble::mesh_text {
 
@@ -30,14 +32,15 @@ RawMesh read_binary_stl(const std::filesystem::path& path, std::string_view byte
                         double scale) {
   RawMesh mesh;
   mesh.every_vertex_used = true;  // every vertex is a corner
+  mesh.welded = true;             // welded here, corner by corner, not from a soup of 3 n corners
   mesh.part_word = "solid";
   mesh.part_names.push_back("(binary STL)");
-  mesh.vertices.reserve(3 * triangles);
   mesh.triangles.reserve(triangles);
   mesh.part_of.assign(triangles, 0);
+  VertexWelder welder(triangles / 2);  // a closed surface has about n/2 vertices for n triangles
   for (std::uint64_t t = 0; t < triangles; ++t) {
     const std::size_t record = 84 + 50 * t;
-    const auto first = static_cast<std::uint32_t>(mesh.vertices.size());
+    std::array<std::uint32_t, 3> corners{};
     for (std::size_t corner = 0; corner < 3; ++corner) {
       const std::size_t at = record + 12 + 12 * corner;
       const float x = float_at(bytes, at), y = float_at(bytes, at + 4), z = float_at(bytes, at + 8);
@@ -47,11 +50,12 @@ RawMesh read_binary_stl(const std::filesystem::path& path, std::string_view byte
                         "{}, {}); fix the file",
                         path.string(), corner, t, at, at + 11, x, y, z));
       }
-      mesh.vertices.emplace_back(scale * static_cast<double>(x), scale * static_cast<double>(y),
-                                 scale * static_cast<double>(z));
+      corners[corner] = welder.add(Vec3(scale * static_cast<double>(x), scale * static_cast<double>(y),
+                                        scale * static_cast<double>(z)));
     }
-    mesh.triangles.push_back({first, first + 1, first + 2});
+    mesh.triangles.push_back(corners);
   }
+  mesh.vertices = welder.take_vertices();
   return mesh;
 }
 

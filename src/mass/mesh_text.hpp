@@ -31,6 +31,7 @@ struct RawMesh {
   std::vector<std::string> warnings;
   std::vector<std::filesystem::path> companions;  ///< other files the loader read (a glTF's buffers)
   bool every_vertex_used = false;  ///< known by the reader (binary STL: corners only), saving a pass
+  bool welded = false;             ///< the reader welded as it read (binary STL): no second pass
 };
 
 /// A file's text and where a byte offset is in it, for messages. A UTF-8 byte-order mark is dropped.
