@@ -158,8 +158,6 @@ std::optional<LinkSolids> weigh(const RobotModel& model, const Link& link, const
     computed.basis = "1000 kg/m³ (no authored mass)";
   }
   computed.properties.volume = unit_total.mass;
-  computed.points =
-      std::move(solids.points);  // the hull test reads them there; contains() needs only the solids
   audit.computed = std::move(computed);
   return solids;
 }
@@ -210,7 +208,6 @@ void lump_fixed(const RobotModel& model, ModelAudit& audit) {
     lumped.name = fmt::format("{} (lumped)", root);
     lumped.line = audit.links[index[root]].line;
     std::optional<MassProperties> authored, computed;
-    std::vector<Vec3> points;
     bool all_computed = true;
     for (const auto& [name, pose] : members) {
       const LinkAudit& part = audit.links[index[name]];
@@ -224,7 +221,6 @@ void lump_fixed(const RobotModel& model, ModelAudit& audit) {
       if (part.computed) {
         const MassProperties m = placed(part.computed->properties, pose);
         computed = computed ? *computed + m : m;
-        for (const Vec3& p : part.computed->points) points.push_back(pose.R * p + pose.p);
       } else {
         all_computed = false;
       }
@@ -241,7 +237,6 @@ void lump_fixed(const RobotModel& model, ModelAudit& audit) {
       ComputedMass c;
       c.properties = *computed;
       c.geometry = fmt::format("the {} links welded by fixed joints", members.size());
-      c.points = std::move(points);
       lumped.computed = std::move(c);
     }
     judge_lumped(model, lumped, lumped.findings);

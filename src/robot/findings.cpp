@@ -234,7 +234,7 @@ void judge(const RobotModel& model, const Link& link, const LinkAudit& audit, co
   const Vec3 com = in.frame.p;
   double size = 0;
   Eigen::AlignedBox3d box;
-  for (const Vec3& p : computed.points) box.extend(p);
+  for (const Vec3& p : solids->points) box.extend(p);
   if (!box.isEmpty()) size = box.diagonal().norm();
   bool com_judged = false;
   // A COM where the geometry's own is (to 1 % of the link's size) is right for a uniform link whatever
@@ -243,7 +243,7 @@ void judge(const RobotModel& model, const Link& link, const LinkAudit& audit, co
   if (size > 0 && !at_geometry_com && !solids->contains(com, 1e-9 * size)) {
     // Tessellated primitives fall inside their surfaces by < 0.9 % of a radius (audit.cpp): 1 % of the
     // size keeps a COM on a cylinder's wall from counting as outside its hull.
-    const double d = distance_to_hull(computed.points, com);
+    const double d = distance_to_hull(solids->points, com);
     const bool outside_hull = d > 0.01 * size;
     findings.push_back(
         {"com_outside_geometry", outside_hull ? Severity::error : Severity::warning,

@@ -48,8 +48,6 @@ struct ComputedMass {
   std::string
       basis;  ///< where its mass comes from: "the authored mass", "1000 kg/m³ (no authored mass)", ...
   bool from_meshes = false;  ///< a mesh is among the geometries (the mesh_scale finding applies)
-  /// Every vertex of the geometry in the link's frame (primitives tessellated), for the convex hull.
-  std::vector<Vec3> points;
 };
 
 struct LinkAudit {
