@@ -32,9 +32,9 @@ std::string plural(std::size_t n, const char* one, const char* many) {
   return fmt::format("{} {}", n, n == 1 ? one : many);
 }
 
-/// What a link's geometry was made of, in words: "2 collision meshes and a box".
+/// What a link's geometry was made of, in words: each kind once, counted, in the order it first appears
+/// ("collision 1 mesh, 20 boxes, cylinder").
 std::string describe(const std::vector<const Geometry*>& used) {
-  // Each kind once, counted, in the order it first appears: "collision 1 mesh, 20 boxes, cylinder".
   std::vector<std::pair<std::string, std::size_t>> kinds;
   for (const Geometry* g : used) {
     const std::string kind = g->shape ? shape_name(*g->shape) : "mesh";
