@@ -10,7 +10,7 @@ namespace tumble::robot {
 
 namespace {
 
-using nlohmann::json;
+using json = nlohmann::ordered_json;  // keys in the order written: model, format, links, ...
 
 json vec(const Vec3& v) { return json::array({v.x() + 0.0, v.y() + 0.0, v.z() + 0.0}); }
 
