@@ -12,6 +12,7 @@
 #include <type_traits>
 
 #include "tumble/math/lanes.hpp"
+#include "tumble/math/num_traits.hpp"
 #include "tumble/math/types.hpp"
 
 namespace tumble {
@@ -173,24 +174,8 @@ struct Lanes<Dual<T, N>> {
 
 namespace Eigen {
 
+/// An addition costs a dual number N + 1 of T's, a multiplication 2N + 1.
 template <class T, int N>
-struct NumTraits<tumble::Dual<T, N>> : GenericNumTraits<double> {
-  using Real = tumble::Dual<T, N>;
-  using NonInteger = tumble::Dual<T, N>;
-  using Literal = tumble::Dual<T, N>;
-  using Nested = tumble::Dual<T, N>;
-  enum {
-    IsComplex = 0,
-    IsInteger = 0,
-    IsSigned = 1,
-    RequireInitialization = 1,
-    ReadCost = 1,
-    AddCost = N + 1,
-    MulCost = 2 * N + 1
-  };
-  static Real epsilon() { return Real(NumTraits<double>::epsilon()); }
-  static Real dummy_precision() { return Real(NumTraits<double>::dummy_precision()); }
-  static int digits10() { return NumTraits<double>::digits10(); }
-};
+struct NumTraits<tumble::Dual<T, N>> : tumble::PackNumTraits<tumble::Dual<T, N>, N + 1, 2 * N + 1> {};
 
 }  // namespace Eigen

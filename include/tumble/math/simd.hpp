@@ -1,11 +1,12 @@
 #pragma once
 // xsimd packs of doubles as the number type of tumble's templated equations (math/lanes.hpp): the
-// Lanes<> trait for them, and the Eigen::NumTraits that lets Eigen's fixed-size vectors, matrices and
+// Lanes<> trait for them, and the Eigen::NumTraits (num_traits.hpp) that lets Eigen's fixed-size vectors, matrices and
 // quaternions hold one body per lane. Comparisons give xsimd::batch_bool, which `select` (found by
 // argument-dependent lookup in xsimd) turns into a blend.
 #include <xsimd/xsimd.hpp>
 
 #include "tumble/math/lanes.hpp"
+#include "tumble/math/num_traits.hpp"
 #include "tumble/math/types.hpp"
 
 namespace tumble {
@@ -16,32 +17,6 @@ struct Lanes<xsimd::batch<double, Arch>> {
   static constexpr std::size_t width = Pack::size;
   TUMBLE_INLINE static Pack load(const double* p) { return Pack::load_aligned(p); }
   TUMBLE_INLINE static void store(double* p, const Pack& v) { v.store_aligned(p); }
-};
-
-}  // namespace tumble
-
-namespace tumble {
-
-/// Eigen::NumTraits for a number type made of doubles — a SIMD pack, the tests' reference pack, the
-/// benchmarks' counting double: Eigen's specialisation for such a type derives from this.
-template <class T>
-struct PackNumTraits : Eigen::GenericNumTraits<double> {
-  using Real = T;
-  using NonInteger = T;
-  using Literal = T;
-  using Nested = T;
-  enum {
-    IsComplex = 0,
-    IsInteger = 0,
-    IsSigned = 1,
-    RequireInitialization = 1,
-    ReadCost = 1,
-    AddCost = 1,
-    MulCost = 1
-  };
-  static T epsilon() { return T(Eigen::NumTraits<double>::epsilon()); }
-  static T dummy_precision() { return T(Eigen::NumTraits<double>::dummy_precision()); }
-  static int digits10() { return Eigen::NumTraits<double>::digits10(); }
 };
 
 }  // namespace tumble
