@@ -3,7 +3,7 @@
 set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config g++ clang-14 libclang-rt-14-dev clang-format-14
-  libeigen3-dev libxsimd-dev libomp-14-dev libboost-dev libfmt-dev libcli11-dev libassimp-dev libtomlplusplus-dev libpugixml-dev libhdf5-dev nlohmann-json3-dev librandom123-dev libopenmpi-dev openmpi-bin
+  libeigen3-dev libxsimd-dev libomp-14-dev libboost-dev libfmt-dev libcli11-dev libassimp-dev libtomlplusplus-dev libpugixml-dev libhdf5-dev nlohmann-json3-dev libceres-dev librandom123-dev libopenmpi-dev openmpi-bin
   libgtest-dev libgmock-dev libbenchmark-dev
   chromium
   libmujoco-dev libmujoco-samples  # MuJoCo's sample models and MuJoCo itself, as a reference in one test only

@@ -22,5 +22,7 @@ Runner add_ensemble_command(CLI::App& app);
 Runner add_check_command(CLI::App& app);
 /// `tumble model check|fix`: robot descriptions' inertials against their geometry (model_command.cpp).
 Runner add_model_command(CLI::App& app);
+/// `tumble fit`: a rigid body's inertia identified from gyro telemetry (fit_command.cpp).
+Runner add_fit_command(CLI::App& app);
 
 }  // namespace tumble::cli

@@ -134,6 +134,7 @@ int main(int argc, char** argv) {
   const tumble::cli::Runner report = tumble::cli::add_report_command(app);
   const tumble::cli::Runner ensemble = tumble::cli::add_ensemble_command(app);
   const tumble::cli::Runner model = tumble::cli::add_model_command(app);
+  const tumble::cli::Runner fit = tumble::cli::add_fit_command(app);
 
   try {
     if (const std::string empty = empty_argument(argc, argv); !empty.empty()) {
@@ -157,6 +158,7 @@ int main(int argc, char** argv) {
     }
     if (app.got_subcommand("ensemble")) return finish_stdout(ensemble());
     if (app.got_subcommand("model")) return finish_stdout(model());
+    if (app.got_subcommand("fit")) return finish_stdout(fit());
   } catch (const std::bad_alloc&) {
     // No allocation here: the message is a literal (building a string could throw again and end the
     // process by std::terminate).

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The layers as a test (docs/ARCHITECTURE.md, "Layers"): each layer may include only itself and the
 # layers before it,
-#     math -> mass -> dynamics -> forces -> integrate -> sim -> io -> study -> robot
+#     math -> mass -> dynamics -> forces -> integrate -> sim -> io -> study -> robot -> fit
 # (include/tumble/*.hpp at the top level, e.g. error.hpp, belongs to math). It fails, naming file:line
 # and the include, when
 #   - a header (include/tumble/<layer>/) or source (src/<layer>/) includes "tumble/<higher layer>/...";
@@ -20,7 +20,7 @@
 # Exit status: 0 clean, 1 violations found (or a self-test case failed), 2 usage error.
 set -euo pipefail
 
-LAYERS=(math mass dynamics forces integrate sim io study robot)
+LAYERS=(math mass dynamics forces integrate sim io study robot fit)
 
 declare -A LAYER_INDEX=()
 for i in "${!LAYERS[@]}"; do LAYER_INDEX[${LAYERS[i]}]=$i; done
