@@ -10,5 +10,6 @@ void bind_euler_poinsot(pybind11::module_& m);  // euler_poinsot.cpp: the analyt
 void bind_arrays(pybind11::module_& m);         // arrays.cpp: N bodies from NumPy arrays
 void bind_ensemble(pybind11::module_& m);       // ensemble.cpp: Monte Carlo studies
 void bind_robot(pybind11::module_& m);          // robot.cpp: robot descriptions' inertials audited
+void bind_fit(pybind11::module_& m);            // fit.cpp: inertia from gyro telemetry
 
 }  // namespace tumble::python

@@ -22,4 +22,5 @@ PYBIND11_MODULE(_tumble, m) {
   tumble::python::bind_arrays(m);
   tumble::python::bind_ensemble(m);
   tumble::python::bind_robot(m);
+  tumble::python::bind_fit(m);
 }

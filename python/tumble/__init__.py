@@ -50,7 +50,7 @@ __all__ = [
     "Body", "Damping", "Drag", "EnsembleResult", "Event", "EventCrossing", "ensemble", "read_ensemble", "Gravity", "GravityGradient", "Interrupted",
     "MassProperties", "MeshMassProperties", "Part", "Particle", "PointForce", "Scene", "Shape", "Spring",
     "Torque", "Trajectory", "bodies", "box", "capsule", "cone", "cylinder", "ellipsoid", "euler_poinsot",
-    "field_table", "from_xyzw", "inertia", "load_scene", "make_scene", "mesh_mass_properties", "model_check",
+    "field_table", "fit", "from_xyzw", "inertia", "load_scene", "make_scene", "mesh_mass_properties", "model_check",
     "output_fields", "parse_scene", "read_trajectory", "save_scene", "scene_dict", "scene_from_dict",
     "simulate", "sphere", "spring_end", "to_xyzw", "torus",
 ]
@@ -352,6 +352,50 @@ def model_check(path: str | _os.PathLike, package_path: Sequence[str | _os.PathL
         package_path = [package_path]
     return json.loads(_tumble._model_check(_os.fspath(path), [_os.fspath(p) for p in package_path], geometry,
                                            density, bool(lump_fixed)))
+
+
+def fit(telemetry, sigma: float, bias: bool = False, substep: float | None = None, max_iterations: int = 100,
+        torque=None, wheel_momentum=None) -> dict:
+    """A rigid body's inertia identified from its gyro telemetry, as the dict of the JSON `tumble fit`
+    prints (docs/fit.md): {"verdict": "determined" or "not determined", "reason", "samples", "t0",
+    "duration", "sigma", "scale": "trace" (J / trace J: no known torque) or "absolute" (kg m^2),
+    "unit", "inertia": {"J", "J_sigma", "principal_moments", "principal_moments_sigma", "principal_axes"
+    (one row per axis), "principal_axes_sigma_rad", "ratios", "ratios_sigma", "positive_definite",
+    "triangle_inequality"}, "omega0", "omega0_sigma", "bias", "bias_sigma", "residuals", "covariance",
+    "solver", "notes"}; quantities the data do not determine are None.
+
+    telemetry: a CSV file (columns t, wx, wy, wz, optionally tau_x, tau_y, tau_z and h_x, h_y, h_z), or
+    arrays: a pair (t, omega) with t of shape (n,) in s and omega (n, 3) in rad/s, sensor axes, or a dict
+    with keys "t", "omega" and optionally "torque" and "wheel_momentum"; torque (N m) and wheel_momentum
+    (N m s), (n, 3) in sensor axes, may also be given as keywords. sigma: the gyro's noise per component
+    (rad/s). bias: also estimate a constant gyro bias. substep: the longest RK4 step (s; default chosen
+    from sigma). max_iterations: of Levenberg-Marquardt, per start."""
+    import json
+    if isinstance(telemetry, (str, bytes)) or hasattr(telemetry, "__fspath__"):
+        if torque is not None or wheel_momentum is not None:
+            raise ValueError("torque and wheel_momentum go with arrays; a telemetry file has them as columns "
+                             "tau_x, tau_y, tau_z and h_x, h_y, h_z")
+        return json.loads(_tumble._fit_file(_os.fspath(telemetry), float(sigma), bool(bias), substep,
+                                            int(max_iterations)))
+    if isinstance(telemetry, dict):
+        unknown = set(telemetry) - {"t", "omega", "torque", "wheel_momentum"}
+        if unknown or "t" not in telemetry or "omega" not in telemetry:
+            raise ValueError(f"telemetry has keys {sorted(telemetry)}: give 't' and 'omega', and optionally "
+                             "'torque' and 'wheel_momentum'")
+        t, omega = telemetry["t"], telemetry["omega"]
+        torque = telemetry.get("torque", torque)
+        wheel_momentum = telemetry.get("wheel_momentum", wheel_momentum)
+    else:
+        try:
+            t, omega = telemetry
+        except (TypeError, ValueError):
+            raise ValueError("telemetry: give a CSV file's path, a pair (t, omega) of arrays, or a dict with 't' "
+                             "and 'omega'") from None
+
+    def array(a):
+        return None if a is None else _np.asarray(a, dtype=float)
+    return json.loads(_tumble._fit_arrays(array(t), array(omega), array(torque), array(wheel_momentum), float(sigma),
+                                          bool(bias), substep, int(max_iterations)))
 
 
 def save_scene(scene: Scene | dict, path: str | _os.PathLike) -> None:
