@@ -50,6 +50,8 @@ struct RunOptions {
   std::string checkpoint;
   double checkpoint_every = 60.0;
   std::string report;
+  bool sensitivities = false;
+  std::string sensitivity_parameters = "inertia";
 };
 
 /// What `tumble resume` takes.
@@ -75,7 +77,8 @@ struct Job {
   bool quiet = false, progress = false, strict = false;
   std::filesystem::path checkpoint;  // empty: none
   double checkpoint_every = 60.0;
-  std::optional<Checkpoint> resumed;  // the checkpoint this run continues
+  std::optional<Checkpoint> resumed;                   // the checkpoint this run continues
+  std::optional<SensitivityParameters> sensitivities;  // --sensitivities: with respect to these
 };
 
 /// An output file and how the command line named it, for messages.
@@ -131,6 +134,7 @@ class TrajectoryObserver final : public RunObserver {
   void on_event(const EventHit& hit) override {
     writer_.event(hit.name, scene_.events[hit.index].row, hit.state.t);
   }
+  void on_sensitivities(const Sensitivities& s) override { writer_.sensitivities(s); }
 
  private:
   TrajectoryWriter& writer_;
@@ -339,6 +343,7 @@ int execute(Job& j) {
     run.keep_run_points(point).attach(*checkpoints);
   }
   if (j.resumed) run.resume_from(j.resumed->point);
+  if (j.sensitivities) run.carry_sensitivities(*j.sensitivities);
   run.run();
   const bool interrupted = run.stopped();
   const double t_reached = console.t_reached();
@@ -520,6 +525,21 @@ int run(const RunOptions& o) {
   }
   refuse_inputs_as_outputs(outputs, scene);
   require_known_extension(out, o.format);
+  if (o.sensitivities) {
+    if (!hdf5) {
+      throw InvalidArgument(fmt::format(
+          "--sensitivities writes matrices (datasets stm and parameter_sensitivity) that CSV cannot hold: "
+          "give an HDF5 output, e.g. -o {}.h5",
+          stem));
+    }
+    if (!o.checkpoint.empty() || !scene.events.empty()) {
+      throw InvalidArgument(fmt::format("--sensitivities runs its own loop, which {} yet: {}",
+                                        scene.events.empty() ? "writes no checkpoints" : "watches no events",
+                                        scene.events.empty() ? "drop --checkpoint"
+                                                             : "remove the scene's [[events]] for this run"));
+    }
+    j.sensitivities = parse_sensitivity_parameters(o.sensitivity_parameters);
+  }
   if (!o.checkpoint.empty()) {
     if (hdf5) {
       throw InvalidArgument(
@@ -676,7 +696,9 @@ Runner add_run_command(CLI::App& app) {
       "  tumble run examples/satellite.toml -o out/satellite.h5 --integrator dopri45 --rtol 1e-10\n"
       "  tumble run examples/t_handle.toml --timestep 1e-4 --duration 5 --quiet\n"
       "  tumble run examples/t_handle.toml -o out/t.csv --checkpoint out/t.ckpt   (then: tumble resume "
-      "out/t.ckpt)");
+      "out/t.ckpt)\n"
+      "  tumble run examples/satellite.toml -o out/satellite.h5 --sensitivities   (state transition matrix, "
+      "docs/sensitivities.md)");
   cmd->add_option("scene", o->scene, "scene file (TOML; see docs/scene-format.md)")->required();
   cmd->add_option("-o,--output", o->output,
                   "trajectory file; .h5/.hdf5 (any case) means HDF5 and .csv CSV unless --format says "
@@ -719,6 +741,15 @@ Runner add_run_command(CLI::App& app) {
                   "output to a file only (not HDF5, -, a device or a FIFO)");
   cmd->add_option("--checkpoint-every", o->checkpoint_every,
                   "seconds of wall-clock time between checkpoints (default 60; 0 = at every sample)");
+  cmd->add_flag("--sensitivities", o->sensitivities,
+                "also write the run's sensitivities to the HDF5 output: stm = d x(t_k)/d x(0) and "
+                "parameter_sensitivity = d x(t_k)/d(I1, I2, I3) of each body (or d/d mass), by forward-mode "
+                "differentiation of the integrator's own steps (euler, semi_implicit_euler, rk4, lie_rk4, "
+                "implicit_gyro; docs/sensitivities.md). HDF5 only; no events or checkpoints");
+  cmd->add_option("--sensitivity-parameters", o->sensitivity_parameters,
+                  "what parameter_sensitivity differentiates with respect to: inertia (each body's "
+                  "principal moments, 3 columns a body; default) or mass (1 a body)")
+      ->check(CLI::IsMember({"inertia", "mass"}));
   auto* quiet =
       cmd->add_flag("--quiet,-q", o->quiet, "no progress bar and no summary; errors and warnings only");
   cmd->add_flag("--progress", o->progress,

@@ -321,7 +321,7 @@ py::dict simulate(const Scene& scene_in, const py::dict& settings,
                   std::optional<std::vector<std::string>> field_names, std::optional<py::function> force,
                   const std::vector<EventSpec>& event_specs, const std::vector<py::tuple>& python_events,
                   const std::vector<bool>& every_body, std::vector<double> sample_times,
-                  std::optional<py::tuple> initial) {
+                  std::optional<py::tuple> initial, std::optional<std::string> sensitivities) {
   // A Python force joins a copy of the model (the force list is shared, the bodies copied); what it
   // conserves is unknown, so no drift is judged, and it runs on one thread (one interpreter).
   std::optional<Scene> with_force;
@@ -368,17 +368,41 @@ py::dict simulate(const Scene& scene_in, const py::dict& settings,
   std::vector<double> event_t;
   std::vector<long> event_rows;
   // What the run hands over, kept as the arrays of the output-field tables.
+  // Sensitivities, when carried: each body's own blocks (samples, B, 12, 12) and (samples, B, 12, P)
+  // for bodies that do not interact, the whole matrices (samples, 12B, 12B) and (samples, 12B, PB) for
+  // coupled ones (python/tumble/trajectory.py makes the dense views).
+  Series stm, parameter_sensitivity;
+  bool coupled = false;
   class Arrays final : public RunObserver {
    public:
-    Arrays(Recorded& r) : r_(r) {}
+    Arrays(Recorded& r, Series& stm, Series& parameters, bool& coupled)
+        : r_(r), stm_(stm), parameters_(parameters), coupled_(coupled) {}
     void on_sample(const SystemState& state, const DriftSample& d) override { r_.sample(state, d); }
     void on_event(const EventHit& hit) override { r_.crossing(hit); }
+    void on_sensitivities(const Sensitivities& S) override {
+      coupled_ = S.coupled;
+      append(stm_, S.stm, S.coupled);
+      append(parameters_, S.parameters, S.coupled);
+    }
 
    private:
+    /// A matrix in row-major order, shaped (rows, columns) when coupled, else (B, 12, columns).
+    static void append(Series& series, const Eigen::MatrixXd& M, bool whole) {
+      const auto rows = static_cast<py::ssize_t>(M.rows()), cols = static_cast<py::ssize_t>(M.cols());
+      if (whole) {
+        series.shape = {rows, cols};
+      } else {
+        series.shape = {rows / 12, 12, cols};
+      }
+      for (Eigen::Index i = 0; i < M.rows(); ++i)
+        for (Eigen::Index j = 0; j < M.cols(); ++j) series.values.push_back(M(i, j));
+    }
     Recorded& r_;
+    Series &stm_, &parameters_;
+    bool& coupled_;
   };
   Recorded recorded{model, fields, system, specs, t, body, diagnostics, event_names, event_t, event_rows};
-  Arrays arrays_observer(recorded);
+  Arrays arrays_observer(recorded, stm, parameter_sensitivity, coupled);
   // Ctrl-C: Python's handler only sets a flag while the run holds no GIL; it is looked at every 50 ms
   // (taking the GIL for that moment), and the run then stops with the samples so far, which the caller
   // gets with the KeyboardInterrupt (python/tumble/trajectory.py).
@@ -406,6 +430,7 @@ py::dict simulate(const Scene& scene_in, const py::dict& settings,
   } else {
     run.watch(std::move(events));
   }
+  if (sensitivities) run.carry_sensitivities(parse_sensitivity_parameters(*sensitivities));
   run.attach(arrays_observer).stop_when([&] {
     const auto now = std::chrono::steady_clock::now();
     if (now < next_check) return interrupted;
@@ -459,6 +484,12 @@ py::dict simulate(const Scene& scene_in, const py::dict& settings,
   out["event_t"] = event_t;
   out["event_rows"] = event_rows;
   out["interrupted"] = interrupted;
+  if (sensitivities) {
+    out["stm"] = stm.release();
+    out["parameter_sensitivity"] = parameter_sensitivity.release();
+    out["sensitivity_parameters"] = *sensitivities;
+    out["coupled"] = coupled;
+  }
   return out;
 }
 
@@ -507,7 +538,7 @@ void bind_scene(py::module_& m) {
         "A scene from TOML text; `path` names it in messages and anchors relative mesh paths.");
   m.def("_simulate", &simulate, py::arg("scene"), py::arg("settings"), py::arg("fields"), py::arg("force"),
         py::arg("event_specs"), py::arg("python_events"), py::arg("every_body"), py::arg("sample_times"),
-        py::arg("initial"));
+        py::arg("initial"), py::arg("sensitivities") = std::nullopt);
   m.def(
       "_run_settings",
       [] {

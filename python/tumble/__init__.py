@@ -61,7 +61,8 @@ def simulate(scene: Scene | str | _os.PathLike, integrator: str | None = None, f
              rtol: float | None = None, atol: float | None = None, threads: int | None = None,
              fields: Sequence[str] | None = None, force: Callable | None = None,
              events: Sequence[Event | dict] | None = None, drift_threshold: float | None = None,
-             t_eval: Sequence[float] | None = None, initial: Trajectory | dict | None = None) -> Trajectory:
+             t_eval: Sequence[float] | None = None, initial: Trajectory | dict | None = None,
+             sensitivities: bool = False, sensitivity_parameters: str = "inertia") -> Trajectory:
     """Run a scene and return its Trajectory. Arguments left None take the scene's [simulation]
     values (as `tumble run` options do): integrator (e.g. "rk4", "splitting", "dopri45", "exact"),
     formulation ("world", "mixed", "body"), timestep and duration and output_interval (s; 0 = every
@@ -88,7 +89,13 @@ def simulate(scene: Scene | str | _os.PathLike, integrator: str | None = None, f
     initial: where to start instead of the scene's initial state: a Trajectory (its last sample, e.g.
     to continue a run) or a dict with t (s) and, one row per body then particle, position (N, 3),
     orientation (N, 4, w first), velocity (N, 3) and angular_velocity (N, 3, world) as a Trajectory
-    holds them. The run then starts at that t; its drifts are measured from there."""
+    holds them. The run then starts at that t; its drifts are measured from there.
+
+    sensitivities: also differentiate the run (docs/sensitivities.md): the Trajectory then holds ``stm``,
+    (T, 12 B, 12 B) = d x(t_k) / d x(0), and ``parameter_sensitivity``, (T, 12 B, 3 B) = d x(t_k) / d(I1,
+    I2, I3) of each body, or (T, 12 B, B) with respect to the masses with sensitivity_parameters="mass".
+    Forward-mode derivatives of the integrator's own steps (euler, semi_implicit_euler, rk4, lie_rk4,
+    implicit_gyro); no events are watched and no Python force is differentiated."""
     if isinstance(scene, (str, bytes)) or hasattr(scene, "__fspath__"):
         scene = load_scene(scene)
     specs, python_events, every = [], [], []
@@ -137,7 +144,8 @@ def simulate(scene: Scene | str | _os.PathLike, integrator: str | None = None, f
                     output_interval=output_interval, rtol=rtol, atol=atol, threads=threads,
                     drift_threshold=drift_threshold)
     raw = _tumble._simulate(scene, settings, None if fields is None else list(fields), force, specs,
-                            python_events, every, sample_times, start)
+                            python_events, every, sample_times, start,
+                            sensitivity_parameters if sensitivities else None)
     trajectory = Trajectory._from_run(raw)
     if drop_start:
         trajectory = trajectory._from(1)

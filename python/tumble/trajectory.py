@@ -65,21 +65,64 @@ class Trajectory:
         self.timestep = timestep
         self.warning = warning
         self.complete = complete
+        self.sensitivities = None  # set by simulate(..., sensitivities=True): see stm
+
+    @property
+    def stm(self):
+        """The state transition matrix at every sample, (T, 12 B, 12 B): d x(t_k) / d x(0) in the tangent
+        space of docs/sensitivities.md (per body dp, dtheta, dv, domega, world axes, body-major). Bodies that
+        do not interact give zeros off the diagonal blocks; ``stm_blocks`` holds those blocks alone."""
+        return self._dense("stm")
+
+    @property
+    def parameter_sensitivity(self):
+        """d x(t_k) / d p at every sample, (T, 12 B, P B): p each body's principal moments (I1, I2, I3), or
+        its mass (simulate(..., sensitivity_parameters="mass"))."""
+        return self._dense("parameter_sensitivity")
+
+    @property
+    def stm_blocks(self):
+        """Each body's own block of the state transition matrix, (T, B, 12, 12), without the B x B layout of
+        ``stm`` (bodies that do not interact). For coupled bodies (springs), ``stm`` itself."""
+        return self._sensitivity("stm")
+
+    def _sensitivity(self, name):
+        if self.sensitivities is None:
+            raise AttributeError(f"the trajectory has no {name}: run simulate(..., sensitivities=True)")
+        return self.sensitivities[name]
+
+    def _dense(self, name):
+        blocks = self._sensitivity(name)
+        if self.sensitivities["coupled"]:
+            return blocks
+        T, B, _, P = blocks.shape
+        dense = np.zeros((T, 12 * B, P * B))
+        for b in range(B):
+            dense[:, 12 * b:12 * b + 12, P * b:P * b + P] = blocks[:, b]
+        return dense
 
     @classmethod
     def _from_run(cls, raw):
         rows = list(raw["names"])
         events = [EventCrossing(n, t, rows[r] if r >= 0 else None)
                   for n, t, r in zip(raw["event_names"], raw["event_t"], raw["event_rows"])]
-        return cls(raw["t"], rows, raw["fields"], raw["units"], raw["frames"], raw["diagnostics"], events,
-                   raw["integrator"], raw["formulation"], raw["timestep"], raw.get("warning"),
-                   complete=not raw["interrupted"])
+        trajectory = cls(raw["t"], rows, raw["fields"], raw["units"], raw["frames"], raw["diagnostics"],
+                         events, raw["integrator"], raw["formulation"], raw["timestep"], raw.get("warning"),
+                         complete=not raw["interrupted"])
+        if "stm" in raw:
+            trajectory.sensitivities = {key: raw[key] for key in
+                                        ("stm", "parameter_sensitivity", "coupled", "sensitivity_parameters")}
+        return trajectory
 
     def _from(self, k):
         """The samples from the k-th on (views of the same arrays); events and settings as they are."""
-        return Trajectory(self.t[k:], self.names, {n: a[k:] for n, a in self.fields.items()}, self.units,
-                          self.frames, {n: a[k:] for n, a in self.diagnostics.items()}, self.events,
-                          self.integrator, self.formulation, self.timestep, self.warning, self.complete)
+        later = Trajectory(self.t[k:], self.names, {n: a[k:] for n, a in self.fields.items()}, self.units,
+                           self.frames, {n: a[k:] for n, a in self.diagnostics.items()}, self.events,
+                           self.integrator, self.formulation, self.timestep, self.warning, self.complete)
+        if self.sensitivities is not None:
+            later.sensitivities = dict(self.sensitivities, stm=self.sensitivities["stm"][k:],
+                                       parameter_sensitivity=self.sensitivities["parameter_sensitivity"][k:])
+        return later
 
     def __getattr__(self, name):
         fields = self.__dict__.get("fields", {})

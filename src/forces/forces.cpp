@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <tuple>
+#include <type_traits>
+
 #include "tumble/dynamics/quantities.hpp"
 #include "tumble/error.hpp"
 
@@ -18,6 +21,80 @@ Vec3 in_world(Frame frame, const Vec3& v, const RigidBody& b, const BodyState& s
   if (frame == Frame::world) return v;
   if (frame == Frame::principal) return s.q * v;
   return reference_state(b, s).orientation * v;
+}
+/// The same on dual numbers: R_ref v = R Uᵀ v.
+Vec3T<TangentScalar> in_world(Frame frame, const Vec3& v, const RigidBody& b,
+                              const BodyStateT<TangentScalar>& s) {
+  using T = TangentScalar;
+  if (frame == Frame::world) return v.cast<T>();
+  const Vec3 principal = frame == Frame::principal ? v : Vec3(b.U().transpose() * v);
+  return rotate<T>(s.q, principal.cast<T>());
+}
+/// World position of a body point given in `frame` coordinates (world: a fixed point; principal: about
+/// the centre of mass; reference: the reference frame's point): x = o + R Uᵀ(r − c) for the latter.
+Vec3T<TangentScalar> point_in_world(Frame frame, const Vec3& r, const RigidBody& b,
+                                    const BodyStateT<TangentScalar>& s) {
+  using T = TangentScalar;
+  if (frame == Frame::world) return r.cast<T>();
+  const Vec3 principal = frame == Frame::principal ? r : Vec3(b.U().transpose() * (r - b.center_of_mass()));
+  return s.o + rotate<T>(s.q, principal.cast<T>());
+}
+
+/// The force of a spring–damper on its end a at xa (velocity va), the other end at xb (vb):
+/// f = −(k(|d| − L₀) + c ḋ·d̂) d̂, d = xa − xb; zero at zero length (the direction is undefined: a spring
+/// of zero length pulls nowhere).
+template <class T>
+Vec3T<T> spring_force(double k, double rest, double c, const Vec3T<T>& xa, const Vec3T<T>& xb,
+                      const Vec3T<T>& va, const Vec3T<T>& vb) {
+  using std::sqrt;
+  const Vec3T<T> d = xa - xb;
+  const T len = sqrt(d.squaredNorm());
+  if (len == T(0.0)) return Vec3T<T>::Zero();
+  const Vec3T<T> n = d / len;
+  return -(k * (len - rest) + c * (va - vb).dot(n)) * n;
+}
+
+/// |u|, with the derivative 0 where u = 0 (where √ has none, and every law here multiplies |u| by u).
+template <class T>
+T magnitude(const Vec3T<T>& u) {
+  if constexpr (std::is_same_v<T, double>) {
+    return u.norm();
+  } else {
+    using std::sqrt;
+    const T u2 = u.squaredNorm();
+    return u2.v > 0 ? sqrt(u2) : T(0.0);
+  }
+}
+
+/// Quadratic drag: f = −k_v |v| v, τ = −k_ω |ω| ω.
+template <class T>
+WrenchT<T> drag_law(double k_v, double k_omega, const Vec3T<T>& v, const Vec3T<T>& w) {
+  return {Vec3T<T>(-k_v * magnitude<T>(v) * v), Vec3T<T>(-k_omega * magnitude<T>(w) * w)};
+}
+
+/// The gravity-gradient load of a point-mass field μ at `center` on a body at o with I = R Λ Rᵀ:
+///   τ = 3μ/|r|⁵ r × (I r),  r = o − center,
+/// and (unless torque_only) f = −∇V with V = −μm/r + μ/2 (3 rᵀIr/r⁵ − tr I/r³): the point-mass pull
+/// plus the small correction of the same expansion, which makes the model exactly conservative with
+/// the torque.
+template <class T>
+WrenchT<T> gravity_gradient_law(double mu, const Vec3& center, bool torque_only, const Vec3T<T>& o,
+                                const QuatT<T>& q, const T& m, const Vec3T<T>& Lambda) {
+  using std::sqrt;
+  const Vec3T<T> r = o - center.cast<T>();
+  const T r2 = r.squaredNorm();
+  const T r1 = sqrt(r2);
+  const Mat3T<T> R = q.toRotationMatrix();
+  const Mat3T<T> I = R * Lambda.asDiagonal() * R.transpose();  // I = R Λ Rᵀ
+  const Vec3T<T> Ir = I * r;
+  WrenchT<T> w;
+  w.torque = T(3.0 * mu) / (r2 * r2 * r1) * r.cross(Ir);
+  if (torque_only) return w;
+  const T r5 = r2 * r2 * r1, r7 = r5 * r2;
+  const Vec3T<T> grad_V2 =
+      T(0.5 * mu) * (T(3.0) * (T(2.0) * Ir / r5 - T(5.0) * r.dot(Ir) * r / r7) + T(3.0) * I.trace() * r / r5);
+  w.force = -(T(mu) * m / (r2 * r1) * r + grad_V2);
+  return w;
 }
 
 void check_body(size_t i, size_t n_bodies, const char* model) {
@@ -50,6 +127,14 @@ std::string target(std::span<const RigidBody> bodies, size_t body) {
 }
 
 }  // namespace
+
+void ForceModel::accumulate_tangent(const TangentView& view, std::span<WrenchT<TangentScalar>>) const {
+  throw InvalidArgument(fmt::format(
+      "sensitivities: the force model '{}' cannot be differentiated (tumble differentiates its own force "
+      "models; a user function's derivatives are unknown to it): run without sensitivities, or estimate "
+      "them by finite differences (stm_by_central_differences)",
+      describe(view.bodies)));
+}
 
 void Loads::reset(size_t n_bodies, size_t n_particles) {
   bodies.assign(n_bodies, Wrench{});
@@ -125,6 +210,12 @@ void UniformGravity::accumulate_block(const BodyBlock& block, BlockLoads& loads)
     for (size_t j = 0; j < block.count; ++j) loads.f[k][j] += block.m[j] * g;  // f = m g
   }
 }
+void UniformGravity::accumulate_tangent(const TangentView& view,
+                                        std::span<WrenchT<TangentScalar>> loads) const {
+  // f = m g, as accumulate_block's column loop (kept there for the engine's speed).
+  for (size_t i = 0; i < view.states.size(); ++i)
+    loads[i].force += view.states[i].m * g_.cast<TangentScalar>();
+}
 void UniformGravity::accumulate_particles(const SystemView& view, std::span<Vec3> f) const {
   for (size_t i = 0; i < view.particles.size(); ++i) f[i] += view.particles[i].mass * g_;
 }
@@ -154,6 +245,13 @@ void PointForce::accumulate_block(const BodyBlock& block, BlockLoads& loads) con
                                                     : point_position(b, s, point_);
   loads.add_force_at(j, s.o, f, x);
 }
+void PointForce::accumulate_tangent(const TangentView& view, std::span<WrenchT<TangentScalar>> loads) const {
+  const RigidBody& b = view.bodies[body_];
+  const BodyStateT<TangentScalar>& s = view.states[body_];
+  const Vec3T<TangentScalar> f = in_world(force_frame_, force_, b, s);
+  loads[body_].force += f;
+  loads[body_].torque += (point_in_world(point_frame_, point_, b, s) - s.o).cross(f);  // τ = (x − o) × f
+}
 void PointForce::check(size_t n_bodies, size_t) const { check_body(body_, n_bodies, "point force"); }
 std::string PointForce::describe(std::span<const RigidBody> bodies) const {
   return fmt::format("force {} N ({} axes) at {} ({} point) on {}", vec(force_), frame_name(force_frame_),
@@ -165,6 +263,9 @@ void PureTorque::accumulate_block(const BodyBlock& block, BlockLoads& loads) con
   const size_t j = body_ - block.begin;
   const Vec3 tau = in_world(frame_, torque_, block.bodies[j], block.state(j));
   loads.add(j, Vec3::Zero(), tau);
+}
+void PureTorque::accumulate_tangent(const TangentView& view, std::span<WrenchT<TangentScalar>> loads) const {
+  loads[body_].torque += in_world(frame_, torque_, view.bodies[body_], view.states[body_]);
 }
 void PureTorque::check(size_t n_bodies, size_t) const { check_body(body_, n_bodies, "torque"); }
 std::string PureTorque::describe(std::span<const RigidBody> bodies) const {
@@ -179,6 +280,14 @@ void ViscousDamping::accumulate_block(const BodyBlock& block, BlockLoads& loads)
     loads.add(j, -linear_ * column_vec(block.v, j), -angular_ * column_vec(block.omega_w, j));
   });
 }
+void ViscousDamping::accumulate_tangent(const TangentView& view,
+                                        std::span<WrenchT<TangentScalar>> loads) const {
+  for (size_t i = 0; i < view.states.size(); ++i) {
+    if (body_ != all_bodies && body_ != i) continue;
+    loads[i].force -= linear_ * view.states[i].v;
+    loads[i].torque -= angular_ * view.states[i].omega_w;
+  }
+}
 void ViscousDamping::accumulate_particles(const SystemView& view, std::span<Vec3> f) const {
   if (body_ != all_bodies) return;
   for (size_t i = 0; i < view.particles.size(); ++i) f[i] -= linear_ * view.particle_states[i].v;
@@ -190,10 +299,20 @@ std::string ViscousDamping::describe(std::span<const RigidBody> bodies) const {
 
 void QuadraticDrag::accumulate_block(const BodyBlock& block, BlockLoads& loads) const {
   for_bodies(body_, block, [&](size_t j) {
-    const Vec3 v = column_vec(block.v, j);
-    const Vec3 w = column_vec(block.omega_w, j);
-    loads.add(j, -linear_ * v.norm() * v, -angular_ * w.norm() * w);
+    const WrenchT<double> w =
+        drag_law<double>(linear_, angular_, column_vec(block.v, j), column_vec(block.omega_w, j));
+    loads.add(j, w.force, w.torque);
   });
+}
+void QuadraticDrag::accumulate_tangent(const TangentView& view,
+                                       std::span<WrenchT<TangentScalar>> loads) const {
+  for (size_t i = 0; i < view.states.size(); ++i) {
+    if (body_ != all_bodies && body_ != i) continue;
+    const WrenchT<TangentScalar> w =
+        drag_law<TangentScalar>(linear_, angular_, view.states[i].v, view.states[i].omega_w);
+    loads[i].force += w.force;
+    loads[i].torque += w.torque;
+  }
 }
 void QuadraticDrag::accumulate_particles(const SystemView& view, std::span<Vec3> f) const {
   if (body_ != all_bodies) return;
@@ -209,6 +328,26 @@ std::string QuadraticDrag::describe(std::span<const RigidBody> bodies) const {
 
 // ---- springs ----------------------------------------------------------------------------------
 
+void Spring::accumulate_tangent(const TangentView& view, std::span<WrenchT<TangentScalar>> loads) const {
+  using T = TangentScalar;
+  // The ends as the run sees them: a body point x = o + R Uᵀ(r − c), moving with v + ω × (x − o), or
+  // a world anchor (particles are refused before: sensitivities are of rigid bodies).
+  auto end = [&](const End& e) -> std::pair<Vec3T<T>, Vec3T<T>> {
+    if (e.body == all_bodies) return {e.point.cast<T>(), Vec3T<T>::Zero()};
+    const BodyStateT<T>& s = view.states[e.body];
+    const Vec3T<T> x = point_in_world(Frame::reference, e.point, view.bodies[e.body], s);
+    return {x, s.v + s.omega_w.cross(x - s.o)};
+  };
+  const auto [xa, va] = end(a_);
+  const auto [xb, vb] = end(b_);
+  const Vec3T<T> f = spring_force<T>(k_, rest_, c_, xa, xb, va, vb);
+  for (const auto& [e, force, x] : {std::tuple{a_, f, xa}, std::tuple{b_, Vec3T<T>(-f), xb}}) {
+    if (e.body == all_bodies) continue;
+    loads[e.body].force += force;
+    loads[e.body].torque += (x - view.states[e.body].o).cross(force);  // τ = (x − o) × f
+  }
+}
+
 std::pair<Vec3, Vec3> Spring::end_state(const End& e, const SystemView& view) const {
   if (e.particle != all_bodies) {
     return {view.particle_states[e.particle].x, view.particle_states[e.particle].v};
@@ -222,11 +361,7 @@ std::pair<Vec3, Vec3> Spring::end_state(const End& e, const SystemView& view) co
 void Spring::accumulate(const SystemView& view, Loads& loads) const {
   const auto [xa, va] = end_state(a_, view);
   const auto [xb, vb] = end_state(b_, view);
-  const Vec3 d = xa - xb;
-  const double len = d.norm();
-  if (len == 0.0) return;  // direction undefined; a spring of zero length pulls nowhere
-  const Vec3 n = d / len;
-  const Vec3 f = -(k_ * (len - rest_) + c_ * (va - vb).dot(n)) * n;  // on end a
+  const Vec3 f = spring_force<double>(k_, rest_, c_, xa, xb, va, vb);
   auto apply = [&](const End& e, const Vec3& force, const Vec3& x) {
     if (e.particle != all_bodies) {
       loads.particles[e.particle] += force;
@@ -258,27 +393,21 @@ std::optional<double> Spring::potential_energy(const SystemView& view) const {
 
 void GravityGradient::accumulate_block(const BodyBlock& block, BlockLoads& loads) const {
   for (size_t j = 0; j < block.count; ++j) {
-    const Vec3 o = column_vec(block.o, j);
     const Quat q(block.q[0][j], block.q[1][j], block.q[2][j], block.q[3][j]);
     const Vec3 Lambda(block.Lambda[0][j], block.Lambda[1][j], block.Lambda[2][j]);
-    const Vec3 r = o - center_;
-    const double r2 = r.squaredNorm();
-    const double r1 = std::sqrt(r2);
-    const Mat3 R = q.toRotationMatrix();
-    const Mat3 I = R * Lambda.asDiagonal() * R.transpose();  // I = R Λ Rᵀ
-    const Vec3 Ir = I * r;
-    // τ = 3μ/|r|⁵ r × (I r)
-    const Vec3 tau = 3.0 * mu_ / (r2 * r2 * r1) * r.cross(Ir);
-    if (torque_only_) {
-      loads.add(j, Vec3::Zero(), tau);
-      continue;
-    }
-    // f = −∇V with V = −μm/r + μ/2 (3 rᵀIr/r⁵ − tr I/r³): the point-mass pull plus the small
-    // correction of the same expansion, which makes the model exactly conservative with the torque.
-    const double r5 = r2 * r2 * r1, r7 = r5 * r2;
-    const Vec3 grad_V2 = 0.5 * mu_ *
-                         (3.0 * (2.0 * Ir / r5 - 5.0 * r.dot(Ir) * r / r7) + 3.0 * I.trace() * r / r5);
-    loads.add(j, -(mu_ * block.m[j] / (r2 * r1) * r + grad_V2), tau);
+    const WrenchT<double> w = gravity_gradient_law<double>(mu_, center_, torque_only_, column_vec(block.o, j),
+                                                           q, block.m[j], Lambda);
+    loads.add(j, w.force, w.torque);
+  }
+}
+void GravityGradient::accumulate_tangent(const TangentView& view,
+                                         std::span<WrenchT<TangentScalar>> loads) const {
+  for (size_t i = 0; i < view.states.size(); ++i) {
+    const BodyStateT<TangentScalar>& s = view.states[i];
+    const WrenchT<TangentScalar> w =
+        gravity_gradient_law<TangentScalar>(mu_, center_, torque_only_, s.o, s.q, s.m, s.Lambda);
+    loads[i].force += w.force;
+    loads[i].torque += w.torque;
   }
 }
 std::string GravityGradient::describe(std::span<const RigidBody>) const {

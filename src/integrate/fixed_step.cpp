@@ -38,6 +38,11 @@ class ExplicitEuler final : public Integrator {
   void step(const Model& model, Formulation F, SystemCoordinates& x, double h) override {
     steps(model, F, x, h, 1);
   }
+  void step_tangent(const Model& model, Formulation F, TangentCoordinates& x, double h) override {
+    tangent_.rates(model, F, x, k_);
+    for (size_t i = 0; i < x.bodies.size(); ++i) x.bodies[i] = advanced<TangentScalar>(x.bodies[i], h, k_[i]);
+    x.t += h;
+  }
   bool fuses_steps(const Model& model) const override { return engine::Engine::fusable(model); }
   void steps(const Model& model, Formulation F, SystemCoordinates& x, double h, long count) override {
     engine_.prepare(model, F, threads_);
@@ -54,6 +59,8 @@ class ExplicitEuler final : public Integrator {
 
  private:
   engine::Engine engine_;
+  TangentRates tangent_;
+  std::vector<CoordinateRates<TangentScalar>> k_;
 };
 
 /// Semi-implicit (symplectic) Euler: velocities first, v_{n+1} = v_n + h v̇(x_n), then positions and
@@ -73,14 +80,8 @@ class SemiImplicitEuler final : public Integrator {
     const BodyColumnsRef xr = x.bodies.ref();
     auto kernel = [&](const Block& b) {
       for (size_t i = b.begin; i < b.end; i += kWidth) {
-        Coordinates<Pack> c = xr.load<Pack>(i);
-        const CoordinateRates<Pack> k = engine_.rates<Pack>(b, i, c);
-        c.v += hp * k.v_dot;
-        c.omega += hp * k.omega_dot;
-        const auto [o_dot, q_dot] = kinematics<Pack>(F, c);  // with the updated velocities
-        c.o += hp * o_dot;
-        c.q = normalized<Pack>(QuatT<Pack>(c.q.coeffs() + hp * q_dot.coeffs()));
-        xr.store(i, c);
+        const Coordinates<Pack> c = xr.load<Pack>(i);
+        xr.store(i, semi_implicit_euler_update<Pack>(F, c, hp, engine_.rates<Pack>(b, i, c)));
       }
     };
     one_stage_steps(engine_, x, h, count, kernel, [&](size_t p, ParticleState& s) {
@@ -88,9 +89,18 @@ class SemiImplicitEuler final : public Integrator {
       s.x += h * s.v;
     });
   }
+  void step_tangent(const Model& model, Formulation F, TangentCoordinates& x, double h) override {
+    tangent_.rates(model, F, x, k_);
+    for (size_t i = 0; i < x.bodies.size(); ++i) {
+      x.bodies[i] = semi_implicit_euler_update<TangentScalar>(F, x.bodies[i], h, k_[i]);
+    }
+    x.t += h;
+  }
 
  private:
   engine::Engine engine_;
+  TangentRates tangent_;
+  std::vector<CoordinateRates<TangentScalar>> k_;
 };
 
 /// The classic fourth-order Runge–Kutta method; stage quaternions are renormalised. The tableau and
@@ -111,26 +121,40 @@ class RungeKutta4 final : public Integrator {
     rk4::steps(engine_, x, h, count, y_, A_particles_, {&y_.bodies, &A_},
                [&](int s, const Block& blk, const BodyColumnsRef& in) {
                  const BodyColumnsRef &y = blk.work[0], &A = blk.work[1];
-                 if (s < 3) {
-                   const Pack step_next(rk4::c[s + 1] * h), weight(rk4::b[s]);
-                   for (size_t i = blk.begin; i < blk.end; i += kWidth) {
-                     const CoordinateRates<Pack> k = engine_.rates<Pack>(blk, i, in.load<Pack>(i));
-                     A.store(i, s == 0 ? k : axpy<Pack>(A.load_rates<Pack>(i), weight, k));
-                     y.store(i, advanced<Pack>(xr.load<Pack>(i), step_next, k));
-                   }
-                 } else {
-                   const Pack h6(h / 6), one(1.0);
-                   for (size_t i = blk.begin; i < blk.end; i += kWidth) {
-                     const CoordinateRates<Pack> k = engine_.rates<Pack>(blk, i, in.load<Pack>(i));
-                     xr.store(i, advanced<Pack>(xr.load<Pack>(i), h6,
-                                                axpy<Pack>(A.load_rates<Pack>(i), one, k)));
+                 const Pack hp(h);
+                 for (size_t i = blk.begin; i < blk.end; i += kWidth) {
+                   const CoordinateRates<Pack> k = engine_.rates<Pack>(blk, i, in.load<Pack>(i));
+                   CoordinateRates<Pack> Ai = s == 0 ? k : A.load_rates<Pack>(i);
+                   const Coordinates<Pack> next = rk4::stage<Pack>(s, hp, xr.load<Pack>(i), k, Ai);
+                   if (s < 3) {
+                     A.store(i, Ai);
+                     y.store(i, next);
+                   } else {
+                     xr.store(i, next);
                    }
                  }
                });
   }
+  void step_tangent(const Model& model, Formulation F, TangentCoordinates& x, double h) override {
+    using T = TangentScalar;
+    y_tangent_ = x;
+    A_tangent_.resize(x.bodies.size());
+    for (int s = 0; s < 4; ++s) {
+      y_tangent_.t = x.t + rk4::c[s] * h;
+      tangent_.rates(model, F, y_tangent_, k_);
+      for (size_t i = 0; i < x.bodies.size(); ++i) {
+        const Coordinates<T> next = rk4::stage<T>(s, h, x.bodies[i], k_[i], A_tangent_[i]);
+        (s < 3 ? y_tangent_.bodies[i] : x.bodies[i]) = next;
+      }
+    }
+    x.t += h;
+  }
 
  private:
   engine::Engine engine_;
+  TangentRates tangent_;
+  TangentCoordinates y_tangent_;
+  std::vector<CoordinateRates<TangentScalar>> k_, A_tangent_;
   SystemCoordinates y_;  // staged steps only: the stage state and A as whole-system columns
   BodyColumns A_;
   std::vector<ParticleState> A_particles_;

@@ -14,6 +14,30 @@
 namespace tumble {
 namespace {
 
+/// One step of one body given its loads at the step's start (world force f and torque τ): the Newton
+/// step of Euler's equation, semi-implicit Euler for v and o, the exponential map for q. On double for
+/// the run, on TangentScalar for its derivatives (step_tangent): one source.
+template <class T>
+Coordinates<T> implicit_gyro_body(Formulation F, Coordinates<T> c, const Vec3T<T>& Lambda, const T& m,
+                                  const Vec3T<T>& f, const Vec3T<T>& tau_w, const T& h) {
+  const QuatT<T> q_inv = c.q.conjugate();
+  const Vec3T<T> w = F == Formulation::world ? Vec3T<T>(q_inv * c.omega) : c.omega;
+  const Vec3T<T> tau_b = q_inv * tau_w;
+  const Mat3T<T> J = Mat3T<T>(Lambda.asDiagonal()) +
+                     h * (skew<T>(w) * Lambda.asDiagonal() - skew<T>(Lambda.cwiseProduct(w)));
+  const Vec3T<T> w_new = w - J.partialPivLu().solve(Vec3T<T>(h * (w.cross(Lambda.cwiseProduct(w)) - tau_b)));
+  if (F == Formulation::body) {
+    c.v += h * Vec3T<T>(q_inv * f / m - w_new.cross(c.v));
+    c.o += h * Vec3T<T>(c.q * c.v);
+  } else {
+    c.v += h * f / m;
+    c.o += h * c.v;
+  }
+  c.q = normalized<T>(c.q * quat_exp<T>(Vec3T<T>(h * w_new)));  // |q| = 1 keeps ω_w ↔ ^bω exact
+  c.omega = F == Formulation::world ? Vec3T<T>(c.q * w_new) : w_new;
+  return c;
+}
+
 /// One body per call (the 3×3 solve pivots, a branch on values): the engine's blocks still give the
 /// loads in columns, in parallel, without allocation.
 class ImplicitGyro final : public Integrator {
@@ -27,26 +51,9 @@ class ImplicitGyro final : public Integrator {
     const size_t n = x.bodies.size();
     engine_.evaluate(x, [&](const engine::Block& blk) {
       for (size_t i = blk.begin; i < std::min(blk.end, n); ++i) {
-        Coordinates<double> c = x.bodies.load(i);
-        const Vec3 Lambda = engine_.Lambda<double>(i);
-        const double m = engine_.m<double>(i);
-        const Quat q_inv = c.q.conjugate();
-        const Vec3 w = F == Formulation::world ? Vec3(q_inv * c.omega) : c.omega;
-        const Vec3 tau_b = q_inv * blk.torque<double>(i);
-        const Mat3 J = Mat3(Lambda.asDiagonal()) +
-                       h * (skew(w) * Lambda.asDiagonal() - skew<double>(Lambda.cwiseProduct(w)));
-        const Vec3 w_new = w - J.partialPivLu().solve(h * (w.cross(Lambda.cwiseProduct(w)) - tau_b));
-        const Vec3 f = blk.force<double>(i);
-        if (F == Formulation::body) {
-          c.v += h * (q_inv * f / m - w_new.cross(c.v));
-          c.o += h * (c.q * c.v);
-        } else {
-          c.v += h * f / m;
-          c.o += h * c.v;
-        }
-        c.q = normalized<double>(c.q * quat_exp<double>(h * w_new));  // |q| = 1 keeps ω_w ↔ ^bω exact
-        c.omega = F == Formulation::world ? Vec3(c.q * w_new) : w_new;
-        x.bodies.store(i, c);
+        x.bodies.store(i, implicit_gyro_body<double>(F, x.bodies.load(i), engine_.Lambda<double>(i),
+                                                     engine_.m<double>(i), blk.force<double>(i),
+                                                     blk.torque<double>(i), h));
       }
     });
     for (size_t p = 0; p < x.particles.size(); ++p) {
@@ -56,9 +63,18 @@ class ImplicitGyro final : public Integrator {
     }
     x.t += h;
   }
+  void step_tangent(const Model& model, Formulation F, TangentCoordinates& x, double h) override {
+    const std::span<const WrenchT<TangentScalar>> loads = tangent_.loads(model, F, x);
+    for (size_t i = 0; i < x.bodies.size(); ++i) {
+      x.bodies[i] = implicit_gyro_body<TangentScalar>(F, x.bodies[i], x.Lambda[i], x.m[i], loads[i].force,
+                                                      loads[i].torque, h);
+    }
+    x.t += h;
+  }
 
  private:
   engine::Engine engine_;
+  TangentRates tangent_;
 };
 
 }  // namespace

@@ -19,15 +19,46 @@ using engine::Pack;
 ///   left  (Ṙ = [ω]× R, R = exp(θ) R_n):   θ̇ = ω − ½ θ × ω + (1/12) θ × (θ × ω)
 ///   right (Ṙ = R [ω]×, R = R_n exp(θ)):   θ̇ = ω + ½ θ × ω + (1/12) θ × (θ × ω)
 template <class T>
-Vec3T<T> dexpinv(const Vec3T<T>& theta, const Vec3T<T>& w, bool right) {
+TUMBLE_INLINE Vec3T<T> dexpinv(const Vec3T<T>& theta, const Vec3T<T>& w, bool right) {
   const Vec3T<T> half = T(0.5) * theta.cross(w);
   return (right ? Vec3T<T>(w + half) : Vec3T<T>(w - half)) + theta.cross(theta.cross(w)) / T(12);
 }
 
-/// The RK4 tableau of rk4 (fixed_step.cpp) in the same low-storage form, with the rotation advanced
-/// through θ: at stage s the orientation is R_n·exp(θ_s) (right) or exp(θ_s)·R_n (left), the other
-/// variables x + c_s h k_{s−1}; θ_{s+1} = c_{s+1} h F_s with F_s = dexp⁻¹_{θ_s}(ω_s), and the step ends
-/// at θ = (h/6)(F₁ + 2F₂ + 2F₃ + F₄). Stage variables: y, A, and θ_s, ΣF in a third set's columns.
+/// R_n exp([θ]×) (right) or exp([θ]×) R_n (left) as quaternions.
+template <class T>
+TUMBLE_INLINE QuatT<T> rotated(const QuatT<T>& q, const Vec3T<T>& theta, bool right) {
+  const QuatT<T> e = quat_exp<T>(theta);
+  return right ? quat_mul<T>(q, e) : quat_mul<T>(e, q);
+}
+
+/// Stage s of one body (or pack): the RK4 tableau of rk4 (rk4_steps.hpp) in the same low-storage form,
+/// with the rotation advanced through θ: at stage s the orientation is R_n·exp(θ_s) (right) or
+/// exp(θ_s)·R_n (left), the other variables x + c_s h k_{s−1}; θ_{s+1} = c_{s+1} h F_s with
+/// F_s = dexp⁻¹_{θ_s}(ω_s), and the step ends at θ = (h/6)(F₁ + 2F₂ + 2F₃ + F₄). Given the stage state y
+/// and its rates k, updates A, θ (θ_s in, θ_{s+1} out) and ΣF, and returns y_{s+1} (the step's end at
+/// s = 3). The batched kernel and step_tangent both call it.
+template <class T>
+TUMBLE_INLINE Coordinates<T> lie_stage(int s, const T& h, bool right, const Coordinates<T>& x,
+                                       const Coordinates<T>& y, const CoordinateRates<T>& k,
+                                       CoordinateRates<T>& A, Vec3T<T>& theta, Vec3T<T>& sum_F) {
+  const T weight(rk4::b[s]);
+  const Vec3T<T> Fs = dexpinv<T>(s == 0 ? Vec3T<T>(Vec3T<T>::Zero()) : theta, y.omega, right);
+  if (s < 3) {
+    const T step_next = T(rk4::c[s + 1]) * h;
+    A = s == 0 ? k : axpy<T>(A, weight, k);
+    sum_F = s == 0 ? Fs : Vec3T<T>(sum_F + weight * Fs);
+    theta = step_next * Fs;
+    Coordinates<T> next = advanced<T>(x, step_next, k);
+    next.q = rotated<T>(x.q, theta, right);
+    return next;
+  }
+  const T h6 = h / T(6);
+  Coordinates<T> next = advanced<T>(x, h6, axpy<T>(A, T(1.0), k));
+  next.q = rotated<T>(x.q, Vec3T<T>(h6 * (sum_F + Fs)), right);
+  return next;
+}
+
+/// Stage variables: y, A, and θ_s, ΣF in a third set's columns.
 class LieRungeKutta4 final : public Integrator {
  public:
   std::string name() const override { return "lie_rk4"; }
@@ -42,32 +73,22 @@ class LieRungeKutta4 final : public Integrator {
     const bool right = F != Formulation::world;  // mixed and body integrate ^bω
     engine_.prepare(model, F, threads_, 3);
     const BodyColumnsRef xr = x.bodies.ref();
-    auto rotated = [right](const QuatT<Pack>& q, const Vec3T<Pack>& th) {
-      const QuatT<Pack> e = quat_exp<Pack>(th);
-      return right ? quat_mul<Pack>(q, e) : quat_mul<Pack>(e, q);
-    };
     auto stage = [&](int s, const Block& blk, const BodyColumnsRef& in) {
       const BodyColumnsRef &y = blk.work[0], &A = blk.work[1], &theta = blk.work[2];  // θ_s: 0–2, ΣF: 3–5
-      const Pack weight(rk4::b[s]);
-      const Pack step_next(s < 3 ? rk4::c[s + 1] * h : h / 6);
+      const Pack hp(h);
       for (size_t i = blk.begin; i < blk.end; i += kWidth) {
         const Coordinates<Pack> yi = in.load<Pack>(i);
         const CoordinateRates<Pack> k = engine_.rates<Pack>(blk, i, yi);
-        const Vec3T<Pack> th = s == 0 ? Vec3T<Pack>::Zero() : theta.vec3<Pack>(0, i);
-        const Vec3T<Pack> Fs = dexpinv<Pack>(th, yi.omega, right);
-        const Coordinates<Pack> xi = xr.load<Pack>(i);
+        CoordinateRates<Pack> Ai = s == 0 ? k : A.load_rates<Pack>(i);
+        Vec3T<Pack> th = s == 0 ? Vec3T<Pack>(Vec3T<Pack>::Zero()) : theta.vec3<Pack>(0, i);
+        Vec3T<Pack> sum_F = s == 0 ? th : theta.vec3<Pack>(3, i);
+        const Coordinates<Pack> next = lie_stage<Pack>(s, hp, right, xr.load<Pack>(i), yi, k, Ai, th, sum_F);
         if (s < 3) {
-          A.store(i, s == 0 ? k : axpy<Pack>(A.load_rates<Pack>(i), weight, k));
-          theta.store_vec3<Pack>(3, i, s == 0 ? Fs : Vec3T<Pack>(theta.vec3<Pack>(3, i) + weight * Fs));
-          const Vec3T<Pack> th_next = step_next * Fs;
-          theta.store_vec3<Pack>(0, i, th_next);
-          Coordinates<Pack> next = advanced<Pack>(xi, step_next, k);
-          next.q = rotated(xi.q, th_next);
+          A.store(i, Ai);
+          theta.store_vec3<Pack>(0, i, th);
+          theta.store_vec3<Pack>(3, i, sum_F);
           y.store(i, next);
         } else {
-          Coordinates<Pack> next =
-              advanced<Pack>(xi, step_next, axpy<Pack>(A.load_rates<Pack>(i), Pack(1.0), k));
-          next.q = rotated(xi.q, Vec3T<Pack>(step_next * (theta.vec3<Pack>(3, i) + Fs)));
           xr.store(i, next);
         }
       }
@@ -75,10 +96,34 @@ class LieRungeKutta4 final : public Integrator {
     rk4::steps(engine_, x, h, count, y_, A_particles_, {&y_.bodies, &A_, &theta_}, stage);
   }
 
+  void step_tangent(const Model& model, Formulation F, TangentCoordinates& x, double h) override {
+    using T = TangentScalar;
+    const bool right = F != Formulation::world;
+    const size_t n = x.bodies.size();
+    y_tangent_ = x;
+    A_tangent_.resize(n);
+    theta_tangent_.assign(n, Vec3T<T>::Zero());
+    sum_F_tangent_.resize(n);
+    for (int s = 0; s < 4; ++s) {
+      y_tangent_.t = x.t + rk4::c[s] * h;
+      tangent_.rates(model, F, y_tangent_, k_);
+      for (size_t i = 0; i < n; ++i) {
+        const Coordinates<T> next = lie_stage<T>(s, h, right, x.bodies[i], y_tangent_.bodies[i], k_[i],
+                                                 A_tangent_[i], theta_tangent_[i], sum_F_tangent_[i]);
+        (s < 3 ? y_tangent_.bodies[i] : x.bodies[i]) = next;
+      }
+    }
+    x.t += h;
+  }
+
  private:
   engine::Engine engine_;
   SystemCoordinates y_;  // staged steps only
   BodyColumns A_, theta_;
+  TangentRates tangent_;
+  TangentCoordinates y_tangent_;
+  std::vector<CoordinateRates<TangentScalar>> k_, A_tangent_;
+  std::vector<Vec3T<TangentScalar>> theta_tangent_, sum_F_tangent_;
   std::vector<ParticleState> A_particles_;
 };
 

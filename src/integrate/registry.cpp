@@ -51,6 +51,18 @@ void Integrator::load_state(const Model& /*model*/, Formulation /*formulation*/,
   }
 }
 
+void Integrator::step_tangent(const Model& /*model*/, Formulation /*formulation*/, TangentCoordinates& /*x*/,
+                              double /*h*/) {
+  throw InvalidArgument(
+      fmt::format("integrator '{}' does not differentiate its steps yet: sensitivities are given by {}",
+                  name(), fmt::join(differentiating_integrators(), ", ")));
+}
+
+std::vector<std::string> differentiating_integrators() {
+  // Those that override step_tangent (tests/integrate/step_tangent_test.cpp checks the list).
+  return {"euler", "implicit_gyro", "lie_rk4", "rk4", "semi_implicit_euler"};
+}
+
 std::vector<std::string> integrator_names() {
   std::vector<std::string> names;
   for (const auto& entry : fixed_step()) names.push_back(entry.first);

@@ -20,6 +20,20 @@ TUMBLE_INLINE CoordinateRates<T> axpy(const CoordinateRates<T>& a, T w, const Co
           a.omega_dot + w * b.omega_dot};
 }
 
+/// Semi-implicit Euler's update of one body from its rates k at the step's start: velocities first,
+/// v ← v + h v̇, ω ← ω + h ω̇, then position and orientation with the new velocities, o ← o + h ȯ(v),
+/// q ← q + h q̇(ω) (projected back onto |q| = 1).
+template <class T>
+TUMBLE_INLINE Coordinates<T> semi_implicit_euler_update(Formulation F, Coordinates<T> c, const T& h,
+                                                        const CoordinateRates<T>& k) {
+  c.v += h * k.v_dot;
+  c.omega += h * k.omega_dot;
+  const auto [o_dot, q_dot] = kinematics<T>(F, c);  // with the updated velocities
+  c.o += h * o_dot;
+  c.q = normalized<T>(QuatT<T>(c.q.coeffs() + h * q_dot.coeffs()));
+  return c;
+}
+
 /// Newton's second law for a particle, ẋ = v, v̇ = f/m (tutorial, section I), as a (ẋ, v̇) pair.
 inline ParticleState particle_rates(const Particle& p, const ParticleState& s, const Vec3& f) {
   return {s.v, f / p.mass};

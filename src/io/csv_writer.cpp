@@ -362,6 +362,12 @@ bool same_file(const std::filesystem::path& a, const std::filesystem::path& b) {
   return !ec && canonical_a == canonical_b;
 }
 
+void TrajectoryWriter::sensitivities(const Sensitivities&) {
+  throw InvalidArgument(
+      "sensitivities are written to HDF5 only (datasets stm and parameter_sensitivity): give an .h5 "
+      "output name or --format hdf5");
+}
+
 std::unique_ptr<TrajectoryWriter> make_csv_writer(const std::filesystem::path& trajectory,
                                                   const std::filesystem::path& diagnostics,
                                                   const Model& model, TrajectoryInfo info,

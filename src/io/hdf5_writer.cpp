@@ -232,6 +232,38 @@ class Hdf5Writer final : public TrajectoryWriter {
   std::vector<std::filesystem::path> outputs() const override { return {staged_.final_path()}; }
   long samples() const override { return samples_; }
 
+  /// `stm` and `parameter_sensitivity`, one row per sample: (12B, 12B) and (12B, PB) for bodies that
+  /// interact, each body's own blocks (B, 12, 12) and (B, 12, P) for bodies that do not (never a
+  /// 12B × 12B matrix of zeros); the attribute `layout` says which, row-major either way.
+  void sensitivities(const Sensitivities& S) override {
+    const hsize_t rows = static_cast<hsize_t>(S.stm.rows());
+    auto shape = [&](const Eigen::MatrixXd& M) {
+      const hsize_t cols = static_cast<hsize_t>(M.cols());
+      return S.coupled ? std::vector<hsize_t>{rows, cols} : std::vector<hsize_t>{rows / 12, 12, cols};
+    };
+    if (!stm_) {
+      stm_.emplace(file_.get(), "stm", shape(S.stm), planned_samples_, check_);
+      parameter_sensitivity_.emplace(file_.get(), "parameter_sensitivity", shape(S.parameters),
+                                     planned_samples_, check_);
+      for (Series* series : {&*stm_, &*parameter_sensitivity_}) {
+        string_attribute(series->id(), "layout", S.coupled ? "dense" : "block_diagonal", check_);
+        string_attribute(series->id(), "tangent",
+                         "per body dp, dtheta, dv, domega (world axes; theta: R <- exp([dtheta]x) R); "
+                         "body-major; docs/sensitivities.md",
+                         check_);
+      }
+      string_attribute(parameter_sensitivity_->id(), "parameters",
+                       S.parameters_per_body == 3 ? "inertia (I1, I2, I3 of each body)" : "mass", check_);
+    }
+    for (auto [series, M] : {std::pair{&*stm_, &S.stm}, std::pair{&*parameter_sensitivity_, &S.parameters}}) {
+      row_.resize(static_cast<size_t>(M->size()));
+      size_t k = 0;
+      for (Eigen::Index i = 0; i < M->rows(); ++i)
+        for (Eigen::Index j = 0; j < M->cols(); ++j) row_[k++] = (*M)(i, j);  // row-major
+      series->append(row_.data());
+    }
+  }
+
  private:
   void write_names() {
     const Handle type = string_type();
@@ -345,6 +377,7 @@ class Hdf5Writer final : public TrajectoryWriter {
     for (auto& s : diagnostic_series_) {
       if (s) out.push_back(&*s);
     }
+    if (stm_) out.insert(out.end(), {&*stm_, &*parameter_sensitivity_});
     return out;
   }
 
@@ -359,6 +392,7 @@ class Hdf5Writer final : public TrajectoryWriter {
   std::optional<Series> t_;
   std::vector<Series> field_series_;
   std::vector<std::optional<Series>> diagnostic_series_;  ///< one per SystemField, empty if undefined
+  std::optional<Series> stm_, parameter_sensitivity_;     ///< when the run carries sensitivities
   std::vector<double> row_;                               // one field of every row
   std::vector<double> all_;                               // every field of every row, row by row
   bool watch_events_ = false;

@@ -1,5 +1,9 @@
 #include "tumble/sim/run.hpp"
 
+#include <fmt/format.h>
+
+#include "tumble/error.hpp"
+
 namespace tumble {
 
 Run::Run(const Model& model, SystemState initial, const RunSettings& settings, Conservation conserved)
@@ -39,7 +43,31 @@ Run& Run::as_lanes(std::vector<Lane> lanes) {
   return *this;
 }
 
+Run& Run::carry_sensitivities(SensitivityParameters parameters) {
+  sensitivities_ = parameters;
+  return *this;
+}
+
 SystemState Run::run() {
+  if (sensitivities_) {
+    if (!events_.empty() || !lanes_.empty() || point_ || resume_) {
+      throw InvalidArgument(fmt::format(
+          "sensitivities are computed by their own loop, which {} yet: run without sensitivities for that, "
+          "or remove the [[events]] from the scene",
+          !events_.empty() || !lanes_.empty() ? "watches no events" : "keeps no checkpoints"));
+    }
+    SystemState end = simulate_sensitivities(model_, initial_, settings_, *sensitivities_,
+                                             [this](const SystemState& state, const Sensitivities& s) {
+                                               const DriftSample d = monitor_.observe(state);
+                                               for (RunObserver* o : observers_) {
+                                                 o->on_sample(state, d);
+                                                 o->on_sensitivities(s);
+                                               }
+                                               stopped_ = stopped_ || (stop_ && stop_());
+                                               return !stopped_;
+                                             });
+    return end;
+  }
   RunHooks hooks;
   hooks.events = events_;
   hooks.stats = &stats_;

@@ -172,10 +172,8 @@ void validate(const RunSettings& s) {
   }
 }
 
-namespace {
+namespace steppers {
 
-/// The sample times of a run that starts at t0, if given: finite, ascending, after the start, apart by
-/// more than the rounding of the step grid (1e-9 h, FixedSteps), the last where the run ends.
 void check_sample_times(const RunSettings& s, double t0) {
   const std::vector<double>& times = s.sample_times;
   if (times.empty()) return;
@@ -199,7 +197,20 @@ void check_sample_times(const RunSettings& s, double t0) {
                       times.back(), t0, s.duration));
 }
 
-}  // namespace
+SampleTimes::SampleTimes(const RunSettings& s, double t0)
+    : t0_(t0),
+      t_end_(s.sample_times.empty() ? t0 + s.duration : s.sample_times.back()),
+      dt_out_(s.output_interval > 0 ? s.output_interval : s.timestep),
+      times_(&s.sample_times) {}
+
+double SampleTimes::operator()(long k) const {
+  if (k == 0) return t0_;
+  if (!times_->empty())
+    return (*times_)[static_cast<size_t>(std::min<long>(k, static_cast<long>(times_->size()))) - 1];
+  return std::min(t0_ + static_cast<double>(k) * dt_out_, t_end_);
+}
+
+}  // namespace steppers
 
 SystemState simulate(const Model& model, SystemState state, const RunSettings& settings,
                      const SampleSink& on_sample, IntegratorStats* stats,
@@ -316,19 +327,9 @@ SystemState simulate(const Model& model, SystemState state, const RunSettings& s
     throw InvalidArgument(fmt::format("{} state of {} is not finite", from ? "the resumed" : "initial", bad));
   }
   const double t0 = state.t;
-  const std::vector<double>& times = settings.sample_times;
-  check_sample_times(settings, t0);
-  const double t_end = times.empty() ? t0 + settings.duration : times.back();
-  const double h = settings.timestep;
-  // Sample k ≥ 1 is at t₀ + k·Δ, computed from k (not accumulated) so the times do not drift; or at the
-  // k-th time given. Sample 0 is the start.
-  const double dt_out = settings.output_interval > 0 ? settings.output_interval : h;
-  const auto sample_time = [&](long k) {
-    if (k == 0) return t0;
-    if (!times.empty())
-      return times[static_cast<size_t>(std::min<long>(k, static_cast<long>(times.size()))) - 1];
-    return std::min(t0 + static_cast<double>(k) * dt_out, t_end);
-  };
+  steppers::check_sample_times(settings, t0);
+  const steppers::SampleTimes sample_time(settings, t0);
+  const double t_end = sample_time.end();
   long k_out = from ? from->next_sample : 1;
   // Samples handed over, counted for run points (a resumed run continues the count).
   long samples = from ? from->samples : 0;

@@ -14,6 +14,26 @@
 
 namespace tumble::steppers {
 
+/// Throws InvalidArgument unless the sample times of a run that starts at t0, if given, are finite,
+/// ascending, after the start, apart by more than the rounding of the step grid (1e-9 h, FixedSteps),
+/// the last where the run ends.
+void check_sample_times(const RunSettings& s, double t0);
+
+/// The sample times of a run that starts at t0 (simulate's and simulate_sensitivities'): sample k ≥ 1 at
+/// t₀ + k·Δ, computed from k (not accumulated) so the times do not drift, or at the k-th time given;
+/// sample 0 is the start.
+class SampleTimes {
+ public:
+  SampleTimes(const RunSettings& s, double t0);
+  double operator()(long k) const;
+  /// Where the run ends.
+  double end() const { return t_end_; }
+
+ private:
+  double t0_, t_end_, dt_out_;
+  const std::vector<double>* times_;
+};
+
 /// At most this many steps are handed to Integrator::steps at once (between samples, no events).
 inline constexpr long kChunk = 16;
 

@@ -7,6 +7,8 @@
 //   body:  ^bf = m(^bv̇ + ^bω × ^bv),     ^bτ = Λ ^bω̇ + ^bω × (Λ ^bω),         Ṙ = R [^bω]×,  ȯ = R ^bv
 //
 // R is kept as a unit quaternion q: Ṙ = [ω]× R  ⇔  q̇ = ½ (0, ω) ⊗ q  ⇔  q̇ = ½ q ⊗ (0, ^bω).
+#include <utility>
+
 #include "tumble/dynamics/state.hpp"
 #include "tumble/math/quaternion.hpp"
 
@@ -157,17 +159,26 @@ inline Coordinates<double> to_coordinates(Formulation formulation, const BodySta
   return {};
 }
 
-/// The state for a formulation's variables.
-inline BodyState to_state(Formulation formulation, const Coordinates<double>& x) {
+/// The velocities v, ω of a formulation's variables in world axes: ω_w = R ^bω, v_w = R ^bv where the
+/// formulation holds them in the body frame.
+template <class T>
+TUMBLE_INLINE std::pair<Vec3T<T>, Vec3T<T>> world_velocities(Formulation formulation,
+                                                             const Coordinates<T>& x) {
   switch (formulation) {
     case Formulation::world:
-      return {x.o, x.q, x.v, x.omega};
+      return {x.v, x.omega};
     case Formulation::mixed:
-      return {x.o, x.q, x.v, rotate<double>(x.q, x.omega)};
+      return {x.v, rotate<T>(x.q, x.omega)};
     case Formulation::body:
-      return {x.o, x.q, rotate<double>(x.q, x.v), rotate<double>(x.q, x.omega)};
+      return {rotate<T>(x.q, x.v), rotate<T>(x.q, x.omega)};
   }
   return {};
+}
+
+/// The state for a formulation's variables.
+inline BodyState to_state(Formulation formulation, const Coordinates<double>& x) {
+  const auto [v_w, omega_w] = world_velocities<double>(formulation, x);
+  return {x.o, x.q, v_w, omega_w};
 }
 
 }  // namespace tumble

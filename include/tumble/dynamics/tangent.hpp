@@ -10,11 +10,20 @@
 #include <Eigen/Core>
 
 #include "tumble/dynamics/state.hpp"
+#include "tumble/math/dual.hpp"
 #include "tumble/math/quaternion.hpp"
 
 namespace tumble {
 
 using Tangent = Eigen::Matrix<double, 12, 1>;
+
+/// Directions carried by one pass of the sensitivities: a body's 12 tangent directions and its three
+/// principal moments (or its mass) fit in one pass; a system whose bodies interact (springs) takes
+/// passes of 16 of its columns at a time. 16 doubles are two AVX-512 registers (four AVX2 ones): the
+/// derivative loops of a dual number vectorise across directions.
+inline constexpr int kTangentDirections = 16;
+/// The number type of the sensitivities: a value and its derivatives along kTangentDirections.
+using TangentScalar = Dual<double, kTangentDirections>;
 
 /// x moved along δ: p + δp, exp([δθ]×) R, v + δv, ω + δω (the other components held fixed in world axes).
 [[nodiscard]] inline ReferenceFrameState perturbed(const ReferenceFrameState& x, const Tangent& delta) {

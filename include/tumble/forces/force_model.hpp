@@ -17,6 +17,7 @@
 
 #include "tumble/dynamics/particle.hpp"
 #include "tumble/dynamics/state.hpp"
+#include "tumble/dynamics/tangent.hpp"
 
 namespace tumble {
 
@@ -82,6 +83,31 @@ struct BlockLoads {
   }
 };
 
+/// A body as the sensitivities see it (issue 25): its world state and its mass and principal moments,
+/// all numbers of type T (TangentScalar: each carries its derivatives along the seeded directions, so a
+/// load that depends on m or Λ differentiates with respect to them too).
+template <class T>
+struct BodyStateT {
+  Vec3T<T> o;        ///< centre of mass, world
+  QuatT<T> q;        ///< orientation of {b}
+  Vec3T<T> v;        ///< velocity of the centre of mass, world
+  Vec3T<T> omega_w;  ///< angular velocity, world
+  T m;               ///< mass
+  Vec3T<T> Lambda;   ///< principal moments
+};
+template <class T>
+struct WrenchT {
+  Vec3T<T> force = Vec3T<T>::Zero();   ///< world
+  Vec3T<T> torque = Vec3T<T>::Zero();  ///< world, about the centre of mass
+};
+
+/// What a model differentiates: every body's state in dual numbers (ForceModel::accumulate_tangent).
+struct TangentView {
+  double t = 0.0;
+  std::span<const RigidBody> bodies;  ///< their constant properties (centre of mass, principal axes, name)
+  std::span<const BodyStateT<TangentScalar>> states;
+};
+
 class ForceModel {
  public:
   virtual ~ForceModel() = default;
@@ -105,6 +131,11 @@ class ForceModel {
   /// Throws InvalidArgument when the model refers to a body or particle index the system does not
   /// have. Called once before a run, so that evaluations need not check.
   virtual void check(size_t /*n_bodies*/, size_t /*n_particles*/) const {}
+  /// Add this model's loads at the states of `view`, in dual numbers, to `loads` (one per body): the
+  /// same law as accumulate(), instantiated on TangentScalar, so sensitivities differentiate the loads
+  /// a run applies. The default throws InvalidArgument naming the model: a user's function (callbacks)
+  /// cannot be differentiated by tumble.
+  virtual void accumulate_tangent(const TangentView& view, std::span<WrenchT<TangentScalar>> loads) const;
 };
 
 /// A model whose load on each body depends only on that body's state. It is written once, over a

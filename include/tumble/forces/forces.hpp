@@ -16,6 +16,7 @@ class UniformGravity final : public LocalForceModel {
  public:
   explicit UniformGravity(const Vec3& g) : g_(g) {}
   void accumulate_block(const BodyBlock& block, BlockLoads& loads) const override;
+  void accumulate_tangent(const TangentView& view, std::span<WrenchT<TangentScalar>> loads) const override;
   void accumulate_particles(const SystemView& view, std::span<Vec3> f) const override;
   bool needs_velocity() const override { return false; }
   std::optional<Vec3> uniform_acceleration() const override { return g_; }
@@ -34,6 +35,7 @@ class PointForce final : public LocalForceModel {
   PointForce(size_t body, const Vec3& force, Frame force_frame, const Vec3& point, Frame point_frame)
       : body_(body), force_(force), force_frame_(force_frame), point_(point), point_frame_(point_frame) {}
   void accumulate_block(const BodyBlock& block, BlockLoads& loads) const override;
+  void accumulate_tangent(const TangentView& view, std::span<WrenchT<TangentScalar>> loads) const override;
   bool needs_velocity() const override { return false; }
   void check(size_t n_bodies, size_t n_particles) const override;
   std::string describe(std::span<const RigidBody> bodies) const override;
@@ -51,6 +53,7 @@ class PureTorque final : public LocalForceModel {
  public:
   PureTorque(size_t body, const Vec3& torque, Frame frame) : body_(body), torque_(torque), frame_(frame) {}
   void accumulate_block(const BodyBlock& block, BlockLoads& loads) const override;
+  void accumulate_tangent(const TangentView& view, std::span<WrenchT<TangentScalar>> loads) const override;
   bool needs_velocity() const override { return false; }
   void check(size_t n_bodies, size_t n_particles) const override;
   std::string describe(std::span<const RigidBody> bodies) const override;
@@ -67,6 +70,7 @@ class ViscousDamping final : public LocalForceModel {
   ViscousDamping(size_t body, double linear, double angular)
       : body_(body), linear_(linear), angular_(angular) {}
   void accumulate_block(const BodyBlock& block, BlockLoads& loads) const override;
+  void accumulate_tangent(const TangentView& view, std::span<WrenchT<TangentScalar>> loads) const override;
   void accumulate_particles(const SystemView& view, std::span<Vec3> f) const override;
   void check(size_t n_bodies, size_t n_particles) const override;
   bool acts_alike_on_every_body() const override { return body_ == all_bodies; }
@@ -83,6 +87,7 @@ class QuadraticDrag final : public LocalForceModel {
   QuadraticDrag(size_t body, double linear, double angular)
       : body_(body), linear_(linear), angular_(angular) {}
   void accumulate_block(const BodyBlock& block, BlockLoads& loads) const override;
+  void accumulate_tangent(const TangentView& view, std::span<WrenchT<TangentScalar>> loads) const override;
   void accumulate_particles(const SystemView& view, std::span<Vec3> f) const override;
   void check(size_t n_bodies, size_t n_particles) const override;
   bool acts_alike_on_every_body() const override { return body_ == all_bodies; }
@@ -106,6 +111,7 @@ class Spring final : public ForceModel {
   Spring(End a, End b, double stiffness, double rest_length, double damping)
       : a_(a), b_(b), k_(stiffness), rest_(rest_length), c_(damping) {}
   void accumulate(const SystemView& view, Loads& loads) const override;
+  void accumulate_tangent(const TangentView& view, std::span<WrenchT<TangentScalar>> loads) const override;
   void check(size_t n_bodies, size_t n_particles) const override;
   std::string describe(std::span<const RigidBody> bodies) const override;
   std::optional<double> potential_energy(const SystemView& view) const override;
@@ -128,6 +134,7 @@ class GravityGradient final : public LocalForceModel {
   GravityGradient(double mu, const Vec3& center, bool torque_only = false)
       : mu_(mu), center_(center), torque_only_(torque_only) {}
   void accumulate_block(const BodyBlock& block, BlockLoads& loads) const override;
+  void accumulate_tangent(const TangentView& view, std::span<WrenchT<TangentScalar>> loads) const override;
   bool needs_velocity() const override { return false; }
   bool acts_alike_on_every_body() const override { return true; }
   std::string describe(std::span<const RigidBody> bodies) const override;

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "tumble/integrate/system_coordinates.hpp"
+#include "tumble/integrate/tangent_system.hpp"
 
 namespace tumble {
 
@@ -54,6 +55,12 @@ class Integrator {
   /// Whether steps() takes blocks through several steps at once for this model (and so gains from
   /// being handed many). simulate() chunks steps only then: the state is checked between chunks.
   virtual bool fuses_steps(const Model& /*model*/) const { return false; }
+
+  /// One step of h of the same method on dual numbers (tangent_system.hpp, issue 25): the values of x
+  /// advance as step() advances the variables, by the same templated stage updates, rates and force
+  /// laws, and their derivatives are those of that discrete step. Throws InvalidArgument for the
+  /// integrators that do not differentiate their steps (differentiating_integrators() names the others).
+  virtual void step_tangent(const Model& model, Formulation formulation, TangentCoordinates& x, double h);
 
   /// Throws InvalidArgument, naming what is in the way, if this integrator cannot run `model` (only
   /// `exact` refuses some: it solves torque-free motion under a uniform field). simulate() asks first.
@@ -120,6 +127,9 @@ class AdaptiveIntegrator {
     return interpolate(t);
   }
 };
+
+/// The integrators whose steps are differentiated (Integrator::step_tangent).
+std::vector<std::string> differentiating_integrators();
 
 /// Every registered integrator name, fixed-step and adaptive.
 std::vector<std::string> integrator_names();

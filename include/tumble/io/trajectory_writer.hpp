@@ -28,6 +28,7 @@
 #include "tumble/io/geometry.hpp"
 #include "tumble/sim/drift_monitor.hpp"
 #include "tumble/sim/output_fields.hpp"
+#include "tumble/sim/sensitivities.hpp"
 
 namespace tumble {
 
@@ -64,6 +65,10 @@ class TrajectoryWriter {
   virtual std::vector<std::filesystem::path> outputs() const = 0;
   /// Samples written so far.
   virtual long samples() const = 0;
+  /// The sensitivities of the sample just written (sim/sensitivities.hpp). HDF5 stores them in the
+  /// datasets `stm` and `parameter_sensitivity`; a CSV writer throws InvalidArgument (tumble run refuses
+  /// --sensitivities with CSV before it starts).
+  virtual void sensitivities(const Sensitivities& /*s*/);
   /// Makes what was written so far durable in the (temporary) files: flushed and fsync'ed (a checkpoint
   /// is about to name them). Throws FileError.
   virtual void sync() {}

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "tumble/sim/drift_monitor.hpp"
+#include "tumble/sim/sensitivities.hpp"
 #include "tumble/sim/simulate.hpp"
 
 namespace tumble {
@@ -24,6 +25,9 @@ class RunObserver {
   virtual void on_event(const EventHit& /*hit*/) {}
   /// A point the run could be resumed from (only when the run keeps them: Run::keep_run_points).
   virtual void on_run_point(const RunPoint& /*point*/) {}
+  /// The sensitivities at the sample just handed to on_sample (only when the run carries them:
+  /// Run::carry_sensitivities).
+  virtual void on_sensitivities(const Sensitivities& /*sensitivities*/) {}
 };
 
 class Run {
@@ -47,6 +51,12 @@ class Run {
   /// watch() gives none); the observers still see the whole system's samples.
   Run& as_lanes(std::vector<Lane> lanes);
 
+  /// Carries the sensitivities (sim/sensitivities.hpp) with respect to the initial state and these
+  /// parameters: the run is then stepped on dual numbers (simulate_sensitivities), and every sample's are
+  /// handed to on_sensitivities. run() refuses it with events, lanes and run points, which that loop
+  /// does not keep.
+  Run& carry_sensitivities(SensitivityParameters parameters);
+
   /// The drift monitor, e.g. to restore a resumed run's warning before run().
   DriftMonitor& monitor() { return monitor_; }
   /// Runs to the end, or until stop_when said so: the final state. Once per Run.
@@ -67,6 +77,7 @@ class Run {
   const RunPoint* resume_ = nullptr;
   std::vector<Lane> lanes_;
   IntegratorStats stats_;
+  std::optional<SensitivityParameters> sensitivities_;
   bool stopped_ = false;
 };
 

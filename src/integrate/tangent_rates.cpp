@@ -1,0 +1,28 @@
+#include "tumble/integrate/tangent_system.hpp"
+
+namespace tumble {
+
+std::span<const WrenchT<TangentScalar>> TangentRates::loads(const Model& model, Formulation formulation,
+                                                            const TangentCoordinates& y) {
+  const size_t n = y.bodies.size();
+  states_.resize(n);
+  loads_.assign(n, WrenchT<TangentScalar>{});
+  for (size_t i = 0; i < n; ++i)
+    states_[i] = world_state<TangentScalar>(formulation, y.bodies[i], y.m[i], y.Lambda[i]);
+  const TangentView view{y.t, model.bodies, states_};
+  for (const auto& force : model.forces) force->accumulate_tangent(view, loads_);
+  return loads_;
+}
+
+void TangentRates::rates(const Model& model, Formulation formulation, const TangentCoordinates& y,
+                         std::vector<CoordinateRates<TangentScalar>>& rates) {
+  using T = TangentScalar;
+  loads(model, formulation, y);
+  rates.resize(y.bodies.size());
+  for (size_t i = 0; i < y.bodies.size(); ++i) {
+    const MassConstants<T> c = mass_constants<T>(y.m[i], y.Lambda[i]);
+    rates[i] = newton_euler<T>(formulation, c, y.bodies[i], loads_[i].force, loads_[i].torque);
+  }
+}
+
+}  // namespace tumble

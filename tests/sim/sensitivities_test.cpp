@@ -1,0 +1,301 @@
+// Sensitivities (sim/sensitivities.hpp): forward-mode derivatives of the steps each integrator takes,
+// checked against
+//  - the free isotropic body's flow, differentiated in closed form (finite_difference_stm_test.cpp);
+//  - central differences of the same integrator (sim/finite_difference_stm.hpp), whose own error is
+//    shown by halving their step;
+//  - a conserved quantity's derivative: without torque L_w(t) = L_w(0) for every x(0), so
+//    ∂L_w(t)/∂x(0) = ∂L_w(0)/∂x(0), which RK4 keeps to its order h⁴;
+//  - the run's own states: the dual numbers' values are simulate()'s, bit for bit.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "tumble/error.hpp"
+#include "tumble/forces/forces.hpp"
+#include "tumble/sim/finite_difference_stm.hpp"
+#include "tumble/sim/sensitivities.hpp"
+
+namespace tumble {
+namespace {
+
+/// The sensitivities at the end of a run.
+Sensitivities at_end(const Model& model, const SystemState& s0, const RunSettings& settings,
+                     SensitivityParameters parameters = SensitivityParameters::inertia,
+                     SystemState* end = nullptr) {
+  Sensitivities last;
+  const SystemState e = simulate_sensitivities(model, s0, settings, parameters,
+                                               [&](const SystemState&, const Sensitivities& s) {
+                                                 last = s;
+                                                 return true;
+                                               });
+  if (end) *end = e;
+  return last;
+}
+
+/// A T-handle-like triaxial body tumbling near its intermediate axis, its reference frame off its
+/// centre of mass and turned from its principal axes (so every conversion of the tangent space shows).
+RigidBody handle() {
+  Mat3 I;
+  I << 0.8, 0.1, -0.05, 0.1, 1.6, 0.2, -0.05, 0.2, 2.1;
+  return RigidBody::from_inertia(3.0, I * 1e-2, Vec3(0.05, -0.02, 0.1), "handle");
+}
+BodyState handle_state(const RigidBody& body) {
+  return state_from_reference(body, Vec3(0.3, -0.1, 1.0),
+                              Quat(Eigen::AngleAxisd(0.7, Vec3(1, -2, 0.5).normalized())),
+                              Vec3(0.4, 0.1, 2.0), Vec3(0.2, 6.0, 0.3), Frame::reference);
+}
+
+TEST(Sensitivities, AFreeIsotropicBodyGivesItsFlowsDerivativeInClosedForm) {
+  Model model;
+  model.add_body(RigidBody::from_principal_moments(2.0, Vec3(0.4, 0.4, 0.4), "ball"));
+  const Vec3 omega0(0.7, -1.1, 0.5);
+  SystemState s0;
+  s0.bodies.push_back(BodyState{Vec3(0.1, 0.2, 0.3), Quat(Eigen::AngleAxisd(0.4, Vec3(1, 2, 2).normalized())),
+                                Vec3(1.0, -0.5, 0.2), omega0});
+  for (const std::string& integrator : differentiating_integrators()) {
+    for (Formulation F : {Formulation::world, Formulation::mixed, Formulation::body}) {
+      RunSettings settings;
+      const bool fourth_order = integrator == "rk4" || integrator == "lie_rk4";
+      settings.duration = fourth_order ? 1.5 : 0.3;
+      settings.timestep = fourth_order ? 1e-3 : 1e-4;
+      settings.integrator = integrator;
+      settings.formulation = F;
+      settings.output_interval = 0.5;
+      const double t = settings.duration;
+      const Sensitivities S = at_end(model, s0, settings);
+      Eigen::MatrixXd expected = Eigen::MatrixXd::Identity(12, 12);
+      expected.block<3, 3>(0, 6) = t * Mat3::Identity();
+      const Vec3 phi = omega0 * t;
+      const double a = phi.norm();
+      const Mat3 K = skew(phi);
+      expected.block<3, 3>(3, 3) = Eigen::AngleAxisd(a, phi / a).toRotationMatrix();
+      expected.block<3, 3>(3, 9) =
+          t * (Mat3::Identity() + (1 - std::cos(a)) / (a * a) * K + (a - std::sin(a)) / (a * a * a) * K * K);
+      // RK4 and Lie–RK4 at |ω|h = 1.4e-3: attitude errors ~1e-13 per unit, so their derivatives agree
+      // to 1e-10. The first-order methods at h = 1e-4 (3000 steps) err by ~|ω|²h t ≈ 6e-5 (a free
+      // isotropic body's ω is constant, its attitude error O(h)): 1e-3 bounds it.
+      const double tolerance = fourth_order ? 1e-10 : 1e-3;
+      EXPECT_LT((S.stm - expected).cwiseAbs().maxCoeff(), tolerance)
+          << integrator << " " << formulation_name(F) << "\n"
+          << S.stm - expected;
+      // The translation does not depend on the moments: ∂p/∂I = ∂v/∂I = 0, exactly where v is integrated
+      // in world axes; the body formulation moves o by R ^bv, whose rotation does depend on them, so
+      // there the method's own error shows (the tolerance above). (The rotation does depend on them:
+      // changing one moment makes the sphere a triaxial body, whose ω moves at first order.)
+      const double translation = F == Formulation::body ? tolerance : 0.0;
+      EXPECT_LE(S.parameters.topRows(3).cwiseAbs().maxCoeff(), translation) << integrator;
+      EXPECT_LE(S.parameters.middleRows(6, 3).cwiseAbs().maxCoeff(), translation) << integrator;
+    }
+  }
+}
+
+TEST(Sensitivities, EachIntegratorAgreesWithCentralDifferencesOfItself) {
+  // A handle under gravity with a body-fixed force off its centre of mass and quadratic drag: every
+  // column of the tangent space (and the loads' own dependence on the state) is exercised.
+  Model model;
+  model.add_body(handle());
+  model.add_force<UniformGravity>(Vec3(0, 0, -9.81));
+  model.add_force<PointForce>(0, Vec3(0.3, 0.0, 0.5), Frame::reference, Vec3(0.1, 0.0, 0.0),
+                              Frame::reference);
+  model.add_force<QuadraticDrag>(all_bodies, 0.05, 1e-3);
+  SystemState s0;
+  s0.bodies.push_back(handle_state(model.bodies[0]));
+  for (const std::string& integrator : differentiating_integrators()) {
+    RunSettings settings;
+    settings.duration = 0.5;
+    settings.timestep = 2e-3;
+    settings.integrator = integrator;
+    const Eigen::MatrixXd S = at_end(model, s0, settings).stm;
+    const Eigen::MatrixXd fd = stm_by_central_differences(model, s0, settings, 1e-6);
+    const Eigen::MatrixXd fd2 = stm_by_central_differences(model, s0, settings, 2e-6);
+    // A central difference errs by ε²|x‴|/6 (truncation: 4× from ε to 2ε, so |fd − fd2| ≈ 3× it) plus
+    // the rounding of 250 steps' ends over 2ε (~1e-16·|x|·√250/1e-6 ≈ 1e-9, |x| ~ 10): the dual numbers
+    // must be within that of the difference at ε.
+    const double fd_error = (fd - fd2).cwiseAbs().maxCoeff();
+    EXPECT_LT((S - fd).cwiseAbs().maxCoeff(), fd_error + 1e-8) << integrator << "\n" << S - fd;
+    EXPECT_GT(S.cwiseAbs().maxCoeff(), 1.0) << "not trivially zero";
+  }
+}
+
+TEST(Sensitivities, TheInertiaColumnsAreDerivativesWithRespectToThePrincipalMoments) {
+  // ∂x/∂I_k with x(0) fixed: against rerunning the body with I_k ± ε (principal axes = reference axes).
+  const Vec3 Lambda(0.02, 0.05, 0.06);
+  const BodyState s{Vec3(0, 0, 0), Quat(Eigen::AngleAxisd(0.3, Vec3(0, 1, 1).normalized())), Vec3(1, 0, 0),
+                    Vec3(0.1, 4.0, 0.2)};
+  auto model_with = [&](const Vec3& moments, double mass) {
+    Model m;
+    m.add_body(RigidBody::from_principal_moments(mass, moments, "box"));
+    m.add_force<GravityGradient>(3.986e14, Vec3(-7.0e6, 0, 0));
+    // A thrust off the centre of mass: gravity alone would give every mass the same motion.
+    m.add_force<PointForce>(0, Vec3(0.0, 0.2, 0.1), Frame::reference, Vec3(0.1, 0.0, 0.0), Frame::reference);
+    return m;
+  };
+  RunSettings settings;
+  settings.duration = 1.0;
+  settings.timestep = 1e-3;
+  SystemState s0;
+  s0.bodies.push_back(s);
+  const Sensitivities S = at_end(model_with(Lambda, 4.0), s0, settings);
+  const Sensitivities Sm = at_end(model_with(Lambda, 4.0), s0, settings, SensitivityParameters::mass);
+  const double eps = 1e-7;
+  for (int k = 0; k < 4; ++k) {
+    Vec3 up = Lambda, down = Lambda;
+    double m_up = 4.0, m_down = 4.0;
+    if (k < 3) {
+      up(k) += eps;
+      down(k) -= eps;
+    } else {
+      m_up += eps;
+      m_down -= eps;
+    }
+    const SystemState a = simulate(model_with(up, m_up), s0, settings);
+    const SystemState b = simulate(model_with(down, m_down), s0, settings);
+    const RigidBody& body = model_with(Lambda, 4.0).bodies[0];
+    const Tangent fd =
+        tangent_between(reference_state(body, b.bodies[0]), reference_state(body, a.bodies[0])) / (2 * eps);
+    const Tangent dual = k < 3 ? Tangent(S.parameters.col(k)) : Tangent(Sm.parameters.col(0));
+    // Rounding of the ends over 2ε: ~1e-15·|x|/2e-7 ≈ 1e-7 relative to the derivatives (~1e2).
+    EXPECT_LT((dual - fd).cwiseAbs().maxCoeff(), 1e-6 * (1 + fd.cwiseAbs().maxCoeff())) << k << "\n"
+                                                                                        << dual - fd;
+    EXPECT_GT(dual.cwiseAbs().maxCoeff(), 1e-3) << "the moments do move the body: " << k;
+  }
+}
+
+TEST(Sensitivities, TheDerivativeOfTheConservedAngularMomentumIsConservedToTheMethodsOrder) {
+  // L_w = R Λ Rᵀ ω is conserved by the torque-free flow for every x(0), so along column j of the tangent
+  // space δL(t) = δL(0): δL = δθ × L − I(δθ × ω) + I δω in world axes. RK4 keeps L to O(h⁴), and the
+  // derivative of its error to the same order: halving h divides the defect by ~16.
+  Model model;
+  model.add_body(handle());
+  SystemState s0;
+  s0.bodies.push_back(handle_state(model.bodies[0]));
+  auto dL = [&](const BodyState& s, const Eigen::MatrixXd& stm) {
+    const Mat3 R = s.R();
+    const Mat3 I = R * model.bodies[0].Lambda().asDiagonal() * R.transpose();
+    const Vec3 L = I * s.omega_w;
+    Eigen::Matrix<double, 3, 12> G = Eigen::Matrix<double, 3, 12>::Zero();
+    G.block<3, 3>(0, 3) = -skew(L) + I * skew(s.omega_w);  // δθ × L − I(δθ × ω) = (−[L]× + I[ω]×) δθ
+    G.block<3, 3>(0, 9) = I;
+    return Eigen::Matrix<double, 3, 12>(G * stm);
+  };
+  const Eigen::Matrix<double, 3, 12> dL0 = dL(s0.bodies[0], Eigen::MatrixXd::Identity(12, 12));
+  double defect[2];
+  for (int r = 0; r < 2; ++r) {
+    RunSettings settings;
+    settings.duration = 2.0;
+    settings.timestep = r == 0 ? 4e-3 : 2e-3;
+    SystemState end;
+    const Sensitivities S = at_end(model, s0, settings, SensitivityParameters::inertia, &end);
+    defect[r] = (dL(end.bodies[0], S.stm) - dL0).cwiseAbs().maxCoeff();
+  }
+  EXPECT_LT(defect[1], 1e-6 * dL0.cwiseAbs().maxCoeff());
+  EXPECT_GT(defect[0] / defect[1], 12.0) << defect[0] << " " << defect[1];  // 2⁴ = 16 for order 4
+  EXPECT_LT(defect[0] / defect[1], 20.0) << defect[0] << " " << defect[1];
+}
+
+TEST(Sensitivities, TheValuesAreTheRunsOwnStates) {
+  Model model;
+  model.add_body(handle());
+  model.add_force<UniformGravity>(Vec3(0, 0, -9.81));
+  SystemState s0;
+  s0.bodies.push_back(handle_state(model.bodies[0]));
+  for (const std::string& integrator : differentiating_integrators()) {
+    RunSettings settings;
+    settings.duration = 0.3;
+    settings.timestep = 1e-2;
+    settings.output_interval = 0.025;  // samples between steps: the step before each is shortened
+    settings.integrator = integrator;
+    std::vector<SystemState> primal, dual;
+    (void)simulate(model, s0, settings, [&](const SystemState& s) {
+      primal.push_back(s);
+      return true;
+    });
+    (void)simulate_sensitivities(model, s0, settings, SensitivityParameters::inertia,
+                                 [&](const SystemState& s, const Sensitivities& S) {
+                                   dual.push_back(s);
+                                   if (dual.size() == 1) {
+                                     EXPECT_EQ(S.stm, Eigen::MatrixXd::Identity(12, 12));
+                                     EXPECT_EQ(S.parameters, Eigen::MatrixXd::Zero(12, 3));
+                                   }
+                                   return true;
+                                 });
+    ASSERT_EQ(primal.size(), dual.size()) << integrator;
+    // implicit_gyro solves a 3 × 3 system by Eigen's LU, which on double runs SIMD packets (another order
+    // of roundings than on dual numbers): its values agree to rounding, 1e-15 relative per step.
+    const double tolerance = integrator == "implicit_gyro" ? 1e-13 : 0.0;
+    for (size_t k = 0; k < primal.size(); ++k) {
+      const BodyState &a = primal[k].bodies[0], &b = dual[k].bodies[0];
+      EXPECT_EQ(primal[k].t, dual[k].t) << integrator << " sample " << k;
+      EXPECT_LE((a.o - b.o).cwiseAbs().maxCoeff(), tolerance) << integrator << " sample " << k;
+      EXPECT_LE((a.q.coeffs() - b.q.coeffs()).cwiseAbs().maxCoeff(), tolerance)
+          << integrator << " sample " << k;
+      EXPECT_LE((a.v - b.v).cwiseAbs().maxCoeff(), tolerance) << integrator << " sample " << k;
+      EXPECT_LE((a.omega_w - b.omega_w).cwiseAbs().maxCoeff(), tolerance * 10)
+          << integrator << " sample " << k;
+    }
+  }
+}
+
+TEST(Sensitivities, BodiesApartGiveBlocksAndASpringCouplesThem) {
+  Model model;
+  model.add_body(handle());
+  model.add_body(RigidBody::from_principal_moments(1.0, Vec3(0.01, 0.02, 0.025), "box"));
+  SystemState s0;
+  s0.bodies.push_back(handle_state(model.bodies[0]));
+  s0.bodies.push_back(BodyState{Vec3(1.0, 0.0, 1.0), Quat::Identity(), Vec3(0, 0.5, 0), Vec3(3.0, 0.1, 0.2)});
+  RunSettings settings;
+  settings.duration = 0.4;
+  settings.timestep = 2e-3;
+  const Sensitivities apart = at_end(model, s0, settings);
+  EXPECT_FALSE(apart.coupled);
+  EXPECT_EQ(apart.stm.cols(), 12);  // each body's own block only: no 24 × 24
+  Model alone;
+  alone.add_body(model.bodies[1]);
+  SystemState s1;
+  s1.bodies.push_back(s0.bodies[1]);
+  // Body 1's block is what it is alone, bit for bit: a body's derivatives do not depend on its company.
+  EXPECT_EQ(apart.stm.block(12, 0, 12, 12), at_end(alone, s1, settings).stm);
+
+  model.add_force<Spring>(Spring::End{0, Vec3(0.1, 0, 0)}, Spring::End{1, Vec3(0, 0.05, 0)}, 40.0, 0.5, 0.3);
+  const Sensitivities joined = at_end(model, s0, settings);
+  EXPECT_TRUE(joined.coupled);
+  ASSERT_EQ(joined.stm.cols(), 24);
+  const Eigen::MatrixXd fd = stm_by_central_differences(model, s0, settings, 1e-6);
+  EXPECT_LT((joined.stm - fd).cwiseAbs().maxCoeff(), 1e-6) << "\n" << joined.stm - fd;
+  EXPECT_GT(joined.stm.block(0, 12, 12, 12).cwiseAbs().maxCoeff(), 1e-3) << "the spring couples them";
+  EXPECT_EQ(joined.dense_parameters().cols(), 6);
+}
+
+TEST(Sensitivities, RefusesWhatItCannotDifferentiate) {
+  Model model;
+  model.add_body(handle());
+  SystemState s0;
+  s0.bodies.push_back(handle_state(model.bodies[0]));
+  RunSettings settings;
+  settings.duration = 0.1;
+  const std::vector<std::string> differentiating = differentiating_integrators();
+  for (const std::string& integrator : integrator_names()) {
+    settings.integrator = integrator;
+    const bool differentiates = std::find(differentiating.begin(), differentiating.end(), integrator) !=
+                                differentiating.end();
+    if (differentiates) {
+      EXPECT_NO_THROW((void)at_end(model, s0, settings)) << integrator;
+    } else {
+      EXPECT_THROW((void)at_end(model, s0, settings), InvalidArgument) << integrator;
+    }
+  }
+  settings.integrator = "rk4";
+  model.add_force<BodyCallback>(
+      0, [](double, const RigidBody&, const BodyState&) { return Wrench{}; }, "my thruster law");
+  try {
+    (void)at_end(model, s0, settings);
+    FAIL() << "a callback cannot be differentiated";
+  } catch (const InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("my thruster law"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW((void)parse_sensitivity_parameters("moments"), InvalidArgument);
+}
+
+}  // namespace
+}  // namespace tumble
