@@ -1201,11 +1201,13 @@ const std::vector<Case>& catalogue() {
        1,
        "tumble: error: s.toml:14:7: [ensemble] vary #1: [low, high] = [2, 3] lies 1000 standard deviations "
        "from the mean 1: too far in the tail to draw from (at most 150); move the mean or the bounds"},
+      // The limits leave 10 and 20 MB above what the program maps to start (about 70 MB since tumble_fit
+      // links Ceres and its LAPACK, SuiteSparse and glog: 20 MB more), so that the run itself runs out.
       {"limit: ulimit -v during run (10^5 bodies): one line, no file",
        {{"s.toml", "[simulation]\nduration = 0.01\n[[body_tables]]\nfile = \"t.csv\"\n"}},
        "awk 'BEGIN{print \"name,mass,I1,I2,I3,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\"; "
        "for(i=0;i<100000;i++) printf \"b%d,1,1,2,3,%d,0,0,1,0,0,0,0,0,0,1,2,3\\n\", i, i}' > t.csv; (ulimit "
-       "-v 60000; {t} run s.toml -o o.csv -q); s=$?; ! ls o.csv* && exit $s",
+       "-v 80000; {t} run s.toml -o o.csv -q); s=$?; ! ls o.csv* && exit $s",
        1,
        "tumble: error: out of memory: the command needs more memory than this process may use (the "
        "machine's, or a limit such as ulimit -v); nothing was kept under the output names: free memory, "
@@ -1214,7 +1216,7 @@ const std::vector<Case>& catalogue() {
        {{"s.toml", "[simulation]\nduration = 0.01\n[[body_tables]]\nfile = \"t.csv\"\n"}},
        "awk 'BEGIN{print \"name,mass,I1,I2,I3,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\"; "
        "for(i=0;i<100000;i++) printf \"b%d,1,1,2,3,%d,0,0,1,0,0,0,0,0,0,1,2,3\\n\", i, i}' > t.csv && {t} "
-       "run s.toml -o o.csv -q && (ulimit -v 70000; {t} report o.csv -o o.html); s=$?; ! ls o.html* && exit "
+       "run s.toml -o o.csv -q && (ulimit -v 90000; {t} report o.csv -o o.html); s=$?; ! ls o.html* && exit "
        "$s",
        1,
        "tumble: error: out of memory: the command needs more memory than this process may use (the "
@@ -1324,7 +1326,7 @@ const std::vector<Case>& catalogue() {
        "{t} simulate x.toml",
        2,
        "tumble: error: unknown command 'simulate': the commands are run, resume, check, inertia, report, "
-       "ensemble, model; see tumble --help"},
+       "ensemble, model, fit; see tumble --help"},
       {"cli: unknown option",
        {{"s.toml", std::string("[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = "
                                "\"box\", size = [1, 2, 3] }\ndensity = 1000\n",
@@ -1612,6 +1614,56 @@ const std::vector<Case>& catalogue() {
        "tumble: error: writing the finished rows to e.csv.partial-0 failed: File too large; the rows written "
        "before are kept there: free some space (or raise the file size limit) and run the same command again "
        "to go on"},
+      {"fit: times out of order name both lines",
+       {{"g.csv", "t,wx,wy,wz\n0,1,2,3\n0.2,1,2,3\n0.1,1,2,3\n"}},
+       "{t} fit g.csv --sigma 1e-3",
+       1,
+       "tumble: error: g.csv:4: t = 0.1 is before the previous sample's t = 0.2 (g.csv:3): the samples must "
+       "be "
+       "in time order, without repeated times"},
+      {"fit: a NaN sample names line and column",
+       {{"g.csv", "t,wx,wy,wz\n0,1,2,3\n0.1,1,NaN,3\n"}},
+       "{t} fit g.csv --sigma 1e-3",
+       1,
+       "tumble: error: g.csv:3:7: 'NaN' in column 'wy' is not finite: every value must be a finite number "
+       "(drop "
+       "the sample instead)"},
+      {"fit: an unknown column in the header",
+       {{"g.csv", "time,wx,wy,wz\n0,1,2,3\n"}},
+       "{t} fit g.csv --sigma 1e-3",
+       1,
+       "tumble: error: g.csv:1:1: unknown column 'time' in the header; the columns are t (s), wx, wy, wz "
+       "(the "
+       "gyro's angular velocity, rad/s) and optionally tau_x, tau_y, tau_z (a known applied torque, N m) and "
+       "h_x, h_y, h_z (a known wheel angular momentum, N m s), all in sensor axes"},
+      {"fit: too few samples",
+       {{"g.csv", "t,wx,wy,wz\n0,1,2,3\n0.1,1,2,3\n"}},
+       "{t} fit g.csv --sigma 1e-3",
+       1,
+       "tumble: error: g.csv:3: 2 samples (lines 2 to 3): the fit needs at least 10 (3 components each, "
+       "against up to 12 unknowns, with residuals to spare)"},
+      {"fit: --sigma 0",
+       {{"g.csv",
+         "t,wx,wy,wz\n0,1,2,3\n1,1,2,3\n2,1,2,3\n3,1,2,3\n4,1,2,3\n5,1,2,3\n6,1,2,3\n7,1,2,3\n8,1,"
+         "2,3\n9,1,2,3\n"}},
+       "{t} fit g.csv --sigma 0",
+       1,
+       "tumble: error: sigma = 0: give the gyro's noise, the standard deviation of each component (rad/s), a "
+       "finite number > 0"},
+      {"fit: --out the telemetry itself",
+       {{"g.csv",
+         "t,wx,wy,wz\n0,1,2,3\n1,1,2,3\n2,1,2,3\n3,1,2,3\n4,1,2,3\n5,1,2,3\n6,1,2,3\n7,1,2,3\n8,1,"
+         "2,3\n9,1,2,3\n"}},
+       "{t} fit g.csv --sigma 1e-3 --out g.csv",
+       1,
+       "tumble: error: the fit's result g.csv is the input g.csv: tumble never overwrites an input; give "
+       "another "
+       "output file"},
+      {"fit: no --sigma",
+       {{"g.csv", "t,wx,wy,wz\n0,1,2,3\n"}},
+       "{t} fit g.csv",
+       2,
+       "tumble: error: --sigma is required; see tumble fit --help"},
   };
   return cases;
 }
