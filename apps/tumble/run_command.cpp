@@ -420,6 +420,10 @@ int execute(Job& j) {
     auto where = [](const std::filesystem::path& p) { return p == "-" ? "standard output" : p.string(); };
     if (hdf5) {
       fmt::print(human, "trajectory and diagnostics: {}\n", files.front().string());
+      if (j.sensitivities) {
+        fmt::print(human, "sensitivities (stm, parameter_sensitivity with respect to {}): {}\n",
+                   sensitivity_parameters_name(*j.sensitivities), files.front().string());
+      }
     } else {
       fmt::print(human, "trajectory:  {}\n", where(files[0]));
       if (diagnostics.empty()) {

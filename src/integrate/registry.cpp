@@ -60,7 +60,7 @@ void Integrator::step_tangent(const Model& /*model*/, Formulation /*formulation*
 
 std::vector<std::string> differentiating_integrators() {
   // Those that override step_tangent (tests/integrate/step_tangent_test.cpp checks the list).
-  return {"euler", "implicit_gyro", "lie_rk4", "rk4", "semi_implicit_euler"};
+  return {"euler", "implicit_gyro", "lie_rk4", "midpoint", "rk4", "semi_implicit_euler"};
 }
 
 std::vector<std::string> integrator_names() {
