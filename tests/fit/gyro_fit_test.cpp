@@ -93,6 +93,46 @@ TEST(GyroFit, AKnownTorqueGivesTheAbsoluteInertia) {
   EXPECT_TRUE(f.determined) << f.reason;
 }
 
+TEST(GyroFit, AKnownWheelMomentumGivesTheAbsoluteInertia) {
+  // Reaction wheels with momentum h(t) in sensor axes act on the body by the torque h × ω − ḣ (the
+  // wheels' momentum changes by −that). Here tumble's simulator steps the body alone with that torque
+  // applied as a callback (world axes: R (h × ω − ḣ)), an independent route from the fit's, which
+  // integrates the total momentum L = J ω + h. h changes linearly, as the fit interpolates it between
+  // samples, so the two models are the same equation.
+  const test::GyroTruth truth = test::tumbling_satellite();
+  const Vec3 h0(20.0, -10.0, 30.0), h_dot(0.5, 0.2, -0.3);  // N·m·s, N·m
+  const RigidBody body = RigidBody::from_inertia(500.0, truth.J());
+  Model model;
+  model.add_body(body);
+  model.add_force<BodyCallback>(0, [&](double t, const RigidBody& b, const BodyState& x) {
+    const ReferenceFrameState ref = reference_state(b, x);
+    const Vec3 omega = ref.orientation.conjugate() * ref.omega_w;
+    const Vec3 h = h0 + t * h_dot;
+    return Wrench{Vec3::Zero(), ref.orientation * Vec3(h.cross(omega) - h_dot)};
+  });
+  const BodyState s0 = state_from_reference(body, Vec3::Zero(), Quat::Identity(), Vec3::Zero(),
+                                            truth.omega0(), Frame::reference);
+  RunSettings settings;
+  settings.duration = 10.0;
+  settings.timestep = 1e-4;
+  settings.output_interval = 0.1;
+  fit::Telemetry d;
+  simulate(model, SystemState{0.0, {s0}, {}}, settings, [&](const SystemState& x) {
+    const ReferenceFrameState ref = reference_state(body, x.bodies[0]);
+    d.t.push_back(x.t);
+    d.omega.push_back(ref.orientation.conjugate() * ref.omega_w);
+    d.h.push_back(h0 + x.t * h_dot);
+    return true;
+  });
+  ASSERT_EQ(d.t.size(), 101u);
+  const FitResult f = fit::fit_gyro(d, test::fit_options(kSigma));
+  EXPECT_TRUE(f.absolute);
+  // As above: the simulator's RK4 at 1e-4 s leaves ~1e-13 rad/s in the samples.
+  EXPECT_LT(rel(f.J, truth.J()), kNoiseless) << f.J << "\n" << truth.J();
+  EXPECT_LT((f.omega0.value - truth.omega0()).norm() / truth.omega0().norm(), kNoiseless);
+  EXPECT_TRUE(f.determined) << f.reason;
+}
+
 TEST(GyroFit, ASpinAboutOnePrincipalAxisDoesNotDetermineTheInertia) {
   // Steady spin about the major axis: ω is constant, J ω ∥ ω, and nothing else about J shows.
   test::GyroTruth truth = test::tumbling_satellite();
