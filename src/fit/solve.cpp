@@ -121,7 +121,9 @@ FitResult fit_gyro(const Telemetry& d, const FitOptions& options) {
   Steps steps;
   double error = 0.0;
   for (int refinement = 0; refinement < 4; ++refinement) {
+    const std::vector<int> before = steps.per_interval;
     steps = choose_steps(d, layout, starts.front().data(), options.substep, tolerance, error);
+    if (refinement > 0 && steps.per_interval == before) break;  // no finer steps help (rounding)
     for (const Eigen::VectorXd& p0 : starts) {
       const Solved s = solve_from(d, steps, layout, options.sigma, p0, options.max_iterations);
       ++result.starts;
