@@ -1,14 +1,10 @@
 // The state transition matrix by central differences (sim/finite_difference_stm.hpp), against the flow
-// of a free isotropic body in closed form: ω stays ω₀, R(t) = exp([ω₀]× t) R₀, p(t) = p₀ + v₀ t. In the
-// tangent space of dynamics/tangent.hpp that flow's derivative is
-//   ∂p/∂p₀ = I, ∂p/∂v₀ = t I, ∂v/∂v₀ = I, ∂ω/∂ω₀ = I,
-//   ∂θ/∂θ₀ = exp([ω₀]× t) (a turn before the flow is the same turn carried along by it),
-//   ∂θ/∂ω₀ = t J_l(ω₀ t), J_l(φ) = I + (1 − cos|φ|)/|φ|² [φ]× + (|φ| − sin|φ|)/|φ|³ [φ]×²,
-// and zero elsewhere.
+// of a free isotropic body differentiated in closed form (support/isotropic_flow.hpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
 
+#include "../support/isotropic_flow.hpp"
 #include "tumble/error.hpp"
 #include "tumble/forces/model.hpp"
 #include "tumble/sim/finite_difference_stm.hpp"
@@ -29,14 +25,7 @@ TEST(FiniteDifferenceStm, AFreeIsotropicBodyGivesItsFlowsDerivativeInClosedForm)
   settings.integrator = "rk4";
   const double t = settings.duration;
   const Eigen::MatrixXd M = stm_by_central_differences(model, s0, settings, 1e-5);
-  Eigen::MatrixXd expected = Eigen::MatrixXd::Identity(12, 12);
-  expected.block<3, 3>(0, 6) = t * Mat3::Identity();
-  const Vec3 phi = omega0 * t;
-  const double a = phi.norm();
-  const Mat3 K = skew(phi);
-  expected.block<3, 3>(3, 3) = Eigen::AngleAxisd(a, phi / a).toRotationMatrix();
-  expected.block<3, 3>(3, 9) =
-      t * (Mat3::Identity() + (1 - std::cos(a)) / (a * a) * K + (a - std::sin(a)) / (a * a * a) * K * K);
+  const Eigen::MatrixXd expected = test::isotropic_flow_stm(omega0, t);
   // RK4 integrates the attitude at |ω|h = 1.4e-3 to ~1e-13. A central difference of step ε = 1e-5 carries
   // the rounding the 1500 steps accumulate in each run's end (~1e-13 of |x|), over 2ε: 5e-9, and a
   // truncation of ε²|x‴| ~ 1e-10: 1e-8 bounds both.

@@ -1,6 +1,6 @@
 // Sensitivities (sim/sensitivities.hpp): forward-mode derivatives of the steps each integrator takes,
 // checked against
-//  - the free isotropic body's flow, differentiated in closed form (finite_difference_stm_test.cpp);
+//  - the free isotropic body's flow, differentiated in closed form (support/isotropic_flow.hpp);
 //  - central differences of the same integrator (sim/finite_difference_stm.hpp), whose own error is
 //    shown by halving their step;
 //  - a conserved quantity's derivative: without torque L_w(t) = L_w(0) for every x(0), so
@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "../support/isotropic_flow.hpp"
 #include "tumble/error.hpp"
 #include "tumble/forces/forces.hpp"
 #include "tumble/sim/finite_difference_stm.hpp"
@@ -64,14 +65,7 @@ TEST(Sensitivities, AFreeIsotropicBodyGivesItsFlowsDerivativeInClosedForm) {
       settings.output_interval = 0.5;
       const double t = settings.duration;
       const Sensitivities S = at_end(model, s0, settings);
-      Eigen::MatrixXd expected = Eigen::MatrixXd::Identity(12, 12);
-      expected.block<3, 3>(0, 6) = t * Mat3::Identity();
-      const Vec3 phi = omega0 * t;
-      const double a = phi.norm();
-      const Mat3 K = skew(phi);
-      expected.block<3, 3>(3, 3) = Eigen::AngleAxisd(a, phi / a).toRotationMatrix();
-      expected.block<3, 3>(3, 9) =
-          t * (Mat3::Identity() + (1 - std::cos(a)) / (a * a) * K + (a - std::sin(a)) / (a * a * a) * K * K);
+      const Eigen::MatrixXd expected = test::isotropic_flow_stm(omega0, t);
       // RK4 and Lie–RK4 at |ω|h = 1.4e-3: attitude errors ~1e-13 per unit, so their derivatives agree
       // to 1e-10. The first-order methods at h = 1e-4 (3000 steps) err by ~|ω|²h t ≈ 6e-5 (a free
       // isotropic body's ω is constant, its attitude error O(h)): 1e-3 bounds it.
