@@ -195,6 +195,15 @@ SystemState simulate_sensitivities(const Model& model, const SystemState& state,
   for (const auto& f : model.forces) coupled = coupled || !f->local();
   for (const auto& f : model.forces) f->check(B, 0);
 
+  // Coupled bodies give a dense 12B × 12B matrix per sample: past 10⁸ numbers (0.8 GB) a sample would
+  // not fit beside the others, and the run would take (12 + P)B/16 whole-system passes.
+  if (coupled && 144.0 * static_cast<double>(B) * static_cast<double>(B) > 1e8) {
+    throw InvalidArgument(fmt::format(
+        "sensitivities: the {} bodies interact (a spring joins some of them), so each sample's state "
+        "transition matrix is dense, {} x {} numbers ({:.1f} GB): take the bodies the springs join as a "
+        "smaller scene",
+        B, 12 * B, 12 * B, 144.0 * static_cast<double>(B) * static_cast<double>(B) * 8e-9));
+  }
   // The passes: one for bodies that do not interact (each body's own 12 + P columns), or ⌈(12 + P)B/D⌉
   // over the global columns when they do.
   const size_t columns = (12 + static_cast<size_t>(P)) * B;
