@@ -133,6 +133,8 @@ TEST(Sensitivities, TheInertiaColumnsAreDerivativesWithRespectToThePrincipalMome
   const Sensitivities S = at_end(model_with(Lambda, 4.0), s0, settings);
   const Sensitivities Sm = at_end(model_with(Lambda, 4.0), s0, settings, SensitivityParameters::mass);
   const double eps = 1e-7;
+  const Model reference = model_with(Lambda, 4.0);
+  const RigidBody& body = reference.bodies[0];
   for (int k = 0; k < 4; ++k) {
     Vec3 up = Lambda, down = Lambda;
     double m_up = 4.0, m_down = 4.0;
@@ -145,7 +147,6 @@ TEST(Sensitivities, TheInertiaColumnsAreDerivativesWithRespectToThePrincipalMome
     }
     const SystemState a = simulate(model_with(up, m_up), s0, settings);
     const SystemState b = simulate(model_with(down, m_down), s0, settings);
-    const RigidBody& body = model_with(Lambda, 4.0).bodies[0];
     const Tangent fd =
         tangent_between(reference_state(body, b.bodies[0]), reference_state(body, a.bodies[0])) / (2 * eps);
     const Tangent dual = k < 3 ? Tangent(S.parameters.col(k)) : Tangent(Sm.parameters.col(0));
