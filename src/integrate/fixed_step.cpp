@@ -121,11 +121,11 @@ class RungeKutta4 final : public Integrator {
     rk4::steps(engine_, x, h, count, y_, A_particles_, {&y_.bodies, &A_},
                [&](int s, const Block& blk, const BodyColumnsRef& in) {
                  const BodyColumnsRef &y = blk.work[0], &A = blk.work[1];
-                 const Pack hp(h);
+                 const Pack length(rk4::stage_length(s, h));
                  for (size_t i = blk.begin; i < blk.end; i += kWidth) {
                    const CoordinateRates<Pack> k = engine_.rates<Pack>(blk, i, in.load<Pack>(i));
                    CoordinateRates<Pack> Ai = s == 0 ? k : A.load_rates<Pack>(i);
-                   const Coordinates<Pack> next = rk4::stage<Pack>(s, hp, xr.load<Pack>(i), k, Ai);
+                   const Coordinates<Pack> next = rk4::stage<Pack>(s, length, xr.load<Pack>(i), k, Ai);
                    if (s < 3) {
                      A.store(i, Ai);
                      y.store(i, next);
@@ -143,7 +143,8 @@ class RungeKutta4 final : public Integrator {
       y_tangent_.t = x.t + rk4::c[s] * h;
       tangent_.rates(model, F, y_tangent_, k_);
       for (size_t i = 0; i < x.bodies.size(); ++i) {
-        const Coordinates<T> next = rk4::stage<T>(s, h, x.bodies[i], k_[i], A_tangent_[i]);
+        const Coordinates<T> next =
+            rk4::stage<T>(s, rk4::stage_length(s, h), x.bodies[i], k_[i], A_tangent_[i]);
         (s < 3 ? y_tangent_.bodies[i] : x.bodies[i]) = next;
       }
     }

@@ -31,30 +31,28 @@ TUMBLE_INLINE QuatT<T> rotated(const QuatT<T>& q, const Vec3T<T>& theta, bool ri
   return right ? quat_mul<T>(q, e) : quat_mul<T>(e, q);
 }
 
-/// Stage s of one body (or pack): the RK4 tableau of rk4 (rk4_steps.hpp) in the same low-storage form,
+/// Stage s of one body (or pack), `length` = rk4::stage_length(s, h): the RK4 tableau of rk4 (rk4_steps.hpp) in the same low-storage form,
 /// with the rotation advanced through θ: at stage s the orientation is R_n·exp(θ_s) (right) or
 /// exp(θ_s)·R_n (left), the other variables x + c_s h k_{s−1}; θ_{s+1} = c_{s+1} h F_s with
 /// F_s = dexp⁻¹_{θ_s}(ω_s), and the step ends at θ = (h/6)(F₁ + 2F₂ + 2F₃ + F₄). Given the stage state y
 /// and its rates k, updates A, θ (θ_s in, θ_{s+1} out) and ΣF, and returns y_{s+1} (the step's end at
 /// s = 3). The batched kernel and step_tangent both call it.
 template <class T>
-TUMBLE_INLINE Coordinates<T> lie_stage(int s, const T& h, bool right, const Coordinates<T>& x,
+TUMBLE_INLINE Coordinates<T> lie_stage(int s, const T& length, bool right, const Coordinates<T>& x,
                                        const Coordinates<T>& y, const CoordinateRates<T>& k,
                                        CoordinateRates<T>& A, Vec3T<T>& theta, Vec3T<T>& sum_F) {
   const T weight(rk4::b[s]);
-  const Vec3T<T> Fs = dexpinv<T>(s == 0 ? Vec3T<T>(Vec3T<T>::Zero()) : theta, y.omega, right);
+  const Vec3T<T> Fs = dexpinv<T>(theta, y.omega, right);  // θ_s: zero at s = 0
   if (s < 3) {
-    const T step_next = T(rk4::c[s + 1]) * h;
     A = s == 0 ? k : axpy<T>(A, weight, k);
     sum_F = s == 0 ? Fs : Vec3T<T>(sum_F + weight * Fs);
-    theta = step_next * Fs;
-    Coordinates<T> next = advanced<T>(x, step_next, k);
+    theta = length * Fs;
+    Coordinates<T> next = advanced<T>(x, length, k);
     next.q = rotated<T>(x.q, theta, right);
     return next;
   }
-  const T h6 = h / T(6);
-  Coordinates<T> next = advanced<T>(x, h6, axpy<T>(A, T(1.0), k));
-  next.q = rotated<T>(x.q, Vec3T<T>(h6 * (sum_F + Fs)), right);
+  Coordinates<T> next = advanced<T>(x, length, axpy<T>(A, T(1.0), k));
+  next.q = rotated<T>(x.q, Vec3T<T>(length * (sum_F + Fs)), right);
   return next;
 }
 
@@ -75,14 +73,15 @@ class LieRungeKutta4 final : public Integrator {
     const BodyColumnsRef xr = x.bodies.ref();
     auto stage = [&](int s, const Block& blk, const BodyColumnsRef& in) {
       const BodyColumnsRef &y = blk.work[0], &A = blk.work[1], &theta = blk.work[2];  // θ_s: 0–2, ΣF: 3–5
-      const Pack hp(h);
+      const Pack length(rk4::stage_length(s, h));
       for (size_t i = blk.begin; i < blk.end; i += kWidth) {
         const Coordinates<Pack> yi = in.load<Pack>(i);
         const CoordinateRates<Pack> k = engine_.rates<Pack>(blk, i, yi);
         CoordinateRates<Pack> Ai = s == 0 ? k : A.load_rates<Pack>(i);
         Vec3T<Pack> th = s == 0 ? Vec3T<Pack>(Vec3T<Pack>::Zero()) : theta.vec3<Pack>(0, i);
         Vec3T<Pack> sum_F = s == 0 ? th : theta.vec3<Pack>(3, i);
-        const Coordinates<Pack> next = lie_stage<Pack>(s, hp, right, xr.load<Pack>(i), yi, k, Ai, th, sum_F);
+        const Coordinates<Pack> next =
+            lie_stage<Pack>(s, length, right, xr.load<Pack>(i), yi, k, Ai, th, sum_F);
         if (s < 3) {
           A.store(i, Ai);
           theta.store_vec3<Pack>(0, i, th);
@@ -108,8 +107,9 @@ class LieRungeKutta4 final : public Integrator {
       y_tangent_.t = x.t + rk4::c[s] * h;
       tangent_.rates(model, F, y_tangent_, k_);
       for (size_t i = 0; i < n; ++i) {
-        const Coordinates<T> next = lie_stage<T>(s, h, right, x.bodies[i], y_tangent_.bodies[i], k_[i],
-                                                 A_tangent_[i], theta_tangent_[i], sum_F_tangent_[i]);
+        const Coordinates<T> next = lie_stage<T>(s, rk4::stage_length(s, h), right, x.bodies[i],
+                                                 y_tangent_.bodies[i], k_[i], A_tangent_[i],
+                                                 theta_tangent_[i], sum_F_tangent_[i]);
         (s < 3 ? y_tangent_.bodies[i] : x.bodies[i]) = next;
       }
     }

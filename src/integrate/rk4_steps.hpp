@@ -16,18 +16,23 @@ namespace tumble::rk4 {
 inline constexpr double c[4] = {0.0, 0.5, 0.5, 1.0};
 inline constexpr double b[4] = {1.0, 2.0, 2.0, 1.0};
 
-/// Stage s of one body (or pack) given its rate k_s = f(y_s) and the step's start x: A ← b_s k_s (s = 0)
-/// or A + b_s k_s, and the next stage state y_{s+1} = x + c_{s+1} h k_s; the last stage (s = 3) returns
-/// the step's end x + (h/6)(A + k_4) and leaves A alone. The batched kernels and the dual-number step
-/// (step_tangent) both call it: one source of the tableau.
+/// The step length stage s advances x by: c_{s+1} h for the next stage state (s < 3), h/6 for the step's
+/// end (s = 3), in double: the kernels broadcast it once per stage, not once per pack.
+inline double stage_length(int s, double h) { return s < 3 ? c[s + 1] * h : h / 6; }
+
+/// Stage s of one body (or pack) given its rate k_s = f(y_s) and the step's start x, with
+/// `length` = stage_length(s, h): A ← b_s k_s (s = 0) or A + b_s k_s, and the next stage state
+/// y_{s+1} = x + c_{s+1} h k_s; the last stage (s = 3) returns the step's end x + (h/6)(A + k_4) and
+/// leaves A alone. The batched kernels and the dual-number step (step_tangent) both call it: one source
+/// of the tableau.
 template <class T>
-TUMBLE_INLINE Coordinates<T> stage(int s, const T& h, const Coordinates<T>& x, const CoordinateRates<T>& k,
-                                   CoordinateRates<T>& A) {
+TUMBLE_INLINE Coordinates<T> stage(int s, const T& length, const Coordinates<T>& x,
+                                   const CoordinateRates<T>& k, CoordinateRates<T>& A) {
   if (s < 3) {
     A = s == 0 ? k : axpy<T>(A, T(b[s]), k);
-    return advanced<T>(x, T(c[s + 1]) * h, k);
+    return advanced<T>(x, length, k);
   }
-  return advanced<T>(x, h / T(6), axpy<T>(A, T(1.0), k));
+  return advanced<T>(x, length, axpy<T>(A, T(1.0), k));
 }
 
 /// `count` steps of x by h. `y` and `A_particles` are the whole-system stage variables of staged steps
