@@ -1659,6 +1659,33 @@ const std::vector<Case>& catalogue() {
        "tumble: error: the fit's result g.csv is the input g.csv: tumble never overwrites an input; give "
        "another "
        "output file"},
+      {"run --sensitivities: CSV cannot hold them, nothing written",
+       {{"s.toml",
+         "[simulation]\nduration = 0.1\n[[bodies]]\nname = \"b\"\nshape = { type = \"box\", size = [1, 2, "
+         "3] }\nmass = 1.0\nangular_velocity = [1, 2, 3]\n"}},
+       "{t} run s.toml -o o.csv --sensitivities; s=$?; ! ls o.* && exit $s",
+       1,
+       "tumble: error: --sensitivities writes matrices (datasets stm and parameter_sensitivity) that CSV "
+       "cannot "
+       "hold: give an HDF5 output, e.g. -o s.h5"},
+      {"run --sensitivities: an integrator that does not differentiate its steps, nothing written",
+       {{"s.toml",
+         "[simulation]\nduration = 0.1\n[[bodies]]\nname = \"b\"\nshape = { type = \"box\", size = [1, 2, "
+         "3] }\nmass = 1.0\nangular_velocity = [1, 2, 3]\n"}},
+       "{t} run s.toml -o o.h5 --sensitivities --integrator splitting; s=$?; ! ls o.* && exit $s",
+       1,
+       "tumble: error: integrator 'splitting' does not differentiate its steps yet: sensitivities are given "
+       "by "
+       "euler, implicit_gyro, lie_rk4, midpoint, rk4, semi_implicit_euler"},
+      {"run --sensitivities: a scene with events",
+       {{"s.toml",
+         "[simulation]\nduration = 0.1\n[[bodies]]\nname = \"b\"\nshape = { type = \"box\", size = [1, 2, "
+         "3] }\nmass = 1.0\nangular_velocity = [1, 2, 3]\n[[events]]\nname = \"e\"\nbody = \"b\"\ncolumn = "
+         "\"w2\"\n"}},
+       "{t} run s.toml -o o.h5 --sensitivities",
+       1,
+       "tumble: error: --sensitivities runs its own loop, which watches no events yet: remove the scene's "
+       "[[events]] for this run"},
       {"fit: no --sigma",
        {{"g.csv", "t,wx,wy,wz\n0,1,2,3\n"}},
        "{t} fit g.csv",
