@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "../tests/support/allocation_counter.hpp"
+#include "boxes.hpp"
 #include "machine.hpp"
 #include "tumble/forces/forces.hpp"
 #include "tumble/integrate/integrator.hpp"
@@ -47,20 +48,7 @@ struct Config {
   double bytes_per_body = 0;
 };
 
-SystemState boxes(long n, Model& model) {
-  const Vec3 Lambda(0.025, 0.05, 0.065);  // box 0.1 × 0.2 × 0.3 m of density 1000: m = 6 kg
-  std::mt19937_64 rng(12345);
-  std::normal_distribution<double> normal;
-  SystemState s;
-  for (long i = 0; i < n; ++i) {
-    model.add_body(RigidBody::from_principal_moments(6.0, Lambda, "box"));
-    const Quat q = Quat(normal(rng), normal(rng), normal(rng), normal(rng)).normalized();
-    const Vec3 w = 10.0 * Vec3(normal(rng), normal(rng), normal(rng)).normalized();
-    s.bodies.push_back(BodyState{Vec3(0, 0, 10), q, Vec3(1, 0, 2), w});
-  }
-  model.add_force<UniformGravity>(Vec3(0, 0, -9.81));
-  return s;
-}
+using bench::boxes;
 
 void measure(Config& c, const Model& model, const SystemState& s0) {
   const Formulation F = Formulation::mixed;
