@@ -326,6 +326,20 @@ def _read_hdf5(path):
                 events.append(EventCrossing(name.decode() if isinstance(name, bytes) else name, float(time), names[row]))
         attrs = f.attrs
         text = lambda key: (attrs[key].decode() if isinstance(attrs[key], bytes) else str(attrs[key])) if key in attrs else None
-        return Trajectory(t, names, arrays, units, frames, diagnostics, events, text("integrator"),
-                          text("formulation"), float(attrs["timestep"]) if "timestep" in attrs else None,
-                          complete=bool(attrs.get("complete", 1)))
+        trajectory = Trajectory(t, names, arrays, units, frames, diagnostics, events, text("integrator"),
+                                text("formulation"), float(attrs["timestep"]) if "timestep" in attrs else None,
+                                complete=bool(attrs.get("complete", 1)))
+        if get("stm") is not None:  # tumble run --sensitivities (docs/sensitivities.md, "Files")
+            stm, dp = need("stm"), need("parameter_sensitivity")
+            layout = stm.attrs.get("layout", b"")
+            layout = layout.decode() if isinstance(layout, bytes) else str(layout)
+            parameters = dp.attrs.get("parameters", b"")
+            parameters = parameters.decode() if isinstance(parameters, bytes) else str(parameters)
+            B = len(names)
+            rows = (B, 12, 12) if layout == "block_diagonal" else (12 * B, 12 * B) if layout == "dense" else None
+            if rows is None or stm.shape != (len(t),) + rows or dp.shape[:-1] != (len(t),) + rows[:-1]:
+                raise ValueError(f"{path}: datasets stm {stm.shape} and parameter_sensitivity {dp.shape} (layout "
+                                 f"'{layout}') do not fit {len(t)} samples of {B} bodies: not as tumble run wrote them")
+            trajectory.sensitivities = {"stm": stm[:], "parameter_sensitivity": dp[:], "coupled": layout == "dense",
+                                        "sensitivity_parameters": "mass" if parameters == "mass" else "inertia"}
+        return trajectory

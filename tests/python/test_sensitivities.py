@@ -75,6 +75,11 @@ def test_run_writes_stm_to_hdf5_and_refuses_csv(tmp_path):
         assert np.array_equal(stm[0, 0], np.eye(12))
         # Over 100 s of a 5828 s orbit the position responds to the velocity by ~t (ballistic).
         assert 90 < stm[-1, 0, 0, 6] < 110
+    # The file reads back as the Trajectory simulate() gives, sensitivities included.
+    read = tumble.read_trajectory(out)
+    same = tumble.simulate(satellite, duration=100, sensitivities=True)
+    np.testing.assert_array_equal(read.stm, same.stm)
+    np.testing.assert_array_equal(read.parameter_sensitivity, same.parameter_sensitivity)
     done = subprocess.run([cli, "run", satellite, "-o", str(tmp_path / "s.csv"), "--sensitivities"],
                           capture_output=True, text=True)
     assert done.returncode != 0 and "give an HDF5 output" in done.stderr, done.stderr
