@@ -17,9 +17,9 @@ namespace {
 using T = TangentScalar;
 constexpr int D = kTangentDirections;
 
-/// Where a pass puts its seeds: slot s of every dual number is the derivative along column
-/// `column[s]` (the global index, state columns 0 … 12B − 1, then parameter columns), −1 unused.
-/// Uncoupled bodies share one pass: body b's slot j is its own column j (state 0–11, parameters 12–).
+/// One pass: its own integrator and the system's variables carrying up to D seeded columns. In pass k of
+/// a coupled system slot s is global column k·D + s (state columns 0 … 12B − 1, then parameter columns);
+/// bodies apart share one pass in which body b's slot j is its own column j (state 0–11, parameters 12–).
 struct Pass {
   std::unique_ptr<Integrator> integrator;
   TangentCoordinates x;
