@@ -745,11 +745,13 @@ Runner add_run_command(CLI::App& app) {
                   "output to a file only (not HDF5, -, a device or a FIFO)");
   cmd->add_option("--checkpoint-every", o->checkpoint_every,
                   "seconds of wall-clock time between checkpoints (default 60; 0 = at every sample)");
-  cmd->add_flag("--sensitivities", o->sensitivities,
-                "also write the run's sensitivities to the HDF5 output: stm = d x(t_k)/d x(0) and "
-                "parameter_sensitivity = d x(t_k)/d(I1, I2, I3) of each body (or d/d mass), by forward-mode "
-                "differentiation of the integrator's own steps (euler, semi_implicit_euler, rk4, lie_rk4, "
-                "implicit_gyro; docs/sensitivities.md). HDF5 only; no events or checkpoints");
+  cmd->add_flag(
+      "--sensitivities", o->sensitivities,
+      fmt::format("also write the run's sensitivities to the HDF5 output: stm = d x(t_k)/d x(0) and "
+                  "parameter_sensitivity = d x(t_k)/d(I1, I2, I3) of each body (or d/d mass), by "
+                  "forward-mode differentiation of the integrator's own steps ({}; "
+                  "docs/sensitivities.md). HDF5 only; no events or checkpoints",
+                  fmt::join(differentiating_integrators(), ", ")));
   cmd->add_option("--sensitivity-parameters", o->sensitivity_parameters,
                   "what parameter_sensitivity differentiates with respect to: inertia (each body's "
                   "principal moments, 3 columns a body; default) or mass (1 a body)")
