@@ -13,12 +13,9 @@ namespace tumble {
 namespace {
 
 TEST(FiniteDifferenceStm, AFreeIsotropicBodyGivesItsFlowsDerivativeInClosedForm) {
-  Model model;
-  model.add_body(RigidBody::from_principal_moments(2.0, Vec3(0.4, 0.4, 0.4), "ball"));
-  const Vec3 omega0(0.7, -1.1, 0.5);
-  SystemState s0;
-  s0.bodies.push_back(BodyState{Vec3(0.1, 0.2, 0.3), Quat(Eigen::AngleAxisd(0.4, Vec3(1, 2, 2).normalized())),
-                                Vec3(1.0, -0.5, 0.2), omega0});
+  const Model model = test::ball_model();
+  const SystemState s0 = test::ball_state();
+  const Vec3& omega0 = test::kBallOmega0;
   RunSettings settings;
   settings.duration = 1.5;
   settings.timestep = 1e-3;

@@ -20,6 +20,15 @@
 namespace tumble {
 namespace {
 
+/// Settings of a run of `duration` s in steps of h by `integrator` (sampled at the end only).
+RunSettings run(const std::string& integrator, double duration, double h) {
+  RunSettings settings;
+  settings.integrator = integrator;
+  settings.duration = duration;
+  settings.timestep = h;
+  return settings;
+}
+
 /// The sensitivities at the end of a run.
 Sensitivities at_end(const Model& model, const SystemState& s0, const RunSettings& settings,
                      SensitivityParameters parameters = SensitivityParameters::inertia,
@@ -48,19 +57,13 @@ BodyState handle_state(const RigidBody& body) {
 }
 
 TEST(Sensitivities, AFreeIsotropicBodyGivesItsFlowsDerivativeInClosedForm) {
-  Model model;
-  model.add_body(RigidBody::from_principal_moments(2.0, Vec3(0.4, 0.4, 0.4), "ball"));
-  const Vec3 omega0(0.7, -1.1, 0.5);
-  SystemState s0;
-  s0.bodies.push_back(BodyState{Vec3(0.1, 0.2, 0.3), Quat(Eigen::AngleAxisd(0.4, Vec3(1, 2, 2).normalized())),
-                                Vec3(1.0, -0.5, 0.2), omega0});
+  const Model model = test::ball_model();
+  const SystemState s0 = test::ball_state();
+  const Vec3& omega0 = test::kBallOmega0;
   for (const std::string& integrator : differentiating_integrators()) {
     for (Formulation F : {Formulation::world, Formulation::mixed, Formulation::body}) {
-      RunSettings settings;
       const bool fourth_order = integrator == "rk4" || integrator == "lie_rk4";
-      settings.duration = fourth_order ? 1.5 : 0.3;
-      settings.timestep = fourth_order ? 1e-3 : 1e-4;
-      settings.integrator = integrator;
+      RunSettings settings = run(integrator, fourth_order ? 1.5 : 0.3, fourth_order ? 1e-3 : 1e-4);
       settings.formulation = F;
       settings.output_interval = 0.5;
       const double t = settings.duration;
@@ -96,10 +99,7 @@ TEST(Sensitivities, EachIntegratorAgreesWithCentralDifferencesOfItself) {
   SystemState s0;
   s0.bodies.push_back(handle_state(model.bodies[0]));
   for (const std::string& integrator : differentiating_integrators()) {
-    RunSettings settings;
-    settings.duration = 0.5;
-    settings.timestep = 2e-3;
-    settings.integrator = integrator;
+    const RunSettings settings = run(integrator, 0.5, 2e-3);
     const Eigen::MatrixXd S = at_end(model, s0, settings).stm;
     const Eigen::MatrixXd fd = stm_by_central_differences(model, s0, settings, 1e-6);
     const Eigen::MatrixXd fd2 = stm_by_central_differences(model, s0, settings, 2e-6);
@@ -125,9 +125,7 @@ TEST(Sensitivities, TheInertiaColumnsAreDerivativesWithRespectToThePrincipalMome
     m.add_force<PointForce>(0, Vec3(0.0, 0.2, 0.1), Frame::reference, Vec3(0.1, 0.0, 0.0), Frame::reference);
     return m;
   };
-  RunSettings settings;
-  settings.duration = 1.0;
-  settings.timestep = 1e-3;
+  const RunSettings settings = run("rk4", 1.0, 1e-3);
   SystemState s0;
   s0.bodies.push_back(s);
   const Sensitivities S = at_end(model_with(Lambda, 4.0), s0, settings);
@@ -177,9 +175,7 @@ TEST(Sensitivities, TheDerivativeOfTheConservedAngularMomentumIsConservedToTheMe
   const Eigen::Matrix<double, 3, 12> dL0 = dL(s0.bodies[0], Eigen::MatrixXd::Identity(12, 12));
   double defect[2];
   for (int r = 0; r < 2; ++r) {
-    RunSettings settings;
-    settings.duration = 2.0;
-    settings.timestep = r == 0 ? 4e-3 : 2e-3;
+    const RunSettings settings = run("rk4", 2.0, r == 0 ? 4e-3 : 2e-3);
     SystemState end;
     const Sensitivities S = at_end(model, s0, settings, SensitivityParameters::inertia, &end);
     defect[r] = (dL(end.bodies[0], S.stm) - dL0).cwiseAbs().maxCoeff();
@@ -196,11 +192,8 @@ TEST(Sensitivities, TheValuesAreTheRunsOwnStates) {
   SystemState s0;
   s0.bodies.push_back(handle_state(model.bodies[0]));
   for (const std::string& integrator : differentiating_integrators()) {
-    RunSettings settings;
-    settings.duration = 0.3;
-    settings.timestep = 1e-2;
+    RunSettings settings = run(integrator, 0.3, 1e-2);
     settings.output_interval = 0.025;  // samples between steps: the step before each is shortened
-    settings.integrator = integrator;
     std::vector<SystemState> primal, dual;
     (void)simulate(model, s0, settings, [&](const SystemState& s) {
       primal.push_back(s);
@@ -241,9 +234,7 @@ TEST(Sensitivities, BodiesApartGiveBlocksAndASpringCouplesThem) {
   SystemState s0;
   s0.bodies.push_back(handle_state(model.bodies[0]));
   s0.bodies.push_back(BodyState{Vec3(1.0, 0.0, 1.0), Quat::Identity(), Vec3(0, 0.5, 0), Vec3(3.0, 0.1, 0.2)});
-  RunSettings settings;
-  settings.duration = 0.4;
-  settings.timestep = 2e-3;
+  const RunSettings settings = run("rk4", 0.4, 2e-3);
   const Sensitivities apart = at_end(model, s0, settings);
   EXPECT_FALSE(apart.coupled);
   EXPECT_EQ(apart.stm.cols(), 12);  // each body's own block only: no 24 × 24
@@ -269,8 +260,7 @@ TEST(Sensitivities, RefusesWhatItCannotDifferentiate) {
   model.add_body(handle());
   SystemState s0;
   s0.bodies.push_back(handle_state(model.bodies[0]));
-  RunSettings settings;
-  settings.duration = 0.1;
+  RunSettings settings = run("rk4", 0.1, 1e-3);
   const std::vector<std::string> differentiating = differentiating_integrators();
   for (const std::string& integrator : integrator_names()) {
     settings.integrator = integrator;

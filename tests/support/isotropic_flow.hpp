@@ -10,9 +10,25 @@
 
 #include <Eigen/Geometry>
 
+#include "tumble/forces/model.hpp"
 #include "tumble/math/types.hpp"
 
 namespace tumble::test {
+
+/// The free isotropic body both are checked on: a ball (Λ = 0.4 kg·m² each) spinning at kBallOmega0
+/// while it drifts, its centre of mass at its reference origin.
+inline const Vec3 kBallOmega0(0.7, -1.1, 0.5);
+inline Model ball_model() {
+  Model model;
+  model.add_body(RigidBody::from_principal_moments(2.0, Vec3(0.4, 0.4, 0.4), "ball"));
+  return model;
+}
+inline SystemState ball_state() {
+  SystemState s0;
+  s0.bodies.push_back(BodyState{Vec3(0.1, 0.2, 0.3), Quat(Eigen::AngleAxisd(0.4, Vec3(1, 2, 2).normalized())),
+                                Vec3(1.0, -0.5, 0.2), kBallOmega0});
+  return s0;
+}
 
 inline Eigen::Matrix<double, 12, 12> isotropic_flow_stm(const Vec3& omega0, double t) {
   Eigen::Matrix<double, 12, 12> M = Eigen::Matrix<double, 12, 12>::Identity();
