@@ -95,7 +95,8 @@ def simulate(scene: Scene | str | _os.PathLike, integrator: str | None = None, f
     (T, 12 B, 12 B) = d x(t_k) / d x(0), and ``parameter_sensitivity``, (T, 12 B, 3 B) = d x(t_k) / d(I1,
     I2, I3) of each body, or (T, 12 B, B) with respect to the masses with sensitivity_parameters="mass".
     Forward-mode derivatives of the integrator's own steps (euler, semi_implicit_euler, rk4, lie_rk4,
-    implicit_gyro, midpoint); no events are watched and no Python force is differentiated."""
+    implicit_gyro, midpoint; dopri45's accepted steps, their lengths held fixed); no events are watched
+    and no Python force is differentiated."""
     if isinstance(scene, (str, bytes)) or hasattr(scene, "__fspath__"):
         scene = load_scene(scene)
     specs, python_events, every = [], [], []

@@ -7,6 +7,8 @@
 // exact arithmetic, so |q| − 1 stays at the size of the local error tolerance and is removed at output.
 #include <boost/numeric/odeint.hpp>
 
+#include <stdexcept>
+
 #include "engine.hpp"
 #include "methods.hpp"
 #include "saved_state.hpp"
@@ -42,6 +44,32 @@ void unpack(const Packed& p, double t, SystemCoordinates& x) {
   for (auto& s : x.particles) {
     s = {Vec3(d[0], d[1], d[2]), Vec3(d[3], d[4], d[5])};
     d += kParticle;
+  }
+}
+
+// ---- The same steps on dual numbers (sensitivities, issue 25) ----
+// Odeint's own Dormand–Prince stepper, instantiated on dual numbers, takes each accepted step again with
+// its length held fixed, and its own continuous extension gives the samples: the tableau and the dense
+// output have one source, Boost's, for the values and their derivatives alike.
+
+using TangentPacked = std::vector<TangentScalar>;
+using TangentStepper = odeint::runge_kutta_dopri5<TangentPacked, double, TangentPacked, double>;
+
+/// Calls f on the 13 numbers of a body's variables (or their rates) in pack()'s order: o, q, v, ω.
+template <class Vec, class Q, class F>
+void for_each_number(Vec& o, Q& q, Vec& v, Vec& omega, F&& f) {
+  for (int k = 0; k < 3; ++k) f(o(k));
+  for (int k = 0; k < 4; ++k) f(q.coeffs()(k));
+  for (int k = 0; k < 3; ++k) f(v(k));
+  for (int k = 0; k < 3; ++k) f(omega(k));
+}
+
+void unpack(const TangentPacked& p, double t, TangentCoordinates& x) {
+  x.t = t;
+  const TangentScalar* d = p.data();
+  for (auto& c : x.bodies) {
+    for_each_number(c.o, c.q, c.v, c.omega, [&](TangentScalar& n) { n = *d++; });
+    c.q = normalized<TangentScalar>(c.q);
   }
 }
 
@@ -130,6 +158,48 @@ class DormandPrince45 final : public AdaptiveIntegrator {
     stats_ = {steps, 0, steps > 0 ? evaluations - 1 : evaluations};
   }
 
+  void start_tangent(const Model& model, Formulation F, const TangentCoordinates& x0) override {
+    model_ = &model;
+    F_ = F;
+    y_tangent_ = x0;
+    x_new_.clear();
+    for (auto c : x0.bodies) {
+      for_each_number(c.o, c.q, c.v, c.omega, [&](TangentScalar& n) { x_new_.push_back(n); });
+    }
+    dxdt_new_.resize(x_new_.size());
+    t_new_ = x0.t;
+    tangent_steps_ = 0;
+    tangent_rhs(x_new_, dxdt_new_, t_new_);
+  }
+
+  void step_tangent() override {
+    if (tangent_steps_ != stats_.steps - 1 || t_new_ != previous_time()) {
+      throw std::logic_error("dopri45: step_tangent() must follow each step() once, after start_tangent()");
+    }
+    std::swap(x_old_, x_new_);
+    std::swap(dxdt_old_, dxdt_new_);
+    t_old_ = t_new_;
+    t_new_ = current_time();
+    x_new_.resize(x_old_.size());
+    dxdt_new_.resize(x_old_.size());
+    tangent_stepper_.do_step([this](const TangentPacked& p, TangentPacked& dpdt,
+                                    double t) { tangent_rhs(p, dpdt, t); },
+                             x_old_, dxdt_old_, t_old_, x_new_, dxdt_new_, t_new_ - t_old_);
+    ++tangent_steps_;
+  }
+
+  TangentCoordinates interpolate_tangent(double t) const override {
+    TangentCoordinates x = y_tangent_;
+    if (tangent_steps_ == 0) {
+      unpack(x_new_, t, x);
+      return x;
+    }
+    TangentPacked p(x_new_.size());
+    tangent_stepper_.calc_state(t, p, x_old_, dxdt_old_, t_old_, x_new_, dxdt_new_, t_new_);
+    unpack(p, t, x);
+    return x;
+  }
+
   IntegratorStats stats() const override {
     IntegratorStats s = stats_;
     // Each attempt costs 6 new evaluations (the 7th stage is the next step's first: FSAL), plus one
@@ -139,7 +209,27 @@ class DormandPrince45 final : public AdaptiveIntegrator {
   }
 
  private:
+  /// The right-hand side on dual numbers, as rhs() in step() on double: q normalised, then the rates.
+  void tangent_rhs(const TangentPacked& p, TangentPacked& dpdt, double t) {
+    unpack(p, t, y_tangent_);
+    tangent_rates_.rates(*model_, F_, y_tangent_, k_);
+    TangentScalar* d = dpdt.data();
+    for (auto& k : k_) {
+      for_each_number(k.o_dot, k.q_dot, k.v_dot, k.omega_dot, [&](const TangentScalar& n) { *d++ = n; });
+    }
+  }
+
   decltype(odeint::make_dense_output(1.0, 1.0, odeint::runge_kutta_dopri5<Packed>())) stepper_;
+  // The replay on dual numbers: the step's ends and their rates (first same as last), the stage state.
+  const Model* model_ = nullptr;
+  Formulation F_ = Formulation::world;
+  TangentStepper tangent_stepper_;
+  TangentPacked x_old_, dxdt_old_, x_new_, dxdt_new_;
+  double t_old_ = 0.0, t_new_ = 0.0;
+  long tangent_steps_ = 0;
+  TangentCoordinates y_tangent_;
+  TangentRates tangent_rates_;
+  std::vector<CoordinateRates<TangentScalar>> k_;
   engine::Engine engine_;
   SystemCoordinates y_;  // the state handed to the right-hand side
   BodyColumns rates_;

@@ -51,16 +51,30 @@ void Integrator::load_state(const Model& /*model*/, Formulation /*formulation*/,
   }
 }
 
-void Integrator::step_tangent(const Model& /*model*/, Formulation /*formulation*/, TangentCoordinates& /*x*/,
-                              double /*h*/) {
+
+namespace {
+[[noreturn]] void refuse_tangent(const std::string& name) {
   throw InvalidArgument(
-      fmt::format("integrator '{}' does not differentiate its steps yet: sensitivities are given by {}",
-                  name(), fmt::join(differentiating_integrators(), ", ")));
+      fmt::format("integrator '{}' does not differentiate its steps yet: sensitivities are given by {}", name,
+                  fmt::join(differentiating_integrators(), ", ")));
 }
+}  // namespace
+
+void AdaptiveIntegrator::start_tangent(const Model&, Formulation, const TangentCoordinates&) {
+  refuse_tangent(name());
+}
+void AdaptiveIntegrator::step_tangent() { refuse_tangent(name()); }
+TangentCoordinates AdaptiveIntegrator::interpolate_tangent(double) const { refuse_tangent(name()); }
 
 std::vector<std::string> differentiating_integrators() {
-  // Those that override step_tangent (tests/integrate/step_tangent_test.cpp checks the list).
-  return {"euler", "implicit_gyro", "lie_rk4", "midpoint", "rk4", "semi_implicit_euler"};
+  // Those that override step_tangent (tests/sim/sensitivities_test.cpp runs each, and checks that the
+  // others refuse).
+  return {"dopri45", "euler", "implicit_gyro", "lie_rk4", "midpoint", "rk4", "semi_implicit_euler"};
+}
+
+void Integrator::step_tangent(const Model& /*model*/, Formulation /*formulation*/, TangentCoordinates& /*x*/,
+                              double /*h*/) {
+  refuse_tangent(name());
 }
 
 std::vector<std::string> integrator_names() {

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
@@ -21,7 +22,8 @@ constexpr int D = kTangentDirections;
 /// a coupled system slot s is global column k·D + s (state columns 0 … 12B − 1, then parameter columns);
 /// bodies apart share one pass in which body b's slot j is its own column j (state 0–11, parameters 12–).
 struct Pass {
-  std::unique_ptr<Integrator> integrator;
+  std::unique_ptr<Integrator> integrator;  // a fixed-step method
+  std::unique_ptr<AdaptiveIntegrator> adaptive;  // or an adaptive one, which replays its accepted steps
   TangentCoordinates x;
 };
 
@@ -173,12 +175,7 @@ Eigen::MatrixXd Sensitivities::dense_parameters() const {
 SystemState simulate_sensitivities(const Model& model, const SystemState& state, const RunSettings& settings,
                                    SensitivityParameters parameters, const SensitivitySink& on_sample) {
   validate(settings);
-  if (is_adaptive(settings.integrator)) {
-    throw InvalidArgument(
-        fmt::format("sensitivities: integrator '{}' is adaptive and does not differentiate its steps yet; "
-                    "choose one of {}",
-                    settings.integrator, fmt::join(differentiating_integrators(), ", ")));
-  }
+  const bool adaptive = is_adaptive(settings.integrator);
   if (!model.particles.empty()) {
     throw InvalidArgument(fmt::format(
         "sensitivities are of rigid bodies: the system has {} particles (model them as small bodies)",
@@ -216,8 +213,12 @@ SystemState simulate_sensitivities(const Model& model, const SystemState& state,
   };
   std::vector<Pass> pass(passes);
   for (size_t k = 0; k < passes; ++k) {
-    pass[k].integrator = make_integrator(settings.integrator);
-    pass[k].integrator->check(model);
+    if (adaptive) {
+      pass[k].adaptive = make_adaptive_integrator(settings.integrator, settings.tolerances);
+    } else {
+      pass[k].integrator = make_integrator(settings.integrator);
+      pass[k].integrator->check(model);
+    }
     TangentCoordinates& x = pass[k].x;
     x.t = state.t;
     x.bodies.resize(B);
@@ -229,8 +230,16 @@ SystemState simulate_sensitivities(const Model& model, const SystemState& state,
           x.bodies[b], x.m[b], x.Lambda[b]);
     }
   }
-  // Every integrator refuses here, before the first sample, if it does not differentiate its steps.
-  if (B > 0) {
+  // Every integrator refuses here, before the first sample, if it does not differentiate its steps. An
+  // adaptive one starts as AdaptiveSteps (steppers.hpp) starts it: the same first trial step.
+  if (adaptive) {
+    const SystemCoordinates x0 = to_coordinates(F, state);
+    for (Pass& p : pass) {
+      p.adaptive->start(model, F, x0,
+                        std::min(settings.timestep, std::max(settings.duration, settings.timestep)));
+      p.adaptive->start_tangent(model, F, p.x);
+    }
+  } else if (B > 0) {
     TangentCoordinates probe = pass[0].x;
     pass[0].integrator->step_tangent(model, F, probe, settings.timestep);
   }
@@ -275,11 +284,34 @@ SystemState simulate_sensitivities(const Model& model, const SystemState& state,
   if (on_sample && !on_sample(state, out)) return state;
   double t_last_sample = state.t;
   long steps = 0, steps_since_sample = 0;
-  // The clock of FixedSteps (steppers.hpp): steps of h, the last before a sample the remaining interval,
-  // the time on the grid t_last_sample + n·h.
+  auto check_finite = [&](const Pass& p, double step) {
+    for (size_t b = 0; b < B; ++b) {
+      if (!finite(p.x.bodies[b])) {
+        throw Error(
+            fmt::format("sensitivities: the state of body '{}' or its derivatives became non-finite at t = {} "
+                        "s (step {}, h = {} s): take a smaller {}",
+                        model.bodies[b].name(), p.x.t, steps, step, adaptive ? "tolerance" : "timestep"));
+      }
+    }
+  };
   for (long k = 1; pass[0].x.t < sample_time.end() - tiny; ++k) {
     const double t_sample = sample_time(k);
-    while (pass[0].x.t < t_sample - tiny) {
+    if (adaptive) {
+      // AdaptiveSteps' way: accepted steps until one reaches the sample, which its dense output gives.
+      for (Pass& p : pass) {
+        AdaptiveIntegrator& a = *p.adaptive;
+        while (a.current_time() < t_sample) {
+          a.step();
+          a.step_tangent();
+        }
+        p.x = a.interpolate_tangent(t_sample);
+        steps = a.stats().steps;
+        check_finite(p, a.current_time() - a.previous_time());
+      }
+    }
+    // The clock of FixedSteps (steppers.hpp): steps of h, the last before a sample the remaining
+    // interval, the time on the grid t_last_sample + n·h.
+    while (!adaptive && pass[0].x.t < t_sample - tiny) {
       const double remaining = t_sample - pass[0].x.t;
       const double step = remaining <= h + tiny ? remaining : h;
       ++steps;
@@ -288,15 +320,7 @@ SystemState simulate_sensitivities(const Model& model, const SystemState& state,
         p.integrator->step_tangent(model, F, p.x, step);
         p.x.t = p.x.t >= t_sample - tiny ? t_sample
                                          : t_last_sample + static_cast<double>(steps_since_sample) * h;
-        for (size_t b = 0; b < B; ++b) {
-          if (!finite(p.x.bodies[b])) {
-            throw Error(
-                fmt::format("sensitivities: the state of body '{}' or its derivatives became non-finite at t "
-                            "= {} s (step "
-                            "{}, h = {} s): take a smaller timestep",
-                            model.bodies[b].name(), p.x.t, steps, step));
-          }
-        }
+        check_finite(p, step);
       }
     }
     t_last_sample = pass[0].x.t;

@@ -120,6 +120,16 @@ class AdaptiveIntegrator {
   /// Throws InvalidArgument if `state` does not fit.
   virtual void load_state(const std::vector<double>& state) = 0;
 
+  /// Sensitivities (issue 25): the accepted steps replayed on dual numbers. start_tangent(), after
+  /// start(), takes x(0) on dual numbers (its values those given to start()); after each step(),
+  /// step_tangent() takes the step just accepted — previous_time() to current_time() — by the same
+  /// stages, and interpolate_tangent(t) is the dense output inside it. The lengths the error control
+  /// chose are constants of this map: their own derivatives are not taken (docs/sensitivities.md).
+  /// The defaults throw InvalidArgument (differentiating_integrators() names those that override them).
+  virtual void start_tangent(const Model& model, Formulation formulation, const TangentCoordinates& x0);
+  virtual void step_tangent();
+  virtual TangentCoordinates interpolate_tangent(double t) const;
+
   /// The variables at time t (non-decreasing between calls), stepping as far as needed and
   /// interpolating inside the last step.
   SystemCoordinates at(double t) {
