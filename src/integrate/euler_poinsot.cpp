@@ -25,21 +25,33 @@ std::string vec_text(const Eigen::Vector4d& v, int n) {
   return s.str();
 }
 
+}  // namespace
+
+namespace detail {
+
+namespace {
 /// 2^−⌊log₂ x⌋: multiplying by it is exact and brings x into [1, 2).
 double power_of_two_scale(double x) { return std::ldexp(1.0, -std::ilogb(x)); }
+}  // namespace
 
-/// The axis indices in ascending order of Lambda, equal moments kept in their given order (what
-/// std::stable_sort gives, without its temporary buffer on the heap).
-std::array<int, 3> ascending_order(const Vec3& Lambda) {
-  std::array<int, 3> order{0, 1, 2};
-  // Insertion sort: an element moves left only past strictly larger ones, which keeps it stable.
+AxesSort sort_axes(const Vec3& Lambda, const Vec3& omega_b0) {
+  AxesSort s;
+  // The axis indices in ascending order of Lambda, equal moments kept in their given order (what
+  // std::stable_sort gives, without its temporary buffer on the heap): an element moves left only past
+  // strictly larger ones.
+  s.order = {0, 1, 2};
   for (int i = 1; i < 3; ++i) {
-    for (int k = i; k > 0 && Lambda(order[k]) < Lambda(order[k - 1]); --k) std::swap(order[k], order[k - 1]);
+    for (int k = i; k > 0 && Lambda(s.order[k]) < Lambda(s.order[k - 1]); --k) std::swap(s.order[k], s.order[k - 1]);
   }
-  return order;
+  s.P.setZero();
+  for (int k = 0; k < 3; ++k) s.P(k, s.order[k]) = 1.0;
+  if (s.P.determinant() < 0) s.P.row(1) *= -1.0;
+  s.I_scale = power_of_two_scale(Lambda.maxCoeff());
+  s.omega_scale = 1.0 / power_of_two_scale(omega_b0.cwiseAbs().maxCoeff());
+  return s;
 }
 
-}  // namespace
+}  // namespace detail
 
 const detail::FreeRotation& EulerPoinsot::flow() const {
   // The flow lives in flow_ (no heap): it must fit, and since ~EulerPoinsot() is trivial, need no
@@ -104,16 +116,15 @@ EulerPoinsot::EulerPoinsot(const Vec3& Lambda, const Quat& q0_in, const Vec3& om
     return;
   }
 
-  // Sort the axes: ω_s = P ω_b with P a signed permutation of determinant +1.
-  const std::array<int, 3> order = ascending_order(Lambda);
+  // Sort the axes: ω_s = P ω_b with P a signed permutation of determinant +1. Exact power-of-two
+  // scalings keep the moments' differences exact and keep the squares of ω away from overflow and
+  // underflow; λ and the amplitudes are scaled back by omega_scale.
+  const detail::AxesSort sort = detail::sort_axes(Lambda, omega_b0);
+  const std::array<int, 3>& order = sort.order;
   detail::SortedBody body;
-  body.P.setZero();
-  for (int k = 0; k < 3; ++k) body.P(k, order[k]) = 1.0;
-  if (body.P.determinant() < 0) body.P.row(1) *= -1.0;
-  // Exact power-of-two scalings keep the moments' differences exact and keep the squares of ω away
-  // from overflow and underflow; λ and the amplitudes are scaled back by omega_scale.
-  body.I = power_of_two_scale(Lambda.maxCoeff()) * (body.P.cwiseAbs() * Lambda);
-  body.omega_scale = 1.0 / power_of_two_scale(omega_b0.cwiseAbs().maxCoeff());
+  body.P = sort.P;
+  body.I = sort.I_scale * (body.P.cwiseAbs() * Lambda);
+  body.omega_scale = sort.omega_scale;
   body.w = (body.P * omega_b0) / body.omega_scale;
 
   const double tol = kEqualMomentsTolerance * body.I(2);

@@ -2,6 +2,7 @@
 // The closed-form flows behind EulerPoinsot, one per kind of body (internal to the library). They are
 // plain values: EulerPoinsot holds one, as a FreeRotation (a std::variant of the three), in a buffer of
 // its own, so that constructing, copying and evaluating it never allocates.
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -68,6 +69,15 @@ struct SortedBody {
   Mat3 P;
   double omega_scale = 1.0;
 };
+
+/// How a body is put in sorted axes: ω_s = P ω_b with the moments ascending (equal ones in their given
+/// order) and det P = +1; the moments are scaled by I_scale and ω by 1/omega_scale, exact powers of two.
+struct AxesSort {
+  std::array<int, 3> order;  ///< the axes' indices, ascending moments
+  Mat3 P;
+  double I_scale = 1.0, omega_scale = 1.0;
+};
+AxesSort sort_axes(const Vec3& Lambda, const Vec3& omega_b0);
 
 /// The constants of a triaxial flow off the separatrix: everything its evaluation at a time t needs.
 /// One lane per body for a pack (the batched splitting drift keeps them as columns).

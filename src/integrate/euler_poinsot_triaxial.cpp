@@ -28,108 +28,39 @@
 #include <limits>
 
 #include "euler_poinsot_flows.hpp"
+#include "triaxial_setup.hpp"
 #include "tumble/integrate/jacobi_elliptic.hpp"
 
 namespace tumble::detail {
-namespace {
 
-double sign_of(double x) { return std::signbit(x) ? -1.0 : 1.0; }
+std::pair<JacobiConstants<double>, PiConstants<double>> elliptic_constants(double m, double m1, double n) {
+  // m and k′² come from separate formulas; each is in [0, 1] in exact arithmetic.
+  const JacobiElliptic jacobi(std::clamp(m, 0.0, 1.0), std::clamp(m1, 0.0, 1.0));
+  return {jacobi.constants(), EllipticPi(n, jacobi).constants()};
+}
 
-}  // namespace
+double elliptic_first_kind(const JacobiConstants<double>&, double s, double c, double d, double) {
+  return elliptic_Pi_incomplete(0.0, s, c, d);
+}
 
 TriaxialRotation::TriaxialRotation(const SortedBody& b, const Quat& q0, Regime& regime) {
-  TriaxialConstants<double>& k = k_;
-  k.P = b.P;
-  const double I1 = b.I(0), I2 = b.I(1), I3 = b.I(2);
-  const double w1 = b.w(0), w2 = b.w(1), w3 = b.w(2);
-  const double d1 = I2 * (I2 - I1) * w2 * w2 + I3 * (I3 - I1) * w3 * w3;
-  const double d3 = I1 * (I3 - I1) * w1 * w1 + I2 * (I3 - I2) * w2 * w2;
-  const double t1 = I1 * (I2 - I1) * w1 * w1, t3 = I3 * (I3 - I2) * w3 * w3;
-  const double d2 = t1 - t3;
-  separatrix_ = std::abs(d2) <= EulerPoinsot::kSeparatrixTolerance * (t1 + t3);
-  const int pole = d2 >= 0.0 ? 1 : 3;
-  k.pole = pole;
-  regime = separatrix_ ? Regime::separatrix : pole == 1 ? Regime::about_minor_axis : Regime::about_major_axis;
-
-  const Vec3 L_s = b.I.cwiseProduct(b.w);
-  const double L = L_s.norm();  // |L| in scaled units
-  double lambda, m, m1, s1, s3;
-  Vec3 A;
-  double x, y;  // ∝ (cn u₀, sn u₀) (sech, tanh on the separatrix)
-  if (pole == 3) {
-    lambda = std::sqrt((I3 - I2) * d1 / (I1 * I2 * I3));
-    m = (I2 - I1) * d3 / ((I3 - I2) * d1);
-    m1 = (I3 - I1) * (-d2) / ((I3 - I2) * d1);
-    A = Vec3(std::sqrt(d3 / (I1 * (I3 - I1))), std::sqrt(d3 / (I2 * (I3 - I2))),
-             std::sqrt(d1 / (I3 * (I3 - I1))));
-    s1 = separatrix_ ? sign_of(w1) : 1.0;
-    s3 = sign_of(w3);
-    N_ = I3 * (I2 - I1) / (I1 * (I3 - I2));
-    k.kappa = (I3 - I1) * L / (I1 * I3 * lambda);
-    k.c = std::sqrt(I3 * d1 / (I3 - I1)) / L;
-    k.rho = std::sqrt(d3) / L;
-    k.h1 = std::sqrt(I1 / (I3 - I1));
-    k.h2 = std::sqrt(I2 / (I3 - I2));
-    x = s1 * w1 * std::sqrt(I1 * (I3 - I1));
-    y = s1 * s3 * w2 * std::sqrt(I2 * (I3 - I2));
-  } else {
-    lambda = std::sqrt((I2 - I1) * d3 / (I1 * I2 * I3));
-    m = (I3 - I2) * d1 / ((I2 - I1) * d3);
-    m1 = (I3 - I1) * d2 / ((I2 - I1) * d3);
-    A = Vec3(std::sqrt(d3 / (I1 * (I3 - I1))), std::sqrt(d1 / (I2 * (I2 - I1))),
-             std::sqrt(d1 / (I3 * (I3 - I1))));
-    s1 = sign_of(w1);
-    s3 = separatrix_ ? sign_of(w3) : 1.0;
-    N_ = I1 * (I3 - I2) / (I3 * (I2 - I1));
-    k.kappa = -(I3 - I1) * L / (I1 * I3 * lambda);
-    k.c = std::sqrt(I1 * d3 / (I3 - I1)) / L;
-    k.rho = std::sqrt(d1) / L;
-    k.h1 = std::sqrt(I2 / (I2 - I1));
-    k.h2 = std::sqrt(I3 / (I3 - I1));
-    x = s3 * w3 * std::sqrt(I3 * (I3 - I1));
-    y = s1 * s3 * w2 * std::sqrt(I2 * (I2 - I1));
-  }
-  k.A = b.omega_scale * Vec3(s1 * A(0), s1 * s3 * A(1), s3 * A(2));
-  k.lambda = b.omega_scale * lambda;
-  k.rate = b.omega_scale * L / (pole == 3 ? I3 : I1);  // |L|/I_p (rad/s)
-
-  // Initial phase u₀ from (cn u₀, sn u₀) ∝ (x, y), and Π₀ = Π(−N; am u₀ | m).
-  const double norm = std::hypot(x, y);
+  const TriaxialParts<double> parts = triaxial_amplitudes<double>({b.I, b.w, b.P, b.omega_scale}, k_);
+  separatrix_ = parts.separatrix;
+  N_ = parts.N;
+  regime = separatrix_ ? Regime::separatrix : parts.pole == 1 ? Regime::about_minor_axis : Regime::about_major_axis;
   SnCnDn<double> f0;
   if (separatrix_) {
-    k.jacobi.K = std::numeric_limits<double>::infinity();
-    // sinh u₀ = tanh u₀ / sech u₀; x > 0 unless ω₁ and ω₃ underflowed.
-    k.u0 = std::asinh(y / std::max(x, std::numeric_limits<double>::min()));
-    f0 = separatrix_sn_cn_dn(k.u0);
+    // sn u₀ = tanh u₀, cn u₀ = sech u₀: sinh u₀ = y/x; x > 0 unless ω₁ and ω₃ underflowed. Π(−N; am u | 1)
+    // = (u + √N atan(√N tanh u))/(1 + N).
+    k_.jacobi.K = std::numeric_limits<double>::infinity();
+    k_.u0 = std::asinh(parts.y / std::max(parts.x, std::numeric_limits<double>::min()));
+    f0 = separatrix_sn_cn_dn(k_.u0);
     const double rN = std::sqrt(N_);
-    k.Pi0 = (k.u0 + rN * std::atan(rN * f0.sn)) / (1.0 + N_);
+    k_.Pi0 = (k_.u0 + rN * std::atan(rN * f0.sn)) / (1.0 + N_);
   } else {
-    // m and k′² come from separate formulas; each is in [0, 1] in exact arithmetic.
-    const JacobiElliptic jacobi(std::clamp(m, 0.0, 1.0), std::clamp(m1, 0.0, 1.0));
-    k.jacobi = jacobi.constants();
-    const double cn0 = norm > 0.0 ? x / norm : 1.0, sn0 = norm > 0.0 ? y / norm : 0.0;
-    const double dn0 = std::sqrt(cn0 * cn0 + m1 * sn0 * sn0);
-    // u₀ = F(φ₀ | m) = sn R_F(cn², dn², 1) for |φ₀| ≤ π/2; F(±π − φ) = ±2K − F(φ) beyond.
-    const double F = elliptic_Pi_incomplete(0.0, sn0, cn0, dn0);
-    k.u0 = cn0 >= 0.0 ? F : std::copysign(2.0 * jacobi.K(), sn0) - F;
-    k.pi = EllipticPi(-N_, jacobi).constants();
-    const LandenPoint<double> p0 = landen_point<double>(k.jacobi, k.u0);
-    f0 = jacobi_sn_cn_dn<double>(k.jacobi, p0);
-    k.Pi0 = elliptic_pi<double>(k.pi, p0);
+    triaxial_phase<double>(parts, k_, f0);
   }
-
-  // C P: C takes the pole axis to +e₃ with μ = (T₁, T₂, c dn); det C = +1.
-  Mat3 C;
-  if (pole == 3) {
-    C = Vec3(s1, s1 * s3, s3).asDiagonal();
-  } else {
-    Mat3 cyclic;  // (v₁, v₂, v₃) ↦ (v₂, v₃, v₁)
-    cyclic << 0, 1, 0, 0, 0, 1, 1, 0, 0;
-    C = Vec3(s1 * s3, s3, s1).asDiagonal() * cyclic;
-  }
-  k.CP = Quat(Mat3(C * k.P));
-  // R(0) = G B(0) C P = R₀  ⇒  G = R₀ (CP)ᵀ B(0)ᵀ.
-  k.G = q0 * k.CP.conjugate() * triaxial_body_part<double>(k, 0.0, f0).conjugate();
+  triaxial_frame<double>(parts, q0, f0, k_, b.P);
 }
 
 }  // namespace tumble::detail

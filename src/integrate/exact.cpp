@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "engine.hpp"
+#include "free_flow_tangent.hpp"
 #include "methods.hpp"
 #include "saved_state.hpp"
 #include "tumble/error.hpp"
@@ -29,12 +30,52 @@ class Exact final : public Integrator {
   int order() const override { return 0; }  // no discretisation error to have an order
   int evaluations_per_step() const override { return 0; }
 
-  void step_tangent(const Model&, Formulation, TangentCoordinates&, double) override {
-    throw InvalidArgument(
-        "integrator 'exact' gives no sensitivities yet: the derivatives of the closed-form torque-free "
-        "motion (its Jacobi functions and Π with respect to their argument and parameter) are not computed; "
-        "use rk4, whose state transition matrix at h = 1e-3 is within 1e-11 of the converged one on a "
-        "tumbling body (docs/sensitivities.md)");
+  /// The same evaluation on dual numbers: the parabola, and each body's rotation from its anchor by the
+  /// exact flow differentiated (FreeFlowTangent) — in closed form at τ from the anchor where it is
+  /// differentiable, else by its Taylor series over this step from the last state (the values still the
+  /// anchor's flow at τ).
+  void step_tangent(const Model& model, Formulation F, TangentCoordinates& x, double h) override {
+    using T = TangentScalar;
+    check(model);
+    const size_t n = x.bodies.size();
+    if (tangent_model_ != &model || F != tangent_formulation_ || tangent_flows_.size() != n ||
+        !(std::abs(x.t - tangent_t_) <= 1e-9 * std::abs(h))) {
+      tangent_model_ = &model;
+      tangent_formulation_ = F;
+      tangent_t0_ = x.t;
+      g_.setZero();
+      for (const auto& force : model.forces) g_ += *force->uniform_acceleration();
+      tangent_flows_.clear();
+      tangent_o0_.clear();
+      tangent_v0_.clear();
+      for (size_t i = 0; i < n; ++i) {
+        const Coordinates<T>& c = x.bodies[i];
+        tangent_flows_.emplace_back(x.Lambda[i], c.q, F == Formulation::world ? rotate_inverse<T>(c.q, c.omega) : c.omega);
+        tangent_o0_.push_back(c.o);
+        tangent_v0_.push_back(F == Formulation::body ? rotate<T>(c.q, c.v) : c.v);
+      }
+    }
+    const double t = x.t + h, tau = t - tangent_t0_;
+    const Vec3T<T> g = g_.cast<T>();
+    for (size_t i = 0; i < n; ++i) {
+      Coordinates<T>& c = x.bodies[i];
+      const FreeFlowTangent& flow = tangent_flows_[i];
+      detail::FlowState<T> s;
+      if (flow.closed_form()) {
+        s = flow.at(tau);
+      } else {
+        s = FreeFlowTangent(x.Lambda[i], c.q, F == Formulation::world ? rotate_inverse<T>(c.q, c.omega) : c.omega)
+                .at(h);
+        set_values(s, flow.values().state(tau));
+      }
+      const Vec3T<T> v_w = tangent_v0_[i] + T(tau) * g;
+      c.o = tangent_o0_[i] + T(tau) * tangent_v0_[i] + T(0.5 * tau * tau) * g;
+      c.q = s.q;
+      c.v = F == Formulation::body ? rotate_inverse<T>(c.q, v_w) : v_w;
+      c.omega = F == Formulation::world ? rotate<T>(c.q, s.omega_b) : s.omega_b;
+    }
+    x.t = t;
+    tangent_t_ = t;
   }
   void check(const Model& model) const override {
     for (const auto& force : model.forces) {
@@ -163,6 +204,12 @@ class Exact final : public Integrator {
   BodyColumns last_;          // what the last step produced
   std::vector<ParticleState> last_particles_;
   double last_t_ = 0.0, last_h_ = 0.0;
+  // step_tangent's anchor: its time, the flows on dual numbers, the centre of mass and its velocity.
+  const Model* tangent_model_ = nullptr;
+  Formulation tangent_formulation_ = Formulation::mixed;
+  double tangent_t0_ = 0.0, tangent_t_ = 0.0;
+  std::vector<FreeFlowTangent> tangent_flows_;
+  std::vector<Vec3T<TangentScalar>> tangent_o0_, tangent_v0_;
 };
 
 }  // namespace

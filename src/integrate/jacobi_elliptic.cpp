@@ -69,32 +69,14 @@ JacobiValues JacobiElliptic::operator()(double u) const {
 }
 
 double elliptic_Pi_complete(double n, double m1) {
-  // Bulirsch's cel(k_c, p, a, b) = ∫₀^{π/2} (a cos²θ + b sin²θ) dθ / ((cos²θ + p sin²θ) √(cos²θ + k_c² sin²θ))
-  // (Numer. Math. 13 (1969) 305; Numerical Recipes §6.11), with k_c = k′, p = 1 − n > 0, a = b = 1, is
-  // Π(n | m): a Gauss (AGM-like) transformation, quadratically convergent, in long double with the
-  // stopping test at √ε_long so the last step leaves ~ε_long. Against 50-digit values on 3000 (n, m₁)
-  // with n from −10¹⁶ to 1 and m₁ down to 1e-300: ≤ 0.5ε (correctly rounded), where the Carlson sum
-  // R_F(0, k′², 1) + (n/3) R_J(0, k′², 1, 1 − n) (DLMF 19.25.2) cancels for n ≪ −1 (465ε at n = −10³)
-  // and costs 30× more.
+  // Bulirsch's cel in long double (bulirsch_Pi_complete, jacobi_elliptic.hpp): against 50-digit values
+  // on 3000 (n, m₁) with n from −10¹⁶ to 1 and m₁ down to 1e-300: ≤ 0.5ε (correctly rounded), where
+  // the Carlson sum R_F(0, k′², 1) + (n/3) R_J(0, k′², 1, 1 − n) (DLMF 19.25.2) cancels for n ≪ −1
+  // (465ε at n = −10³) and costs 30× more.
   if (m1 == 0.0) return std::numeric_limits<double>::infinity();  // m = 1: log-divergent
   using L = long double;
-  const L tolerance = std::sqrt(std::numeric_limits<L>::epsilon());
-  L kc = std::sqrt(L(m1)), p = std::sqrt(L(1) - L(n));
-  L a = 1, b = 1 / p, e = kc, em = 1;
-  for (int i = 0; i < 64; ++i) {  // ≤ 12 steps for m₁ ≥ 1e-300
-    const L f = a;
-    a += b / p;
-    L g = e / p;
-    b += f * g;
-    b += b;
-    p += g;
-    g = em;
-    em += kc;
-    if (std::abs(g - kc) <= g * tolerance) break;
-    kc = 2 * std::sqrt(e);
-    e = kc * em;
-  }
-  return static_cast<double>(std::numbers::pi_v<L> / 2 * (b + a * em) / (em * (em + p)));
+  return static_cast<double>(
+      bulirsch_Pi_complete<L>(L(n), L(m1), std::sqrt(std::numeric_limits<L>::epsilon())));
 }
 
 double elliptic_Pi_incomplete(double n, double s, double c, double d) {

@@ -71,6 +71,7 @@
 
 #include "engine.hpp"
 #include "euler_poinsot_flows.hpp"
+#include "free_flow_tangent.hpp"
 #include "methods.hpp"
 #include "saved_state.hpp"
 #include "tumble/integrate/euler_poinsot.hpp"
@@ -586,6 +587,84 @@ class Strang {
   double t_ = 0.0;
 };
 
+/// The Strang steps on dual numbers (Integrator::step_tangent) and what they keep between steps: as on
+/// double, the loads at the end of a (sub)step are those of the next one's first kick when it starts
+/// from the state they were left with (for a velocity-dependent force they were evaluated before the
+/// end kick: that is the map the steps on double apply, and so the one differentiated).
+class StrangTangent {
+ public:
+  /// The steps of lengths w·h (w in `weights`): the same kick<T>, the loads of every force model's
+  /// templated law, and for the drift the exact flow differentiated (FreeFlowTangent). Each drift sets
+  /// up its flow from the state entering it, where the steps on double continue a kept flow: the same
+  /// motion, so the values agree to rounding.
+  void steps(const Model& model, Formulation F, TangentCoordinates& x, double h, std::span<const double> weights) {
+    using T = TangentScalar;
+    const double t_end = x.t + h;
+    auto kick_all = [&](double tau, std::span<const WrenchT<T>> loads) {
+      for (size_t i = 0; i < x.bodies.size(); ++i) {
+        kick<T>(F, x.bodies[i], T(tau), loads[i].force, loads[i].torque,
+                mass_constants<T>(x.m[i], x.Lambda[i]));
+      }
+    };
+    for (const double w : weights) {
+      const double hs = w * h;
+      if (!same(x)) {
+        const std::span<const WrenchT<T>> start = rates_.loads(model, F, x);
+        loads_.assign(start.begin(), start.end());
+      }
+      kick_all(0.5 * hs, loads_);
+      for (size_t i = 0; i < x.bodies.size(); ++i) {
+        Coordinates<T>& c = x.bodies[i];
+        const Vec3T<T> v_w = F == Formulation::body ? rotate<T>(c.q, c.v) : c.v;
+        c.o += T(hs) * v_w;
+        const Vec3T<T> w_b = F == Formulation::world ? rotate_inverse<T>(c.q, c.omega) : c.omega;
+        const detail::FlowState<T> flow = FreeFlowTangent(x.Lambda[i], c.q, w_b).at(hs);
+        c.q = flow.q;
+        c.omega = F == Formulation::world ? rotate<T>(c.q, flow.omega_b) : flow.omega_b;
+        if (F == Formulation::body) c.v = rotate_inverse<T>(c.q, v_w);
+      }
+      x.t += hs;
+      const std::span<const WrenchT<T>> end = rates_.loads(model, F, x);
+      loads_.assign(end.begin(), end.end());
+      kick_all(0.5 * hs, loads_);
+      remember(x);
+    }
+    if (weights.size() > 1) x.t = t_end;  // the substeps add to h up to rounding
+  }
+
+ private:
+  /// Whether x is, value for value, the state the last substep left (at the same time).
+  bool same(const TangentCoordinates& x) const {
+    if (!(x.t == t_) || x.bodies.size() != left_.size()) return false;
+    for (size_t i = 0; i < left_.size(); ++i) {
+      const Coordinates<TangentScalar>& c = x.bodies[i];
+      const Coordinates<double>& l = left_[i];
+      for (int k = 0; k < 3; ++k) {
+        if (c.o(k).v != l.o(k) || c.v(k).v != l.v(k) || c.omega(k).v != l.omega(k)) return false;
+      }
+      for (int k = 0; k < 4; ++k) {
+        if (c.q.coeffs()(k).v != l.q.coeffs()(k)) return false;
+      }
+    }
+    return true;
+  }
+  void remember(const TangentCoordinates& x) {
+    t_ = x.t;
+    left_.resize(x.bodies.size());
+    for (size_t i = 0; i < left_.size(); ++i) {
+      const Coordinates<TangentScalar>& c = x.bodies[i];
+      Coordinates<double>& l = left_[i];
+      for (int k = 0; k < 3; ++k) l.o(k) = c.o(k).v, l.v(k) = c.v(k).v, l.omega(k) = c.omega(k).v;
+      for (int k = 0; k < 4; ++k) l.q.coeffs()(k) = c.q.coeffs()(k).v;
+    }
+  }
+
+  TangentRates rates_;
+  std::vector<WrenchT<TangentScalar>> loads_;  // the loads of the next kick
+  std::vector<Coordinates<double>> left_;      // the values the last substep left, at t_
+  double t_ = std::numeric_limits<double>::quiet_NaN();
+};
+
 /// What the splitting methods share: the Strang step with its kept flows, and their saving for resume.
 class StrangIntegrator : public Integrator {
  public:
@@ -602,6 +681,7 @@ class StrangIntegrator : public Integrator {
 
  protected:
   Strang strang_;
+  StrangTangent tangent_;
 };
 
 class Splitting2 final : public StrangIntegrator {
@@ -614,9 +694,14 @@ class Splitting2 final : public StrangIntegrator {
     steps(model, F, x, h, 1);
   }
   void steps(const Model& model, Formulation F, SystemCoordinates& x, double h, long count) override {
-    static constexpr double kWeights[] = {1.0};
     strang_.steps(model, F, x, h, count, threads_, kWeights);
   }
+  void step_tangent(const Model& model, Formulation F, TangentCoordinates& x, double h) override {
+    tangent_.steps(model, F, x, h, kWeights);
+  }
+
+ private:
+  static constexpr double kWeights[] = {1.0};
 };
 
 class Splitting4 final : public StrangIntegrator {
@@ -629,9 +714,18 @@ class Splitting4 final : public StrangIntegrator {
     steps(model, F, x, h, 1);
   }
   void steps(const Model& model, Formulation F, SystemCoordinates& x, double h, long count) override {
+    strang_.steps(model, F, x, h, count, threads_, weights());
+  }
+  void step_tangent(const Model& model, Formulation F, TangentCoordinates& x, double h) override {
+    tangent_.steps(model, F, x, h, weights());
+  }
+
+ private:
+  /// Yoshida's: w₁ = 1/(2 − 2^⅓) twice around w₀ = 1 − 2w₁.
+  static std::span<const double> weights() {
     static const double w1 = 1.0 / (2.0 - std::cbrt(2.0));
-    static const double weights[] = {w1, 1.0 - 2.0 * w1, w1};
-    strang_.steps(model, F, x, h, count, threads_, weights);
+    static const double w[] = {w1, 1.0 - 2.0 * w1, w1};
+    return w;
   }
 };
 

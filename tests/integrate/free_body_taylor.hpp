@@ -1,85 +1,15 @@
 #pragma once
-// An independent reference for the torque-free body: the Taylor-series method in long double.
-//
-// Euler's equations and the kinematics are quadratic, so the Taylor coefficients follow from Cauchy
-// products (no derivatives to code by hand):
-//   ω̇₁ = a₁ ω₂ω₃ (cyclic), aᵢ = (I_j − I_k)/Iᵢ  ⇒  ω₁[n+1] = a₁/(n+1) Σ_{k≤n} ω₂[k] ω₃[n−k],
-//   q̇ = ½ q ⊗ (0, ω_b)                       ⇒  q[n+1] = 1/(2(n+1)) Σ_{k≤n} q[k] ⊗ (0, ω[n−k]).
-// With order 30 and steps well inside the radius of convergence the truncation error is far below
-// the rounding of long double (64-bit mantissa, ε = 1.1e-19), so the reference is ~1e-16 accurate over
-// 1e4 steps; the tests check that by halving the step. Near the separatrix every step's rounding is
-// amplified ~7e7 at each flip (the racket I = (1.5, 2.5, 4), ω₁ = 0.002: a perturbation's growth
-// across a flip, measured with this reference in two precisions): there the reference runs in __float128 (ε = 1.9e-34).
-#include <algorithm>
-#include <array>
-#include <vector>
-
-#include "tumble/math/types.hpp"
+// The tests' independent reference for the torque-free body: the Taylor-series method
+// (integrate/free_body_taylor.hpp) in long double or __float128, and conversions to and from it.
+#include "integrate/free_body_taylor.hpp"
 
 namespace tumble::test {
 
 template <class Real>
-struct FreeBodyStateT {
-  std::array<Real, 3> w;  ///< ω_b
-  std::array<Real, 4> q;  ///< (w, x, y, z), body → world
-};
-using FreeBodyStateLd = FreeBodyStateT<long double>;
-
+using FreeBodyStateT = tumble::FreeBodyStateT<Real>;
 template <class Real>
-class FreeBodyTaylorT {
- public:
-  static constexpr int kMaxOrder = 40;
-
-  FreeBodyTaylorT(const Vec3& I, int order = 30) : order_(std::min(order, kMaxOrder)) {
-    const Real I1 = Real(I(0)), I2 = Real(I(1)), I3 = Real(I(2));
-    a_ = {(I2 - I3) / I1, (I3 - I1) / I2, (I1 - I2) / I3};
-  }
-
-  /// One step of size h.
-  FreeBodyStateT<Real> step(const FreeBodyStateT<Real>& s, Real h) const {
-    const int P = order_;
-    std::array<std::array<Real, 3>, kMaxOrder + 1> w;
-    std::array<std::array<Real, 4>, kMaxOrder + 1> q;
-    w[0] = s.w;
-    q[0] = s.q;
-    for (int n = 0; n < P; ++n) {
-      std::array<Real, 3> cw{0, 0, 0};
-      std::array<Real, 4> cq{0, 0, 0, 0};
-      for (int k = 0; k <= n; ++k) {
-        const auto& x = w[k];
-        const auto& y = w[n - k];
-        cw[0] += x[1] * y[2];
-        cw[1] += x[2] * y[0];
-        cw[2] += x[0] * y[1];
-        // q[k] ⊗ (0, ω[n−k]): (−v·ω, q₀ω + v × ω)
-        const auto& p = q[k];
-        cq[0] += -(p[1] * y[0] + p[2] * y[1] + p[3] * y[2]);
-        cq[1] += p[0] * y[0] + p[2] * y[2] - p[3] * y[1];
-        cq[2] += p[0] * y[1] + p[3] * y[0] - p[1] * y[2];
-        cq[3] += p[0] * y[2] + p[1] * y[1] - p[2] * y[0];
-      }
-      for (int i = 0; i < 3; ++i) w[n + 1][i] = a_[i] * cw[i] / Real(n + 1);
-      for (int i = 0; i < 4; ++i) q[n + 1][i] = cq[i] / Real(2 * (n + 1));
-    }
-    FreeBodyStateT<Real> out{{0, 0, 0}, {0, 0, 0, 0}};
-    for (int n = P; n >= 0; --n) {  // Horner
-      for (int i = 0; i < 3; ++i) out.w[i] = out.w[i] * h + w[n][i];
-      for (int i = 0; i < 4; ++i) out.q[i] = out.q[i] * h + q[n][i];
-    }
-    return out;
-  }
-
-  /// States at t = 0, h, 2h, …, n h.
-  std::vector<FreeBodyStateT<Real>> run(const FreeBodyStateT<Real>& s0, Real h, int n) const {
-    std::vector<FreeBodyStateT<Real>> out{s0};
-    for (int i = 0; i < n; ++i) out.push_back(step(out.back(), h));
-    return out;
-  }
-
- private:
-  int order_;
-  std::array<Real, 3> a_;
-};
+using FreeBodyTaylorT = tumble::FreeBodyTaylorT<Real>;
+using FreeBodyStateLd = FreeBodyStateT<long double>;
 using FreeBodyTaylor = FreeBodyTaylorT<long double>;
 
 template <class Real = long double>

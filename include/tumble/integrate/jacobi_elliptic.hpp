@@ -15,6 +15,8 @@
 // drift (src/integrate/splitting.cpp) on packs.
 #include <cmath>
 #include <cstdint>
+#include <numbers>
+#include <type_traits>
 #include <utility>
 
 #include "tumble/math/carlson.hpp"
@@ -194,6 +196,38 @@ class JacobiElliptic {
   double m_, m1_;
   JacobiConstants<double> c_;
 };
+
+/// Bulirsch's cel(k_c, p, a, b) = ∫₀^{π/2} (a cos²θ + b sin²θ) dθ / ((cos²θ + p sin²θ) √(cos²θ + k_c² sin²θ))
+/// (Numer. Math. 13 (1969) 305; Numerical Recipes §6.11) with k_c = k′ = √m₁, p = 1 − n > 0, a = b = 1:
+/// Π(n | m). A Gauss (AGM-like) transformation, quadratically convergent: it stops when the test
+/// quantity agrees to `tolerance` (√ε of L), so that the last step leaves ~ε. On long double for
+/// elliptic_Pi_complete; on dual numbers for the derivatives of Π(n | m) with respect to n and m.
+template <class L>
+L bulirsch_Pi_complete(const L& n, const L& m1, const L& tolerance) {
+  using std::abs, std::sqrt;
+  L kc = sqrt(m1), p = sqrt(L(1) - n);
+  L a = L(1), b = L(1) / p, e = kc, em = L(1);
+  for (int i = 0; i < 64; ++i) {  // ≤ 12 steps for m₁ ≥ 1e-300
+    const L f = a;
+    a += b / p;
+    L g = e / p;
+    b += f * g;
+    b += b;
+    p += g;
+    g = em;
+    em += kc;
+    if (abs(g - kc) <= g * tolerance) break;
+    kc = L(2) * sqrt(e);
+    e = kc * em;
+  }
+  L half_pi;
+  if constexpr (std::is_floating_point_v<L>) {
+    half_pi = std::numbers::pi_v<L> / 2;
+  } else {
+    half_pi = L(std::numbers::pi / 2);
+  }
+  return half_pi * (b + a * em) / (em * (em + p));
+}
 
 /// The complete integral of the third kind, Π(n | m) = ∫₀^{π/2} dθ / ((1 − n sin²θ) √(1 − m sin²θ)),
 /// from k′² = m₁ (Bulirsch's cel(k′, 1 − n, 1, 1) in long double: correctly rounded, also for n ≪ −1

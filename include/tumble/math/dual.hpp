@@ -157,6 +157,42 @@ Dual<T, N> hypot(const Dual<T, N>& x, const Dual<T, N>& y) {
   for (int j = 0; j < N; ++j) r.d[j] = (x.v * x.d[j] + y.v * y.d[j]) * inv;
   return r;
 }
+/// copysign(x, s): |x| with the sign of s; its derivative ±x', the sign that multiplied x.
+template <class T, int N>
+Dual<T, N> copysign(const Dual<T, N>& x, const Dual<T, N>& s) {
+  using std::copysign, std::signbit;
+  Dual<T, N> r(T(copysign(x.v, s.v)));
+  const T flip = select(signbit(x.v) != signbit(s.v), T(-1.0), T(1.0));
+  for (int j = 0; j < N; ++j) r.d[j] = flip * x.d[j];
+  return r;
+}
+/// Functions that are constant between their jumps: derivative 0 (a lane at a jump takes the side its
+/// value rounded to).
+template <class T, int N>
+Dual<T, N> nearbyint(const Dual<T, N>& x) {
+  using std::nearbyint;
+  return Dual<T, N>(T(nearbyint(x.v)));
+}
+template <class T, int N>
+Dual<T, N> floor(const Dual<T, N>& x) {
+  using std::floor;
+  return Dual<T, N>(T(floor(x.v)));
+}
+/// a·b + c with the value rounded once, as fma(a.v, b.v, c.v).
+template <class T, int N>
+Dual<T, N> fma(const Dual<T, N>& a, const Dual<T, N>& b, const Dual<T, N>& c) {
+  using std::fma;
+  Dual<T, N> r(T(fma(a.v, b.v, c.v)));
+  for (int j = 0; j < N; ++j) r.d[j] = a.d[j] * b.v + a.v * b.d[j] + c.d[j];
+  return r;
+}
+/// The value of a number without its tangents (a double or a pack is its own value).
+template <class T, int N>
+const T& value_of(const Dual<T, N>& x) {
+  return x.v;
+}
+inline double value_of(double x) { return x; }
+
 /// A lane-wise choice of value and tangents together.
 template <class T, int N, class Condition>
 Dual<T, N> select(const Condition& condition, const Dual<T, N>& a, const Dual<T, N>& b) {
