@@ -178,8 +178,8 @@ SystemState simulate_sensitivities(const Model& model, const SystemState& state,
   const bool adaptive = is_adaptive(settings.integrator);
   if (!model.particles.empty()) {
     throw InvalidArgument(fmt::format(
-        "sensitivities are of rigid bodies: the system has {} particles (model them as small bodies)",
-        model.particles.size()));
+        "sensitivities are of rigid bodies: the system has {} particle{} (model them as small bodies)",
+        model.particles.size(), model.particles.size() == 1 ? "" : "s"));
   }
   if (state.bodies.size() != model.bodies.size()) {
     throw InvalidArgument(
