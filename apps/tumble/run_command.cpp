@@ -754,8 +754,11 @@ Runner add_run_command(CLI::App& app) {
                   fmt::join(differentiating_integrators(), ", ")));
   cmd->add_option("--sensitivity-parameters", o->sensitivity_parameters,
                   "what parameter_sensitivity differentiates with respect to: inertia (each body's "
-                  "principal moments, 3 columns a body; default) or mass (1 a body)")
-      ->check(CLI::IsMember({"inertia", "mass"}));
+                  "principal moments, 3 columns a body; default), mass (1 a body), or forces (every force "
+                  "model's parameters - g, drag and damping coefficients, a point force or torque, a "
+                  "spring's stiffness, rest length and damping, mu - columns every body shares, named in "
+                  "the dataset's attribute parameter_names)")
+      ->check(CLI::IsMember({"inertia", "mass", "forces"}));
   auto* quiet =
       cmd->add_flag("--quiet,-q", o->quiet, "no progress bar and no summary; errors and warnings only");
   cmd->add_flag("--progress", o->progress,

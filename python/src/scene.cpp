@@ -373,14 +373,16 @@ py::dict simulate(const Scene& scene_in, const py::dict& settings,
   // coupled ones (python/tumble/trajectory.py makes the dense views).
   Series stm, parameter_sensitivity;
   bool coupled = false;
+  std::vector<std::string> parameter_names;
   class Arrays final : public RunObserver {
    public:
-    Arrays(Recorded& r, Series& stm, Series& parameters, bool& coupled)
-        : r_(r), stm_(stm), parameters_(parameters), coupled_(coupled) {}
+    Arrays(Recorded& r, Series& stm, Series& parameters, bool& coupled, std::vector<std::string>& names)
+        : r_(r), stm_(stm), parameters_(parameters), coupled_(coupled), names_(names) {}
     void on_sample(const SystemState& state, const DriftSample& d) override { r_.sample(state, d); }
     void on_event(const EventHit& hit) override { r_.crossing(hit); }
     void on_sensitivities(const Sensitivities& S) override {
       coupled_ = S.coupled;
+      names_ = S.parameter_names;
       append(stm_, S.stm, S.coupled);
       append(parameters_, S.parameters, S.coupled);
     }
@@ -400,9 +402,10 @@ py::dict simulate(const Scene& scene_in, const py::dict& settings,
     Recorded& r_;
     Series &stm_, &parameters_;
     bool& coupled_;
+    std::vector<std::string>& names_;
   };
   Recorded recorded{model, fields, system, specs, t, body, diagnostics, event_names, event_t, event_rows};
-  Arrays arrays_observer(recorded, stm, parameter_sensitivity, coupled);
+  Arrays arrays_observer(recorded, stm, parameter_sensitivity, coupled, parameter_names);
   // Ctrl-C: Python's handler only sets a flag while the run holds no GIL; it is looked at every 50 ms
   // (taking the GIL for that moment), and the run then stops with the samples so far, which the caller
   // gets with the KeyboardInterrupt (python/tumble/trajectory.py).
@@ -489,6 +492,7 @@ py::dict simulate(const Scene& scene_in, const py::dict& settings,
     out["parameter_sensitivity"] = parameter_sensitivity.release();
     out["sensitivity_parameters"] = *sensitivities;
     out["coupled"] = coupled;
+    out["parameter_names"] = parameter_names;
   }
   return out;
 }

@@ -93,7 +93,8 @@ def simulate(scene: Scene | str | _os.PathLike, integrator: str | None = None, f
 
     sensitivities: also differentiate the run (docs/sensitivities.md): the Trajectory then holds ``stm``,
     (T, 12 B, 12 B) = d x(t_k) / d x(0), and ``parameter_sensitivity``, (T, 12 B, 3 B) = d x(t_k) / d(I1,
-    I2, I3) of each body, or (T, 12 B, B) with respect to the masses with sensitivity_parameters="mass".
+    I2, I3) of each body, or (T, 12 B, B) with respect to the masses with sensitivity_parameters="mass",
+    or (T, 12 B, P) with respect to the force models' P parameters with "forces" (``parameter_names``).
     Forward-mode derivatives of the integrator's own steps (every integrator; dopri45's accepted steps,
     their lengths held fixed); no events are watched and no Python force is differentiated."""
     if isinstance(scene, (str, bytes)) or hasattr(scene, "__fspath__"):

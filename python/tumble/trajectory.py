@@ -77,8 +77,15 @@ class Trajectory:
     @property
     def parameter_sensitivity(self):
         """d x(t_k) / d p at every sample, (T, 12 B, P B): p each body's principal moments (I1, I2, I3), or
-        its mass (simulate(..., sensitivity_parameters="mass"))."""
+        its mass (simulate(..., sensitivity_parameters="mass")); or (T, 12 B, P) for the force models' P
+        parameters, which every body shares (sensitivity_parameters="forces"). ``parameter_names`` names
+        the columns."""
         return self._dense("parameter_sensitivity")
+
+    @property
+    def parameter_names(self):
+        """The names of parameter_sensitivity's columns, e.g. "box: I1" or "force 0 (uniform gravity ...): g_z"."""
+        return list(self._sensitivity("parameter_names"))
 
     @property
     def stm_blocks(self):
@@ -96,6 +103,8 @@ class Trajectory:
         if self.sensitivities["coupled"]:
             return blocks
         T, B, _, P = blocks.shape
+        if name == "parameter_sensitivity" and self.sensitivities["sensitivity_parameters"] == "forces":
+            return blocks.reshape(T, 12 * B, P)  # shared columns: every body's rows, one after the other
         dense = np.zeros((T, 12 * B, P * B))
         for b in range(B):
             dense[:, 12 * b:12 * b + 12, P * b:P * b + P] = blocks[:, b]
@@ -111,7 +120,8 @@ class Trajectory:
                          complete=not raw["interrupted"])
         if "stm" in raw:
             trajectory.sensitivities = {key: raw[key] for key in
-                                        ("stm", "parameter_sensitivity", "coupled", "sensitivity_parameters")}
+                                        ("stm", "parameter_sensitivity", "coupled", "sensitivity_parameters",
+                                         "parameter_names")}
         return trajectory
 
     def _from(self, k):
@@ -340,6 +350,10 @@ def _read_hdf5(path):
             if rows is None or stm.shape != (len(t),) + rows or dp.shape[:-1] != (len(t),) + rows[:-1]:
                 raise ValueError(f"{path}: datasets stm {stm.shape} and parameter_sensitivity {dp.shape} (layout "
                                  f"'{layout}') do not fit {len(t)} samples of {B} bodies: not as tumble run wrote them")
+            kind = parameters.split(" ")[0] if parameters.split(" ")[0] in ("mass", "forces") else "inertia"
+            names_text = dp.attrs.get("parameter_names", b"")
+            names_text = names_text.decode() if isinstance(names_text, bytes) else str(names_text)
             trajectory.sensitivities = {"stm": stm[:], "parameter_sensitivity": dp[:], "coupled": layout == "dense",
-                                        "sensitivity_parameters": "mass" if parameters == "mass" else "inertia"}
+                                        "sensitivity_parameters": kind,
+                                        "parameter_names": names_text.split("\n") if names_text else []}
         return trajectory

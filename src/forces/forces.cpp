@@ -23,12 +23,21 @@ Vec3 in_world(Frame frame, const Vec3& v, const RigidBody& b, const BodyState& s
   return reference_state(b, s).orientation * v;
 }
 /// The same on dual numbers: R_ref v = R Uᵀ v.
-Vec3T<TangentScalar> in_world(Frame frame, const Vec3& v, const RigidBody& b,
+Vec3T<TangentScalar> in_world(Frame frame, const Vec3T<TangentScalar>& v, const RigidBody& b,
                               const BodyStateT<TangentScalar>& s) {
   using T = TangentScalar;
-  if (frame == Frame::world) return v.cast<T>();
-  const Vec3 principal = frame == Frame::principal ? v : Vec3(b.U().transpose() * v);
-  return rotate<T>(s.q, principal.cast<T>());
+  if (frame == Frame::world) return v;
+  const Vec3T<T> principal = frame == Frame::principal ? v : Vec3T<T>(b.U().transpose().cast<T>() * v);
+  return rotate<T>(s.q, principal);
+}
+
+/// Parameters k … k + 2 of a model as a vector (TangentView::parameters).
+Vec3T<TangentScalar> parameter_vec(const TangentView& view, size_t k) {
+  return {view.parameters[k], view.parameters[k + 1], view.parameters[k + 2]};
+}
+std::vector<ForceParameter> vector_parameters(const char* name, const Vec3& v) {
+  const std::string n = name;
+  return {{n + "_x", v.x()}, {n + "_y", v.y()}, {n + "_z", v.z()}};
 }
 /// World position of a body point given in `frame` coordinates (world: a fixed point; principal: about
 /// the centre of mass; reference: the reference frame's point): x = o + R Uᵀ(r − c) for the latter.
@@ -44,7 +53,7 @@ Vec3T<TangentScalar> point_in_world(Frame frame, const Vec3& r, const RigidBody&
 /// f = −(k(|d| − L₀) + c ḋ·d̂) d̂, d = xa − xb; zero at zero length (the direction is undefined: a spring
 /// of zero length pulls nowhere).
 template <class T>
-Vec3T<T> spring_force(double k, double rest, double c, const Vec3T<T>& xa, const Vec3T<T>& xb,
+Vec3T<T> spring_force(const T& k, const T& rest, const T& c, const Vec3T<T>& xa, const Vec3T<T>& xb,
                       const Vec3T<T>& va, const Vec3T<T>& vb) {
   using std::sqrt;
   const Vec3T<T> d = xa - xb;
@@ -68,7 +77,7 @@ T magnitude(const Vec3T<T>& u) {
 
 /// Quadratic drag: f = −k_v |v| v, τ = −k_ω |ω| ω.
 template <class T>
-WrenchT<T> drag_law(double k_v, double k_omega, const Vec3T<T>& v, const Vec3T<T>& w) {
+WrenchT<T> drag_law(const T& k_v, const T& k_omega, const Vec3T<T>& v, const Vec3T<T>& w) {
   return {Vec3T<T>(-k_v * magnitude<T>(v) * v), Vec3T<T>(-k_omega * magnitude<T>(w) * w)};
 }
 
@@ -78,7 +87,7 @@ WrenchT<T> drag_law(double k_v, double k_omega, const Vec3T<T>& v, const Vec3T<T
 /// plus the small correction of the same expansion, which makes the model exactly conservative with
 /// the torque.
 template <class T>
-WrenchT<T> gravity_gradient_law(double mu, const Vec3& center, bool torque_only, const Vec3T<T>& o,
+WrenchT<T> gravity_gradient_law(const T& mu, const Vec3& center, bool torque_only, const Vec3T<T>& o,
                                 const QuatT<T>& q, const T& m, const Vec3T<T>& Lambda) {
   using std::sqrt;
   const Vec3T<T> r = o - center.cast<T>();
@@ -88,12 +97,12 @@ WrenchT<T> gravity_gradient_law(double mu, const Vec3& center, bool torque_only,
   const Mat3T<T> I = R * Lambda.asDiagonal() * R.transpose();  // I = R Λ Rᵀ
   const Vec3T<T> Ir = I * r;
   WrenchT<T> w;
-  w.torque = T(3.0 * mu) / (r2 * r2 * r1) * r.cross(Ir);
+  w.torque = T(3.0) * mu / (r2 * r2 * r1) * r.cross(Ir);
   if (torque_only) return w;
   const T r5 = r2 * r2 * r1, r7 = r5 * r2;
   const Vec3T<T> grad_V2 =
-      T(0.5 * mu) * (T(3.0) * (T(2.0) * Ir / r5 - T(5.0) * r.dot(Ir) * r / r7) + T(3.0) * I.trace() * r / r5);
-  w.force = -(T(mu) * m / (r2 * r1) * r + grad_V2);
+      T(0.5) * mu * (T(3.0) * (T(2.0) * Ir / r5 - T(5.0) * r.dot(Ir) * r / r7) + T(3.0) * I.trace() * r / r5);
+  w.force = -(mu * m / (r2 * r1) * r + grad_V2);
   return w;
 }
 
@@ -213,9 +222,10 @@ void UniformGravity::accumulate_block(const BodyBlock& block, BlockLoads& loads)
 void UniformGravity::accumulate_tangent(const TangentView& view,
                                         std::span<WrenchT<TangentScalar>> loads) const {
   // f = m g, as accumulate_block's column loop (kept there for the engine's speed).
-  for (size_t i = 0; i < view.states.size(); ++i)
-    loads[i].force += view.states[i].m * g_.cast<TangentScalar>();
+  const Vec3T<TangentScalar> g = parameter_vec(view, 0);
+  for (size_t i = 0; i < view.states.size(); ++i) loads[i].force += view.states[i].m * g;
 }
+std::vector<ForceParameter> UniformGravity::parameters() const { return vector_parameters("g", g_); }
 void UniformGravity::accumulate_particles(const SystemView& view, std::span<Vec3> f) const {
   for (size_t i = 0; i < view.particles.size(); ++i) f[i] += view.particles[i].mass * g_;
 }
@@ -248,10 +258,11 @@ void PointForce::accumulate_block(const BodyBlock& block, BlockLoads& loads) con
 void PointForce::accumulate_tangent(const TangentView& view, std::span<WrenchT<TangentScalar>> loads) const {
   const RigidBody& b = view.bodies[body_];
   const BodyStateT<TangentScalar>& s = view.states[body_];
-  const Vec3T<TangentScalar> f = in_world(force_frame_, force_, b, s);
+  const Vec3T<TangentScalar> f = in_world(force_frame_, parameter_vec(view, 0), b, s);
   loads[body_].force += f;
   loads[body_].torque += (point_in_world(point_frame_, point_, b, s) - s.o).cross(f);  // τ = (x − o) × f
 }
+std::vector<ForceParameter> PointForce::parameters() const { return vector_parameters("f", force_); }
 void PointForce::check(size_t n_bodies, size_t) const { check_body(body_, n_bodies, "point force"); }
 std::string PointForce::describe(std::span<const RigidBody> bodies) const {
   return fmt::format("force {} N ({} axes) at {} ({} point) on {}", vec(force_), frame_name(force_frame_),
@@ -265,8 +276,9 @@ void PureTorque::accumulate_block(const BodyBlock& block, BlockLoads& loads) con
   loads.add(j, Vec3::Zero(), tau);
 }
 void PureTorque::accumulate_tangent(const TangentView& view, std::span<WrenchT<TangentScalar>> loads) const {
-  loads[body_].torque += in_world(frame_, torque_, view.bodies[body_], view.states[body_]);
+  loads[body_].torque += in_world(frame_, parameter_vec(view, 0), view.bodies[body_], view.states[body_]);
 }
+std::vector<ForceParameter> PureTorque::parameters() const { return vector_parameters("tau", torque_); }
 void PureTorque::check(size_t n_bodies, size_t) const { check_body(body_, n_bodies, "torque"); }
 std::string PureTorque::describe(std::span<const RigidBody> bodies) const {
   return fmt::format("torque {} N*m ({} axes) on {}", vec(torque_), frame_name(frame_),
@@ -284,9 +296,12 @@ void ViscousDamping::accumulate_tangent(const TangentView& view,
                                         std::span<WrenchT<TangentScalar>> loads) const {
   for (size_t i = 0; i < view.states.size(); ++i) {
     if (body_ != all_bodies && body_ != i) continue;
-    loads[i].force -= linear_ * view.states[i].v;
-    loads[i].torque -= angular_ * view.states[i].omega_w;
+    loads[i].force -= view.parameters[0] * view.states[i].v;
+    loads[i].torque -= view.parameters[1] * view.states[i].omega_w;
   }
+}
+std::vector<ForceParameter> ViscousDamping::parameters() const {
+  return {{"linear", linear_}, {"angular", angular_}};
 }
 void ViscousDamping::accumulate_particles(const SystemView& view, std::span<Vec3> f) const {
   if (body_ != all_bodies) return;
@@ -308,11 +323,14 @@ void QuadraticDrag::accumulate_tangent(const TangentView& view,
                                        std::span<WrenchT<TangentScalar>> loads) const {
   for (size_t i = 0; i < view.states.size(); ++i) {
     if (body_ != all_bodies && body_ != i) continue;
-    const WrenchT<TangentScalar> w =
-        drag_law<TangentScalar>(linear_, angular_, view.states[i].v, view.states[i].omega_w);
+    const WrenchT<TangentScalar> w = drag_law<TangentScalar>(view.parameters[0], view.parameters[1],
+                                                             view.states[i].v, view.states[i].omega_w);
     loads[i].force += w.force;
     loads[i].torque += w.torque;
   }
+}
+std::vector<ForceParameter> QuadraticDrag::parameters() const {
+  return {{"linear", linear_}, {"angular", angular_}};
 }
 void QuadraticDrag::accumulate_particles(const SystemView& view, std::span<Vec3> f) const {
   if (body_ != all_bodies) return;
@@ -340,12 +358,16 @@ void Spring::accumulate_tangent(const TangentView& view, std::span<WrenchT<Tange
   };
   const auto [xa, va] = end(a_);
   const auto [xb, vb] = end(b_);
-  const Vec3T<T> f = spring_force<T>(k_, rest_, c_, xa, xb, va, vb);
+  const Vec3T<T> f = spring_force<T>(view.parameters[0], view.parameters[1], view.parameters[2], xa, xb, va, vb);
   for (const auto& [e, force, x] : {std::tuple{a_, f, xa}, std::tuple{b_, Vec3T<T>(-f), xb}}) {
     if (e.body == all_bodies) continue;
     loads[e.body].force += force;
     loads[e.body].torque += (x - view.states[e.body].o).cross(force);  // τ = (x − o) × f
   }
+}
+
+std::vector<ForceParameter> Spring::parameters() const {
+  return {{"stiffness", k_}, {"rest_length", rest_}, {"damping", c_}};
 }
 
 std::pair<Vec3, Vec3> Spring::end_state(const End& e, const SystemView& view) const {
@@ -405,11 +427,12 @@ void GravityGradient::accumulate_tangent(const TangentView& view,
   for (size_t i = 0; i < view.states.size(); ++i) {
     const BodyStateT<TangentScalar>& s = view.states[i];
     const WrenchT<TangentScalar> w =
-        gravity_gradient_law<TangentScalar>(mu_, center_, torque_only_, s.o, s.q, s.m, s.Lambda);
+        gravity_gradient_law<TangentScalar>(view.parameters[0], center_, torque_only_, s.o, s.q, s.m, s.Lambda);
     loads[i].force += w.force;
     loads[i].torque += w.torque;
   }
 }
+std::vector<ForceParameter> GravityGradient::parameters() const { return {{"mu", mu_}}; }
 std::string GravityGradient::describe(std::span<const RigidBody>) const {
   return fmt::format("central gravity mu={} m^3/s^2 at {}{}", mu_, vec(center_),
                      torque_only_ ? " (gradient torque only)" : " with gravity-gradient torque");

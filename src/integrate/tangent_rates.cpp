@@ -15,8 +15,18 @@ std::span<const WrenchT<TangentScalar>> TangentRates::loads(const Model& model, 
     states_[i] = velocities ? world_state<TangentScalar>(formulation, c, y.m[i], y.Lambda[i])
                             : BodyStateT<TangentScalar>{c.o, c.q, {}, {}, y.m[i], y.Lambda[i]};
   }
-  const TangentView view{y.t, model.bodies, states_};
-  for (const auto& force : model.forces) force->accumulate_tangent(view, loads_);
+  TangentView view{y.t, model.bodies, states_, {}};
+  for (size_t k = 0; k < model.forces.size(); ++k) {
+    const ForceModel& force = *model.forces[k];
+    if (k < y.force_parameters.size()) {
+      view.parameters = y.force_parameters[k];
+    } else {  // unseeded: the values
+      unseeded_.clear();
+      for (const ForceParameter& p : force.parameters()) unseeded_.emplace_back(p.value);
+      view.parameters = unseeded_;
+    }
+    force.accumulate_tangent(view, loads_);
+  }
   return loads_;
 }
 

@@ -253,7 +253,14 @@ class Hdf5Writer final : public TrajectoryWriter {
                          check_);
       }
       string_attribute(parameter_sensitivity_->id(), "parameters",
-                       S.parameters_per_body == 3 ? "inertia (I1, I2, I3 of each body)" : "mass", check_);
+                       S.of == SensitivityParameters::inertia ? "inertia (I1, I2, I3 of each body)"
+                       : S.of == SensitivityParameters::mass
+                           ? "mass"
+                           : "forces (the force models' parameters, shared by every body: parameter_names)",
+                       check_);
+      std::string names;
+      for (const std::string& n : S.parameter_names) names += (names.empty() ? "" : "\n") + n;
+      string_attribute(parameter_sensitivity_->id(), "parameter_names", names, check_);
     }
     for (auto [series, M] : {std::pair{&*stm_, &S.stm}, std::pair{&*parameter_sensitivity_, &S.parameters}}) {
       row_.resize(static_cast<size_t>(M->size()));

@@ -18,9 +18,8 @@ namespace {
 using T = TangentScalar;
 constexpr int D = kTangentDirections;
 
-/// One pass: its own integrator and the system's variables carrying up to D seeded columns. In pass k of
-/// a coupled system slot s is global column k·D + s (state columns 0 … 12B − 1, then parameter columns);
-/// bodies apart share one pass in which body b's slot j is its own column j (state 0–11, parameters 12–).
+/// One pass: its own integrator and the system's variables carrying up to D seeded columns: slot s of
+/// pass k is column k·D + s (the state's columns, then the parameters': simulate_sensitivities).
 struct Pass {
   std::unique_ptr<Integrator> integrator;  // a fixed-step method
   std::unique_ptr<AdaptiveIntegrator> adaptive;  // or an adaptive one, which replays its accepted steps
@@ -79,7 +78,7 @@ void seed_body(const RigidBody& body, const BodyState& s, Formulation F, Sensiti
     if (slot < 0) continue;
     if (parameters == SensitivityParameters::inertia) {
       Lambda(k) = T::variable(body.Lambda()(k), slot);
-    } else {
+    } else if (parameters == SensitivityParameters::mass) {
       m = T::variable(body.mass(), slot);
     }
   }
@@ -144,16 +143,45 @@ bool finite(const Coordinates<T>& x) {
 SensitivityParameters parse_sensitivity_parameters(const std::string& name) {
   if (name == "inertia") return SensitivityParameters::inertia;
   if (name == "mass") return SensitivityParameters::mass;
+  if (name == "forces") return SensitivityParameters::forces;
   throw InvalidArgument(fmt::format(
-      "unknown sensitivity parameters '{}': choose inertia (each body's principal moments I1, I2, I3) or "
-      "mass",
+      "unknown sensitivity parameters '{}': choose inertia (each body's principal moments I1, I2, I3), "
+      "mass, or forces (the force models' parameters: g, drag coefficients, stiffnesses, ...)",
       name));
 }
 std::string sensitivity_parameters_name(SensitivityParameters parameters) {
-  return parameters == SensitivityParameters::inertia ? "inertia" : "mass";
+  switch (parameters) {
+    case SensitivityParameters::inertia:
+      return "inertia";
+    case SensitivityParameters::mass:
+      return "mass";
+    case SensitivityParameters::forces:
+      return "forces";
+  }
+  return "?";
 }
 int parameters_per_body(SensitivityParameters parameters) {
-  return parameters == SensitivityParameters::inertia ? 3 : 1;
+  return parameters == SensitivityParameters::inertia ? 3 : parameters == SensitivityParameters::mass ? 1 : 0;
+}
+
+std::vector<std::string> parameter_names(const Model& model, SensitivityParameters parameters) {
+  std::vector<std::string> names;
+  if (parameters == SensitivityParameters::forces) {
+    for (size_t k = 0; k < model.forces.size(); ++k) {
+      for (const ForceParameter& p : model.forces[k]->parameters()) {
+        names.push_back(fmt::format("force {} ({}): {}", k, model.forces[k]->describe(model.bodies), p.name));
+      }
+    }
+    return names;
+  }
+  for (const RigidBody& b : model.bodies) {
+    if (parameters == SensitivityParameters::mass) {
+      names.push_back(b.name() + ": m");
+    } else {
+      for (const char* I : {"I1", "I2", "I3"}) names.push_back(b.name() + ": " + I);
+    }
+  }
+  return names;
 }
 
 Eigen::MatrixXd Sensitivities::dense_stm() const {
@@ -164,7 +192,7 @@ Eigen::MatrixXd Sensitivities::dense_stm() const {
   return M;
 }
 Eigen::MatrixXd Sensitivities::dense_parameters() const {
-  if (coupled) return parameters;
+  if (coupled || parameters_per_body == 0) return parameters;  // coupled, or parameters every body shares
   const Eigen::Index n = parameters.rows(), P = parameters_per_body;
   Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n, n / 12 * P);
   for (Eigen::Index b = 0; b < n / 12; ++b)
@@ -191,6 +219,15 @@ SystemState simulate_sensitivities(const Model& model, const SystemState& state,
   bool coupled = false;
   for (const auto& f : model.forces) coupled = coupled || !f->local();
   for (const auto& f : model.forces) f->check(B, 0);
+  // The force models' parameters, in model order (shared by every body: columns of their own).
+  const bool shared = parameters == SensitivityParameters::forces;
+  std::vector<std::vector<double>> force_values;
+  size_t force_count = 0;
+  for (const auto& f : model.forces) {
+    force_values.emplace_back();
+    for (const ForceParameter& p : f->parameters()) force_values.back().push_back(p.value);
+    force_count += force_values.back().size();
+  }
 
   // Coupled bodies give a dense 12B × 12B matrix per sample: past 10⁸ numbers (0.8 GB) a sample would
   // not fit beside the others, and the run would take (12 + P)B/16 whole-system passes.
@@ -201,15 +238,22 @@ SystemState simulate_sensitivities(const Model& model, const SystemState& state,
         "smaller scene",
         B, 12 * B, 12 * B, 144.0 * static_cast<double>(B) * static_cast<double>(B) * 8e-9));
   }
-  // The passes: one for bodies that do not interact (each body's own 12 + P columns), or ⌈(12 + P)B/D⌉
-  // over the global columns when they do.
-  const size_t columns = (12 + static_cast<size_t>(P)) * B;
-  const size_t passes = coupled ? (columns + D - 1) / D : 1;
-  auto slot_in_pass = [&](size_t pass, size_t b, int j) -> int {
-    if (!coupled) return j;
-    const size_t g = j < 12 ? 12 * b + static_cast<size_t>(j)
-                            : 12 * B + static_cast<size_t>(P) * b + static_cast<size_t>(j - 12);
-    return g / D == pass ? static_cast<int>(g % D) : -1;
+  // The columns: the state's (12B when the bodies interact, else each body's own 12, which all bodies
+  // seed alike), then the parameters' (each body's P, or the force models' shared ones). Pass k carries
+  // columns 16k … 16k + 15 in its slots: for bodies apart and inertia one pass of 15, for interacting
+  // bodies ⌈(12 + P)B/16⌉.
+  const size_t state_columns = coupled ? 12 * B : 12;
+  const size_t parameter_columns = shared ? force_count : coupled ? static_cast<size_t>(P) * B : P;
+  const size_t columns = state_columns + parameter_columns;
+  const size_t passes = (columns + D - 1) / D;
+  auto slot_of = [&](size_t pass, size_t column) -> int {
+    return column / D == pass ? static_cast<int>(column % D) : -1;
+  };
+  // Body b's local column j (0–11 its state, 12 + k its k-th own parameter) as a global column.
+  auto column_of = [&](size_t b, int j) -> size_t {
+    const auto u = static_cast<size_t>(j);
+    if (j < 12) return coupled ? 12 * b + u : u;
+    return state_columns + (coupled ? static_cast<size_t>(P) * b : 0) + (u - 12);
   };
   std::vector<Pass> pass(passes);
   for (size_t k = 0; k < passes; ++k) {
@@ -226,8 +270,16 @@ SystemState simulate_sensitivities(const Model& model, const SystemState& state,
     x.Lambda.resize(B);
     for (size_t b = 0; b < B; ++b) {
       seed_body(
-          model.bodies[b], state.bodies[b], F, parameters, [&](int j) { return slot_in_pass(k, b, j); },
+          model.bodies[b], state.bodies[b], F, parameters, [&](int j) { return slot_of(k, column_of(b, j)); },
           x.bodies[b], x.m[b], x.Lambda[b]);
+    }
+    size_t column = state_columns;
+    for (const std::vector<double>& values : force_values) {
+      x.force_parameters.emplace_back();
+      for (double v : values) {
+        const int slot = shared ? slot_of(k, column++) : -1;
+        x.force_parameters.back().push_back(slot >= 0 ? T::variable(v, slot) : T(v));
+      }
     }
   }
   // Every integrator refuses here, before the first sample, if it does not differentiate its steps. An
@@ -247,9 +299,11 @@ SystemState simulate_sensitivities(const Model& model, const SystemState& state,
   Sensitivities out;
   out.coupled = coupled;
   out.parameters_per_body = P;
+  out.of = parameters;
+  out.parameter_names = parameter_names(model, parameters);
   const Eigen::Index rows = static_cast<Eigen::Index>(12 * B);
-  out.stm = Eigen::MatrixXd::Zero(rows, coupled ? rows : 12);
-  out.parameters = Eigen::MatrixXd::Zero(rows, coupled ? static_cast<Eigen::Index>(P * B) : P);
+  out.stm = Eigen::MatrixXd::Zero(rows, static_cast<Eigen::Index>(state_columns));
+  out.parameters = Eigen::MatrixXd::Zero(rows, static_cast<Eigen::Index>(parameter_columns));
   SystemState sample;
   sample.bodies.resize(B);
   auto emit = [&]() {
@@ -259,14 +313,14 @@ SystemState simulate_sensitivities(const Model& model, const SystemState& state,
       for (size_t b = 0; b < B; ++b) {
         const ReadBody read(model.bodies[b], F, pass[k].x.bodies[b]);
         const Eigen::Index row = static_cast<Eigen::Index>(12 * b);
-        for (int s = 0; s < (coupled ? D : 12 + P); ++s) {
-          const size_t g = coupled ? k * D + static_cast<size_t>(s) : static_cast<size_t>(s);
-          if (coupled && g >= columns) break;
+        for (int s = 0; s < D; ++s) {
+          const size_t g = k * D + static_cast<size_t>(s);
+          if (g >= columns) break;
           const Tangent t = read.along(s);
-          if (g < (coupled ? 12 * B : 12)) {
+          if (g < state_columns) {
             out.stm.block<12, 1>(row, static_cast<Eigen::Index>(g)) = t;
           } else {
-            out.parameters.block<12, 1>(row, static_cast<Eigen::Index>(g - (coupled ? 12 * B : 12))) = t;
+            out.parameters.block<12, 1>(row, static_cast<Eigen::Index>(g - state_columns)) = t;
           }
         }
       }

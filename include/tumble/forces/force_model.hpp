@@ -106,6 +106,15 @@ struct TangentView {
   double t = 0.0;
   std::span<const RigidBody> bodies;  ///< their constant properties (centre of mass, principal axes, name)
   std::span<const BodyStateT<TangentScalar>> states;
+  /// The model's own parameters() in dual numbers, in their order (seeded for ∂/∂p, issue 25).
+  std::span<const TangentScalar> parameters;
+};
+
+/// A number a force model's law depends on (a component of g, a drag coefficient, a stiffness), for
+/// sensitivities with respect to it: its name (unique within the model) and value.
+struct ForceParameter {
+  std::string name;
+  double value = 0.0;
 };
 
 class ForceModel {
@@ -136,6 +145,9 @@ class ForceModel {
   /// a run applies. The default throws InvalidArgument naming the model: a user's function (callbacks)
   /// cannot be differentiated by tumble.
   virtual void accumulate_tangent(const TangentView& view, std::span<WrenchT<TangentScalar>> loads) const;
+  /// The numbers of the law accumulate_tangent reads from TangentView::parameters, in that order (none
+  /// by default): what sensitivities with respect to the force models differentiate.
+  virtual std::vector<ForceParameter> parameters() const { return {}; }
 };
 
 /// A model whose load on each body depends only on that body's state. It is written once, over a

@@ -17,6 +17,7 @@ class UniformGravity final : public LocalForceModel {
   explicit UniformGravity(const Vec3& g) : g_(g) {}
   void accumulate_block(const BodyBlock& block, BlockLoads& loads) const override;
   void accumulate_tangent(const TangentView& view, std::span<WrenchT<TangentScalar>> loads) const override;
+  std::vector<ForceParameter> parameters() const override;
   void accumulate_particles(const SystemView& view, std::span<Vec3> f) const override;
   bool needs_velocity() const override { return false; }
   std::optional<Vec3> uniform_acceleration() const override { return g_; }
@@ -36,6 +37,7 @@ class PointForce final : public LocalForceModel {
       : body_(body), force_(force), force_frame_(force_frame), point_(point), point_frame_(point_frame) {}
   void accumulate_block(const BodyBlock& block, BlockLoads& loads) const override;
   void accumulate_tangent(const TangentView& view, std::span<WrenchT<TangentScalar>> loads) const override;
+  std::vector<ForceParameter> parameters() const override;
   bool needs_velocity() const override { return false; }
   void check(size_t n_bodies, size_t n_particles) const override;
   std::string describe(std::span<const RigidBody> bodies) const override;
@@ -54,6 +56,7 @@ class PureTorque final : public LocalForceModel {
   PureTorque(size_t body, const Vec3& torque, Frame frame) : body_(body), torque_(torque), frame_(frame) {}
   void accumulate_block(const BodyBlock& block, BlockLoads& loads) const override;
   void accumulate_tangent(const TangentView& view, std::span<WrenchT<TangentScalar>> loads) const override;
+  std::vector<ForceParameter> parameters() const override;
   bool needs_velocity() const override { return false; }
   void check(size_t n_bodies, size_t n_particles) const override;
   std::string describe(std::span<const RigidBody> bodies) const override;
@@ -71,6 +74,7 @@ class ViscousDamping final : public LocalForceModel {
       : body_(body), linear_(linear), angular_(angular) {}
   void accumulate_block(const BodyBlock& block, BlockLoads& loads) const override;
   void accumulate_tangent(const TangentView& view, std::span<WrenchT<TangentScalar>> loads) const override;
+  std::vector<ForceParameter> parameters() const override;
   void accumulate_particles(const SystemView& view, std::span<Vec3> f) const override;
   void check(size_t n_bodies, size_t n_particles) const override;
   bool acts_alike_on_every_body() const override { return body_ == all_bodies; }
@@ -88,6 +92,7 @@ class QuadraticDrag final : public LocalForceModel {
       : body_(body), linear_(linear), angular_(angular) {}
   void accumulate_block(const BodyBlock& block, BlockLoads& loads) const override;
   void accumulate_tangent(const TangentView& view, std::span<WrenchT<TangentScalar>> loads) const override;
+  std::vector<ForceParameter> parameters() const override;
   void accumulate_particles(const SystemView& view, std::span<Vec3> f) const override;
   void check(size_t n_bodies, size_t n_particles) const override;
   bool acts_alike_on_every_body() const override { return body_ == all_bodies; }
@@ -112,6 +117,7 @@ class Spring final : public ForceModel {
       : a_(a), b_(b), k_(stiffness), rest_(rest_length), c_(damping) {}
   void accumulate(const SystemView& view, Loads& loads) const override;
   void accumulate_tangent(const TangentView& view, std::span<WrenchT<TangentScalar>> loads) const override;
+  std::vector<ForceParameter> parameters() const override;
   void check(size_t n_bodies, size_t n_particles) const override;
   std::string describe(std::span<const RigidBody> bodies) const override;
   std::optional<double> potential_energy(const SystemView& view) const override;
@@ -135,6 +141,7 @@ class GravityGradient final : public LocalForceModel {
       : mu_(mu), center_(center), torque_only_(torque_only) {}
   void accumulate_block(const BodyBlock& block, BlockLoads& loads) const override;
   void accumulate_tangent(const TangentView& view, std::span<WrenchT<TangentScalar>> loads) const override;
+  std::vector<ForceParameter> parameters() const override;
   bool needs_velocity() const override { return false; }
   bool acts_alike_on_every_body() const override { return true; }
   std::string describe(std::span<const RigidBody> bodies) const override;

@@ -18,6 +18,8 @@ struct TangentCoordinates {
   std::vector<Coordinates<TangentScalar>> bodies;  ///< o, q, v, ω in the formulation's frames
   std::vector<TangentScalar> m;                    ///< each body's mass (seeded for ∂/∂m)
   std::vector<Vec3T<TangentScalar>> Lambda;        ///< its principal moments (seeded for ∂/∂Λ)
+  /// Each force model's parameters() (seeded for ∂/∂p); empty: their values, unseeded.
+  std::vector<std::vector<TangentScalar>> force_parameters;
 };
 
 /// The world state of a body from its formulation's variables (o, q, v_w, ω_w), on any number type.
@@ -43,6 +45,7 @@ class TangentRates {
  private:
   std::vector<BodyStateT<TangentScalar>> states_;
   std::vector<WrenchT<TangentScalar>> loads_;
+  std::vector<TangentScalar> unseeded_;
 };
 
 }  // namespace tumble
