@@ -358,7 +358,8 @@ void Spring::accumulate_tangent(const TangentView& view, std::span<WrenchT<Tange
   };
   const auto [xa, va] = end(a_);
   const auto [xb, vb] = end(b_);
-  const Vec3T<T> f = spring_force<T>(view.parameters[0], view.parameters[1], view.parameters[2], xa, xb, va, vb);
+  const Vec3T<T> f =
+      spring_force<T>(view.parameters[0], view.parameters[1], view.parameters[2], xa, xb, va, vb);
   for (const auto& [e, force, x] : {std::tuple{a_, f, xa}, std::tuple{b_, Vec3T<T>(-f), xb}}) {
     if (e.body == all_bodies) continue;
     loads[e.body].force += force;
@@ -426,8 +427,8 @@ void GravityGradient::accumulate_tangent(const TangentView& view,
                                          std::span<WrenchT<TangentScalar>> loads) const {
   for (size_t i = 0; i < view.states.size(); ++i) {
     const BodyStateT<TangentScalar>& s = view.states[i];
-    const WrenchT<TangentScalar> w =
-        gravity_gradient_law<TangentScalar>(view.parameters[0], center_, torque_only_, s.o, s.q, s.m, s.Lambda);
+    const WrenchT<TangentScalar> w = gravity_gradient_law<TangentScalar>(
+        view.parameters[0], center_, torque_only_, s.o, s.q, s.m, s.Lambda);
     loads[i].force += w.force;
     loads[i].torque += w.torque;
   }

@@ -41,7 +41,8 @@ AxesSort sort_axes(const Vec3& Lambda, const Vec3& omega_b0) {
   // strictly larger ones.
   s.order = {0, 1, 2};
   for (int i = 1; i < 3; ++i) {
-    for (int k = i; k > 0 && Lambda(s.order[k]) < Lambda(s.order[k - 1]); --k) std::swap(s.order[k], s.order[k - 1]);
+    for (int k = i; k > 0 && Lambda(s.order[k]) < Lambda(s.order[k - 1]); --k)
+      std::swap(s.order[k], s.order[k - 1]);
   }
   s.P.setZero();
   for (int k = 0; k < 3; ++k) s.P(k, s.order[k]) = 1.0;

@@ -47,7 +47,9 @@ TriaxialRotation::TriaxialRotation(const SortedBody& b, const Quat& q0, Regime& 
   const TriaxialParts<double> parts = triaxial_amplitudes<double>({b.I, b.w, b.P, b.omega_scale}, k_);
   separatrix_ = parts.separatrix;
   N_ = parts.N;
-  regime = separatrix_ ? Regime::separatrix : parts.pole == 1 ? Regime::about_minor_axis : Regime::about_major_axis;
+  regime = separatrix_       ? Regime::separatrix
+           : parts.pole == 1 ? Regime::about_minor_axis
+                             : Regime::about_major_axis;
   SnCnDn<double> f0;
   if (separatrix_) {
     // sn u₀ = tanh u₀, cn u₀ = sech u₀: sinh u₀ = y/x; x > 0 unless ω₁ and ω₃ underflowed. Π(−N; am u | 1)

@@ -50,7 +50,8 @@ class Exact final : public Integrator {
       tangent_v0_.clear();
       for (size_t i = 0; i < n; ++i) {
         const Coordinates<T>& c = x.bodies[i];
-        tangent_flows_.emplace_back(x.Lambda[i], c.q, F == Formulation::world ? rotate_inverse<T>(c.q, c.omega) : c.omega);
+        tangent_flows_.emplace_back(x.Lambda[i], c.q,
+                                    F == Formulation::world ? rotate_inverse<T>(c.q, c.omega) : c.omega);
         tangent_o0_.push_back(c.o);
         tangent_v0_.push_back(F == Formulation::body ? rotate<T>(c.q, c.v) : c.v);
       }
@@ -64,7 +65,8 @@ class Exact final : public Integrator {
       if (flow.closed_form()) {
         s = flow.at(tau);
       } else {
-        s = FreeFlowTangent(x.Lambda[i], c.q, F == Formulation::world ? rotate_inverse<T>(c.q, c.omega) : c.omega)
+        s = FreeFlowTangent(x.Lambda[i], c.q,
+                            F == Formulation::world ? rotate_inverse<T>(c.q, c.omega) : c.omega)
                 .at(h);
         set_values(s, flow.values().state(tau));
       }

@@ -82,7 +82,7 @@ Vec3 value_vec(const Vec3T<T>& v) { return {v(0).v, v(1).v, v(2).v}; }
 constexpr double kTaylorStepRatio = 0.125;
 
 detail::FlowState<T> taylor_flow(const Vec3T<T>& Lambda, const QuatT<T>& q0, const Vec3T<T>& omega_b0,
-                                  double tau) {
+                                 double tau) {
   const FreeBodyTaylorT<T> probe({Lambda(0), Lambda(1), Lambda(2)}, 1);
   double a_max = 1.0;
   for (const T& a : probe.a()) a_max = std::max(a_max, std::abs(a.v));
@@ -90,9 +90,10 @@ detail::FlowState<T> taylor_flow(const Vec3T<T>& Lambda, const QuatT<T>& q0, con
   const long steps = std::max(1L, static_cast<long>(std::ceil(rate / kTaylorStepRatio)));
   const double ratio = rate / static_cast<double>(steps);
   // ratioᴾ ≤ 1e-32 (ε²): P = 32 ln 10 / ln(1/ratio) terms, at least 2.
-  const int order = ratio > 0.0 ? std::clamp(static_cast<int>(std::ceil(32.0 * std::log(10.0) / -std::log(ratio))), 2,
-                                             FreeBodyTaylorT<T>::kMaxOrder)
-                                : 1;
+  const int order = ratio > 0.0
+                        ? std::clamp(static_cast<int>(std::ceil(32.0 * std::log(10.0) / -std::log(ratio))), 2,
+                                     FreeBodyTaylorT<T>::kMaxOrder)
+                        : 1;
   const FreeBodyTaylorT<T> taylor({Lambda(0), Lambda(1), Lambda(2)}, order);
   FreeBodyStateT<T> s{{omega_b0(0), omega_b0(1), omega_b0(2)}, {q0.w(), q0.x(), q0.y(), q0.z()}};
   const T h(tau / static_cast<double>(steps));
@@ -128,8 +129,8 @@ FreeFlowTangent::FreeFlowTangent(const Vec3T<T>& Lambda, const QuatT<T>& q0, con
 }
 
 detail::FlowState<T> FreeFlowTangent::at(double tau) const {
-  detail::FlowState<T> s =
-      k_ ? detail::triaxial_state<T>(*k_, T(tau)) : taylor_flow(Lambda_, q0_, omega_b0_, tau);
+  detail::FlowState<T> s = k_ ? detail::triaxial_state<T>(*k_, T(tau))
+                              : taylor_flow(Lambda_, q0_, omega_b0_, tau);
   set_values(s, values_.state(tau));
   return s;
 }

@@ -51,7 +51,6 @@ void Integrator::load_state(const Model& /*model*/, Formulation /*formulation*/,
   }
 }
 
-
 namespace {
 [[noreturn]] void refuse_tangent(const std::string& name) {
   throw InvalidArgument(
@@ -69,8 +68,9 @@ TangentCoordinates AdaptiveIntegrator::interpolate_tangent(double) const { refus
 std::vector<std::string> differentiating_integrators() {
   // Those that override step_tangent (tests/sim/sensitivities_test.cpp runs each, and checks that the
   // others refuse).
-  return {"dopri45", "euler",     "exact",      "implicit_gyro",      "lie_rk4",
-          "midpoint", "rk4", "semi_implicit_euler", "splitting", "splitting4"};
+  return {"dopri45",   "euler",     "exact", "implicit_gyro",
+          "lie_rk4",   "midpoint",  "rk4",   "semi_implicit_euler",
+          "splitting", "splitting4"};
 }
 
 void Integrator::step_tangent(const Model& /*model*/, Formulation /*formulation*/, TangentCoordinates& /*x*/,

@@ -597,7 +597,8 @@ class StrangTangent {
   /// templated law, and for the drift the exact flow differentiated (FreeFlowTangent). Each drift sets
   /// up its flow from the state entering it, where the steps on double continue a kept flow: the same
   /// motion, so the values agree to rounding.
-  void steps(const Model& model, Formulation F, TangentCoordinates& x, double h, std::span<const double> weights) {
+  void steps(const Model& model, Formulation F, TangentCoordinates& x, double h,
+             std::span<const double> weights) {
     using T = TangentScalar;
     const double t_end = x.t + h;
     auto kick_all = [&](double tau, std::span<const WrenchT<T>> loads) {

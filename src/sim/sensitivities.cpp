@@ -21,7 +21,7 @@ constexpr int D = kTangentDirections;
 /// One pass: its own integrator and the system's variables carrying up to D seeded columns: slot s of
 /// pass k is column k·D + s (the state's columns, then the parameters': simulate_sensitivities).
 struct Pass {
-  std::unique_ptr<Integrator> integrator;  // a fixed-step method
+  std::unique_ptr<Integrator> integrator;        // a fixed-step method
   std::unique_ptr<AdaptiveIntegrator> adaptive;  // or an adaptive one, which replays its accepted steps
   TangentCoordinates x;
 };
@@ -341,10 +341,10 @@ SystemState simulate_sensitivities(const Model& model, const SystemState& state,
   auto check_finite = [&](const Pass& p, double step) {
     for (size_t b = 0; b < B; ++b) {
       if (!finite(p.x.bodies[b])) {
-        throw Error(
-            fmt::format("sensitivities: the state of body '{}' or its derivatives became non-finite at t = {} "
-                        "s (step {}, h = {} s): take a smaller {}",
-                        model.bodies[b].name(), p.x.t, steps, step, adaptive ? "tolerance" : "timestep"));
+        throw Error(fmt::format(
+            "sensitivities: the state of body '{}' or its derivatives became non-finite at t = {} "
+            "s (step {}, h = {} s): take a smaller {}",
+            model.bodies[b].name(), p.x.t, steps, step, adaptive ? "tolerance" : "timestep"));
       }
     }
   };

@@ -112,7 +112,8 @@ void expect_matches_central_differences(const Case& c, double tau) {
   const Eigen::Matrix<double, 7, 9> S = dual(flow, tau);
   const Eigen::Matrix<double, 7, 9> fd = central(c.Lambda, kQ0, c.omega, tau, 1e-6);
   const Eigen::Matrix<double, 7, 9> fd2 = central(c.Lambda, kQ0, c.omega, tau, 2e-6);
-  EXPECT_LT((S - fd).cwiseAbs().maxCoeff(), (fd - fd2).cwiseAbs().maxCoeff() + 1e-9 * (1 + fd.cwiseAbs().maxCoeff()))
+  EXPECT_LT((S - fd).cwiseAbs().maxCoeff(),
+            (fd - fd2).cwiseAbs().maxCoeff() + 1e-9 * (1 + fd.cwiseAbs().maxCoeff()))
       << c.what << " at tau = " << tau << "\n"
       << S - fd;
   EXPECT_GT(S.cwiseAbs().maxCoeff(), 0.1) << c.what;
@@ -156,7 +157,8 @@ TEST(FreeFlowTangent, TheValuesAreEulerPoinsotsBitForBit) {
     const EulerPoinsot flow(c.Lambda, kQ0, c.omega);
     for (const auto method : {FreeFlowTangent::Method::closed_form_where_differentiable,
                               FreeFlowTangent::Method::taylor_series}) {
-      EXPECT_EQ(numbers(FreeFlowTangent(x.Lambda, x.q, x.omega, method).at(1.3), -1), numbers(flow.state(1.3)))
+      EXPECT_EQ(numbers(FreeFlowTangent(x.Lambda, x.q, x.omega, method).at(1.3), -1),
+                numbers(flow.state(1.3)))
           << c.what;
     }
   }

@@ -58,13 +58,26 @@ BodyState handle_state(const RigidBody& body) {
                               Vec3(0.4, 0.1, 2.0), Vec3(0.2, 6.0, 0.3), Frame::reference);
 }
 
+/// The handle under gravity with a body-fixed force off its centre of mass and quadratic drag: every
+/// column of the tangent space (and the loads' own dependence on the state) is exercised.
+Model forced_handle() {
+  Model model;
+  model.add_body(handle());
+  model.add_force<UniformGravity>(Vec3(0, 0, -9.81));
+  model.add_force<PointForce>(0, Vec3(0.3, 0.0, 0.5), Frame::reference, Vec3(0.1, 0.0, 0.0),
+                              Frame::reference);
+  model.add_force<QuadraticDrag>(all_bodies, 0.05, 1e-3);
+  return model;
+}
+
 TEST(Sensitivities, AFreeIsotropicBodyGivesItsFlowsDerivativeInClosedForm) {
   const Model model = test::ball_model();
   const SystemState s0 = test::ball_state();
   const Vec3& omega0 = test::kBallOmega0;
   for (const std::string& integrator : differentiating_integrators()) {
     for (Formulation F : {Formulation::world, Formulation::mixed, Formulation::body}) {
-      const bool exact_flow = integrator == "splitting" || integrator == "splitting4" || integrator == "exact";
+      const bool exact_flow = integrator == "splitting" || integrator == "splitting4" ||
+                              integrator == "exact";
       const bool fourth_order = integrator == "rk4" || integrator == "lie_rk4" || exact_flow;
       RunSettings settings = run(integrator, fourth_order ? 1.5 : 0.3, fourth_order ? 1e-3 : 1e-4);
       settings.formulation = F;
@@ -78,7 +91,10 @@ TEST(Sensitivities, AFreeIsotropicBodyGivesItsFlowsDerivativeInClosedForm) {
       // tolerances (1e-9 relative) keeps each step's error below 1e-9 of the state: over the run 4e-9
       // measured, 1e-7 bounds it.
       // splitting, splitting4 and exact evaluate the free flow itself: rounding alone, ~1e-16 a step.
-      const double tolerance = exact_flow ? 1e-12 : fourth_order ? 1e-10 : integrator == "dopri45" ? 1e-7 : 1e-3;
+      const double tolerance = exact_flow                ? 1e-12
+                               : fourth_order            ? 1e-10
+                               : integrator == "dopri45" ? 1e-7
+                                                         : 1e-3;
       EXPECT_LT((S.stm - expected).cwiseAbs().maxCoeff(), tolerance)
           << integrator << " " << formulation_name(F) << "\n"
           << S.stm - expected;
@@ -94,14 +110,7 @@ TEST(Sensitivities, AFreeIsotropicBodyGivesItsFlowsDerivativeInClosedForm) {
 }
 
 TEST(Sensitivities, EachIntegratorAgreesWithCentralDifferencesOfItself) {
-  // A handle under gravity with a body-fixed force off its centre of mass and quadratic drag: every
-  // column of the tangent space (and the loads' own dependence on the state) is exercised.
-  Model model;
-  model.add_body(handle());
-  model.add_force<UniformGravity>(Vec3(0, 0, -9.81));
-  model.add_force<PointForce>(0, Vec3(0.3, 0.0, 0.5), Frame::reference, Vec3(0.1, 0.0, 0.0),
-                              Frame::reference);
-  model.add_force<QuadraticDrag>(all_bodies, 0.05, 1e-3);
+  const Model model = forced_handle();
   SystemState s0;
   s0.bodies.push_back(handle_state(model.bodies[0]));
   for (const std::string& integrator : differentiating_integrators()) {
@@ -126,12 +135,7 @@ TEST(Sensitivities, Dopri45DifferentiatesItsAcceptedStepsWithTheirLengthsHeldFix
   // differences of it would approximate, jumps of its step sequence included) but of its accepted
   // steps, and like its states they converge to the flow's as the tolerance shrinks. Reference: RK4 at
   // h = 1e-4 (|ω|h = 6e-4: its error ~(|ω|h)⁴ ≈ 1e-13, below every tolerance here).
-  Model model;
-  model.add_body(handle());
-  model.add_force<UniformGravity>(Vec3(0, 0, -9.81));
-  model.add_force<PointForce>(0, Vec3(0.3, 0.0, 0.5), Frame::reference, Vec3(0.1, 0.0, 0.0),
-                              Frame::reference);
-  model.add_force<QuadraticDrag>(all_bodies, 0.05, 1e-3);
+  const Model model = forced_handle();
   SystemState s0;
   s0.bodies.push_back(handle_state(model.bodies[0]));
   const Eigen::MatrixXd reference = at_end(model, s0, run("rk4", 0.5, 1e-4)).stm;
@@ -203,7 +207,8 @@ TEST(Sensitivities, TheForceColumnsAreDerivativesWithRespectToTheForceModelsPara
     Model m;
     m.add_body(handle());
     m.add_force<UniformGravity>(Vec3(p[0], p[1], p[2]));
-    m.add_force<PointForce>(0, Vec3(p[3], p[4], p[5]), Frame::reference, Vec3(0.3, 0.0, 0.5), Frame::reference);
+    m.add_force<PointForce>(0, Vec3(p[3], p[4], p[5]), Frame::reference, Vec3(0.3, 0.0, 0.5),
+                            Frame::reference);
     m.add_force<PureTorque>(0, Vec3(p[6], p[7], p[8]), Frame::principal);
     m.add_force<ViscousDamping>(all_bodies, p[9], p[10]);
     m.add_force<QuadraticDrag>(all_bodies, p[11], p[12]);
@@ -218,13 +223,19 @@ TEST(Sensitivities, TheForceColumnsAreDerivativesWithRespectToTheForceModelsPara
                         p[2]);
     return m;
   };
-  const std::vector<double> p_forced = {0.1, -0.2, -9.81, 0.05, 0.2, -0.1, 0.01, -0.02, 0.005, 0.3, 0.002,
-                                        0.05, 1e-3, 40.0};
+  const std::vector<double> p_forced = {0.1,   -0.2,  -9.81, 0.05,  0.2,  -0.1, 0.01,
+                                        -0.02, 0.005, 0.3,   0.002, 0.05, 1e-3, 40.0};
   const std::vector<double> p_sprung = {50.0, 0.4, 0.5};
-  for (const auto& [make, p0, integrator] :
-       {std::tuple{std::function<Model(const std::vector<double>&)>(forced), p_forced, "rk4"},
-        std::tuple{std::function<Model(const std::vector<double>&)>(forced), p_forced, "splitting"},
-        std::tuple{std::function<Model(const std::vector<double>&)>(sprung), p_sprung, "rk4"}}) {
+  struct Case {
+    std::function<Model(const std::vector<double>&)> make;
+    std::vector<double> p0;
+    const char* integrator;
+  };
+  for (const Case& c :
+       {Case{forced, p_forced, "rk4"}, Case{forced, p_forced, "splitting"}, Case{sprung, p_sprung, "rk4"}}) {
+    const auto& make = c.make;
+    const std::vector<double>& p0 = c.p0;
+    const char* integrator = c.integrator;
     const Model model = make(p0);
     SystemState s0;
     for (const RigidBody& b : model.bodies) s0.bodies.push_back(handle_state(b));
@@ -261,7 +272,8 @@ TEST(Sensitivities, TheForceColumnsAreDerivativesWithRespectToTheForceModelsPara
                 3 * (fd - fd2).cwiseAbs().maxCoeff() + 1e-9 * fd.cwiseAbs().maxCoeff())
           << integrator << " " << S.parameter_names[k] << "\n"
           << (dual - fd).transpose() << "\nFD's own error: " << (fd - fd2).cwiseAbs().maxCoeff();
-      EXPECT_GT(dual.cwiseAbs().maxCoeff(), 1e-4) << "the parameter moves the bodies: " << S.parameter_names[k];
+      EXPECT_GT(dual.cwiseAbs().maxCoeff(), 1e-4)
+          << "the parameter moves the bodies: " << S.parameter_names[k];
     }
   }
 }
@@ -336,7 +348,8 @@ TEST(Sensitivities, TheExactFlowsMethodsKeepTheInvariantsDerivativesToRounding) 
       invariants(s0.bodies[0], Eigen::MatrixXd::Identity(12, 12), Eigen::MatrixXd::Zero(12, 3));
   for (const std::string integrator : {"splitting", "splitting4", "exact"}) {
     SystemState end;
-    const Sensitivities S = at_end(model, s0, run(integrator, 1.0, 2e-3), SensitivityParameters::inertia, &end);
+    const Sensitivities S =
+        at_end(model, s0, run(integrator, 1.0, 2e-3), SensitivityParameters::inertia, &end);
     const Eigen::Matrix<double, 4, 15> at_end_ = invariants(end.bodies[0], S.stm, S.parameters);
     EXPECT_LT((at_end_ - at_start).cwiseAbs().maxCoeff(), 1e-11 * (1 + at_start.cwiseAbs().maxCoeff()))
         << integrator << "\n"
