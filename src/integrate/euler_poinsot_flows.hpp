@@ -62,13 +62,16 @@ class AxisymmetricRotation {
 
 /// The body in sorted principal axes: I₁ < I₂ < I₃ (all three distinct), ω_s = P ω_b with P a signed
 /// permutation (det P = +1). I and ω_s may be scaled by powers of two (exactly): I by any factor, ω_s
-/// by 1/omega_scale, so the physical angular velocity is omega_scale · w.
-struct SortedBody {
-  Vec3 I;
-  Vec3 w;
+/// by 1/omega_scale, so the physical angular velocity is omega_scale · w. On double, or on dual numbers
+/// for the flow's derivatives (triaxial_setup.hpp).
+template <class T>
+struct SortedBodyT {
+  Vec3T<T> I;
+  Vec3T<T> w;
   Mat3 P;
   double omega_scale = 1.0;
 };
+using SortedBody = SortedBodyT<double>;
 
 /// How a body is put in sorted axes: ω_s = P ω_b with the moments ascending (equal ones in their given
 /// order) and det P = +1; the moments are scaled by I_scale and ω by 1/omega_scale, exact powers of two.

@@ -33,10 +33,11 @@
 
 namespace tumble::detail {
 
-std::pair<JacobiConstants<double>, PiConstants<double>> elliptic_constants(double m, double m1, double n) {
+void elliptic_constants(double m, double m1, double n, JacobiConstants<double>& J, PiConstants<double>& P) {
   // m and k′² come from separate formulas; each is in [0, 1] in exact arithmetic.
   const JacobiElliptic jacobi(std::clamp(m, 0.0, 1.0), std::clamp(m1, 0.0, 1.0));
-  return {jacobi.constants(), EllipticPi(n, jacobi).constants()};
+  J = jacobi.constants();
+  P = EllipticPi(n, jacobi).constants();
 }
 
 double elliptic_first_kind(const JacobiConstants<double>&, double s, double c, double d, double) {
@@ -44,7 +45,7 @@ double elliptic_first_kind(const JacobiConstants<double>&, double s, double c, d
 }
 
 TriaxialRotation::TriaxialRotation(const SortedBody& b, const Quat& q0, Regime& regime) {
-  const TriaxialParts<double> parts = triaxial_amplitudes<double>({b.I, b.w, b.P, b.omega_scale}, k_);
+  const TriaxialParts<double> parts = triaxial_amplitudes<double>(b, k_);
   separatrix_ = parts.separatrix;
   N_ = parts.N;
   regime = separatrix_       ? Regime::separatrix

@@ -18,10 +18,10 @@ using T = TangentScalar;
 // The special functions of triaxial_setup.hpp on dual numbers. Their values agree with the double ones
 // to rounding (the flow's values are EulerPoinsot's in the end); what matters is their derivatives.
 
-std::pair<JacobiConstants<T>, PiConstants<T>> elliptic_constants(const T& m, const T& m1, const T& n) {
+void elliptic_constants(const T& m, const T& m1, const T& n, JacobiConstants<T>& J, PiConstants<T>& P) {
   // The AGM of 1 and k′ as JacobiElliptic runs it (the same number of steps), and K = π/(2 a_N), its
   // limit, which carries K's derivative with respect to m.
-  JacobiConstants<T> J;
+  J = JacobiConstants<T>{};
   T a(1.0), b = sqrt(m1), c = sqrt(m);
   const double eps = std::numeric_limits<double>::epsilon();
   while (c.v > eps * a.v && J.steps < kMaxLandenSteps) {
@@ -37,7 +37,7 @@ std::pair<JacobiConstants<T>, PiConstants<T>> elliptic_constants(const T& m, con
   J.m1 = m1;
   J.k1 = sqrt(m1);
   // Π(n | m) by Bulirsch's transformation on dual numbers; the rest as EllipticPi forms it.
-  PiConstants<T> P;
+  P = PiConstants<T>{};
   P.n = n;
   P.complete = bulirsch_Pi_complete<T>(n, m1, T(std::sqrt(eps)));
   P.rj_max_steps = carlson_rj_steps(-n.v, m1.v);
@@ -50,7 +50,6 @@ std::pair<JacobiConstants<T>, PiConstants<T>> elliptic_constants(const T& m, con
   } else {
     P.c_linear = T(1.0);
   }
-  return {J, P};
 }
 
 T elliptic_first_kind(const JacobiConstants<T>& J, const T& s, const T& c, const T& d, const T&) {

@@ -15,21 +15,11 @@
 
 namespace tumble::detail {
 
-/// SortedBody on any number type: I₁ < I₂ < I₃, ω_s = P ω_b (P a signed permutation, det +1), the
-/// physical angular velocity omega_scale · w.
-template <class T>
-struct SortedBodyT {
-  Vec3T<T> I;
-  Vec3T<T> w;
-  Mat3 P;
-  double omega_scale = 1.0;
-};
-
-/// The Jacobi constants of parameter m and the constants of Π(n; am u | m) (double: JacobiElliptic and
-/// EllipticPi; dual numbers: free_flow_tangent.cpp).
-std::pair<JacobiConstants<double>, PiConstants<double>> elliptic_constants(double m, double m1, double n);
-std::pair<JacobiConstants<TangentScalar>, PiConstants<TangentScalar>> elliptic_constants(
-    const TangentScalar& m, const TangentScalar& m1, const TangentScalar& n);
+/// The Jacobi constants of parameter m and the constants of Π(n; am u | m), written into J and P (double:
+/// JacobiElliptic and EllipticPi; dual numbers: free_flow_tangent.cpp).
+void elliptic_constants(double m, double m1, double n, JacobiConstants<double>& J, PiConstants<double>& P);
+void elliptic_constants(const TangentScalar& m, const TangentScalar& m1, const TangentScalar& n,
+                        JacobiConstants<TangentScalar>& J, PiConstants<TangentScalar>& P);
 /// F(φ | m) for |φ| ≤ π/2 from s = sin φ, c = cos φ, d = √(1 − m s²).
 double elliptic_first_kind(const JacobiConstants<double>& J, double s, double c, double d, double m);
 TangentScalar elliptic_first_kind(const JacobiConstants<TangentScalar>& J, const TangentScalar& s,
@@ -111,7 +101,7 @@ TriaxialParts<T> triaxial_amplitudes(const SortedBodyT<T>& b, TriaxialConstants<
 template <class T>
 void triaxial_phase(const TriaxialParts<T>& parts, TriaxialConstants<T>& k, SnCnDn<T>& f0) {
   using std::copysign, std::hypot, std::sqrt;
-  std::tie(k.jacobi, k.pi) = elliptic_constants(parts.m, parts.m1, -parts.N);
+  elliptic_constants(parts.m, parts.m1, -parts.N, k.jacobi, k.pi);
   const T norm = hypot(parts.x, parts.y);
   const bool moving = value_of(norm) > 0.0;
   const T cn0 = moving ? parts.x / norm : T(1.0), sn0 = moving ? parts.y / norm : T(0.0);
