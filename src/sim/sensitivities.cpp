@@ -228,6 +228,12 @@ SystemState simulate_sensitivities(const Model& model, const SystemState& state,
     for (const ForceParameter& p : f->parameters()) force_values.back().push_back(p.value);
     force_count += force_values.back().size();
   }
+  if (shared && force_count == 0) {
+    throw InvalidArgument(
+        "sensitivities with respect to the force models' parameters: the system has no force model with "
+        "parameters (a built-in model: gravity, a point force or torque, damping, drag, a spring, central "
+        "gravity); choose inertia or mass");
+  }
 
   // Coupled bodies give a dense 12B × 12B matrix per sample: past 10⁸ numbers (0.8 GB) a sample would
   // not fit beside the others, and the run would take (12 + P)B/16 whole-system passes.

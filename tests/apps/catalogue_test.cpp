@@ -1676,6 +1676,15 @@ const std::vector<Case>& catalogue() {
        1,
        "tumble: error: sensitivities are of rigid bodies: the system has 1 particle (model them as small "
        "bodies)"},
+      {"run --sensitivity-parameters forces: a scene without forces, nothing written",
+       {{"s.toml",
+         "[simulation]\nduration = 0.1\n[[bodies]]\nname = \"b\"\nshape = { type = \"box\", size = [1, 2, "
+         "3] }\nmass = 1.0\nangular_velocity = [1, 2, 3]\n"}},
+       "{t} run s.toml -o o.h5 --sensitivities --sensitivity-parameters forces; s=$?; ! ls o.* && exit $s",
+       1,
+       "tumble: error: sensitivities with respect to the force models' parameters: the system has no force "
+       "model with parameters (a built-in model: gravity, a point force or torque, damping, drag, a spring, "
+       "central gravity); choose inertia or mass"},
       {"run --sensitivities: a scene with events",
        {{"s.toml",
          "[simulation]\nduration = 0.1\n[[bodies]]\nname = \"b\"\nshape = { type = \"box\", size = [1, 2, "
