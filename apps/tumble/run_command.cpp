@@ -748,9 +748,10 @@ Runner add_run_command(CLI::App& app) {
   cmd->add_flag(
       "--sensitivities", o->sensitivities,
       fmt::format("also write the run's sensitivities to the HDF5 output: stm = d x(t_k)/d x(0) and "
-                  "parameter_sensitivity = d x(t_k)/d(I1, I2, I3) of each body (or d/d mass), by "
-                  "forward-mode differentiation of the integrator's own steps ({}; "
-                  "docs/sensitivities.md). HDF5 only; no events or checkpoints",
+                  "parameter_sensitivity = d x(t_k)/d(I1, I2, I3) of each body (or d/d mass, or d/d the "
+                  "force models' parameters: --sensitivity-parameters), by forward-mode differentiation of "
+                  "the integrator's own steps ({}; docs/sensitivities.md). HDF5 only; no events or "
+                  "checkpoints",
                   fmt::join(differentiating_integrators(), ", ")));
   cmd->add_option("--sensitivity-parameters", o->sensitivity_parameters,
                   "what parameter_sensitivity differentiates with respect to: inertia (each body's "
