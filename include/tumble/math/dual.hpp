@@ -37,33 +37,38 @@ struct Dual {
     return r;
   }
 
+  /// A number whose tangents the caller writes next (every operation below): the zeros a constant
+  /// starts with would be stores the compiler does not always remove (on packs it did not, measured).
+  struct Unset {};
+  explicit Dual(Unset) {}
+
   // Each rule is the chain rule of its operation: (f ∘ x)' = f'(x) x'.
   friend Dual operator+(const Dual& a, const Dual& b) {
-    Dual r;
+    Dual r{Unset{}};
     r.v = a.v + b.v;
     for (int j = 0; j < N; ++j) r.d[j] = a.d[j] + b.d[j];
     return r;
   }
   friend Dual operator-(const Dual& a, const Dual& b) {
-    Dual r;
+    Dual r{Unset{}};
     r.v = a.v - b.v;
     for (int j = 0; j < N; ++j) r.d[j] = a.d[j] - b.d[j];
     return r;
   }
   friend Dual operator-(const Dual& a) {
-    Dual r;
+    Dual r{Unset{}};
     r.v = -a.v;
     for (int j = 0; j < N; ++j) r.d[j] = -a.d[j];
     return r;
   }
   friend Dual operator*(const Dual& a, const Dual& b) {  // (ab)' = a'b + ab'
-    Dual r;
+    Dual r{Unset{}};
     r.v = a.v * b.v;
     for (int j = 0; j < N; ++j) r.d[j] = a.d[j] * b.v + a.v * b.d[j];
     return r;
   }
   friend Dual operator/(const Dual& a, const Dual& b) {  // (a/b)' = (a' − (a/b) b') / b
-    Dual r;
+    Dual r{Unset{}};
     r.v = a.v / b.v;
     const T inv = T(1.0) / b.v;
     for (int j = 0; j < N; ++j) r.d[j] = (a.d[j] - r.v * b.d[j]) * inv;
@@ -87,7 +92,8 @@ namespace dual_detail {
 /// f(x) with f'(x) given: the value f and the tangents f' x'.
 template <class T, int N>
 Dual<T, N> chain(const Dual<T, N>& x, const T& f, const T& df) {
-  Dual<T, N> r(f);
+  Dual<T, N> r{typename Dual<T, N>::Unset{}};
+  r.v = f;
   for (int j = 0; j < N; ++j) r.d[j] = df * x.d[j];
   return r;
 }
@@ -196,7 +202,8 @@ inline double value_of(double x) { return x; }
 /// A lane-wise choice of value and tangents together.
 template <class T, int N, class Condition>
 Dual<T, N> select(const Condition& condition, const Dual<T, N>& a, const Dual<T, N>& b) {
-  Dual<T, N> r(select(condition, a.v, b.v));
+  Dual<T, N> r{typename Dual<T, N>::Unset{}};
+  r.v = select(condition, a.v, b.v);
   for (int j = 0; j < N; ++j) r.d[j] = select(condition, a.d[j], b.d[j]);
   return r;
 }
