@@ -22,6 +22,15 @@ def scene(**simulation):
     return tumble.make_scene(bodies=bodies, forces=[Gravity([0.0, 0.0, -9.81])], **simulation)
 
 
+def h5py_and_cli():
+    """h5py and the tumble program (TUMBLE_CLI) for the tests of `tumble run --sensitivities`, or a skip."""
+    h5py = pytest.importorskip("h5py")
+    cli = os.environ.get("TUMBLE_CLI")
+    if not cli:
+        pytest.skip("TUMBLE_CLI (the program) not given")
+    return h5py, cli
+
+
 def test_stm_is_the_derivative_of_the_run_with_respect_to_its_start():
     s = scene(duration=0.5, timestep=1e-3, integrator="rk4", output_interval=0.25)
     traj = tumble.simulate(s, sensitivities=True)
@@ -63,10 +72,7 @@ def test_masses_and_coupling():
 
 
 def test_run_writes_stm_to_hdf5_and_refuses_csv(tmp_path):
-    h5py = pytest.importorskip("h5py")
-    cli = os.environ.get("TUMBLE_CLI")
-    if not cli:
-        pytest.skip("TUMBLE_CLI (the program) not given")
+    h5py, cli = h5py_and_cli()
     satellite = os.path.join(SOURCE, "examples", "satellite.toml")
     out = tmp_path / "satellite.h5"
     subprocess.run([cli, "run", satellite, "-o", str(out), "--sensitivities", "--duration", "100", "--quiet"],
@@ -105,10 +111,7 @@ def test_force_parameters_closed_form_and_file(tmp_path):
             np.testing.assert_allclose(traj.parameter_sensitivity[k, rows][6:9], t * np.eye(3), atol=1e-13)
             np.testing.assert_allclose(traj.parameter_sensitivity[k, rows][3:6], 0.0, atol=1e-14)
             np.testing.assert_allclose(traj.parameter_sensitivity[k, rows][9:12], 0.0, atol=1e-14)
-    h5py = pytest.importorskip("h5py")
-    cli = os.environ.get("TUMBLE_CLI")
-    if not cli:
-        pytest.skip("TUMBLE_CLI (the program) not given")
+    _, cli = h5py_and_cli()  # read_trajectory reads the file with h5py
     satellite = os.path.join(SOURCE, "examples", "satellite.toml")
     out = tmp_path / "forces.h5"
     subprocess.run([cli, "run", satellite, "-o", str(out), "--sensitivities", "--sensitivity-parameters", "forces",
