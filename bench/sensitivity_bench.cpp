@@ -6,8 +6,9 @@
 // 1. Cost per tangent direction: N free triaxial boxes under uniform gravity (rk4, h = 1e-3 s, mixed
 //    formulation, one thread, samples only at the start and the end), timed by simulate() (the batched
 //    SIMD engine) and by simulate_sensitivities() (dual numbers, 12 state + 3 moment directions per
-//    body in one pass of 16 slots) over the same run: body-steps/s of each, their ratio, and the ratio
-//    per state direction (/12) in units of one state step. Target: ≤ 2 per direction (≤ 25 for 12).
+//    body in one pass of 16 slots, on packs: integrate/tangent_packs.hpp) over the same run:
+//    body-steps/s of each, their ratio, and the ratio per state direction (/12) in units of one state
+//    step. Target: ≤ 2 per direction (≤ 25 for 12).
 // 2. Finite differences beside it: the same STM by stm_by_central_differences (2·12·B runs of all B
 //    bodies; the "+1", the nominal run, it does not need) for N = 1 and 10, its wall time
 //    against simulate_sensitivities', and the largest difference between the two matrices.
@@ -327,10 +328,11 @@ int main(int argc, char** argv) {
               engine.lanes, load_average());
   std::printf(
       "settings: rk4, h = 1e-3 s, mixed formulation, one thread, output only at start and end; "
-      "sensitivities with respect to x(0) and the principal moments (12 + 3 directions in one pass of\n"
-      "Dual<double, %d>, a body at a time: simulate_sensitivities has no path on packs of bodies; simulate() "
-      "steps packs of %d bodies)\n\n",
-      kTangentDirections, engine.lanes);
+      "sensitivities with respect to x(0) and the principal moments (12 + 3 directions, %d slots a body;\n"
+      "rk4 steps them on packs of %d lanes, a lane a body's 2 or 4 slots, Dual<Pack, 2 or 4>: "
+      "src/integrate/tangent_packs.hpp; splitting a body at a time on Dual<double, %d>; simulate() steps "
+      "packs of %d bodies)\n\n",
+      kTangentDirections, engine.lanes, kTangentDirections, engine.lanes);
 
   const auto t_start = std::chrono::steady_clock::now();
   std::printf(

@@ -3,6 +3,7 @@
 #include "engine.hpp"
 #include "methods.hpp"
 #include "rk4_steps.hpp"
+#include "tangent_packs.hpp"
 
 namespace tumble {
 namespace {
@@ -57,6 +58,11 @@ class ExplicitEuler final : public Integrator {
                     [&](size_t p, ParticleState& s) { s = advanced(s, h, engine_.particle_rates(p, s)); });
   }
 
+  bool step_tangents_packed(const Model& model, Formulation F, TangentCoordinates& x,
+                            std::span<const double> lengths, int slots) override {
+    return tangent_packs::steps(tangent_packs::Method::euler, model, F, x, lengths, slots);
+  }
+
  private:
   engine::Engine engine_;
   TangentRates tangent_;
@@ -95,6 +101,11 @@ class SemiImplicitEuler final : public Integrator {
       x.bodies[i] = semi_implicit_euler_update<TangentScalar>(F, x.bodies[i], h, k_[i]);
     }
     x.t += h;
+  }
+
+  bool step_tangents_packed(const Model& model, Formulation F, TangentCoordinates& x,
+                            std::span<const double> lengths, int slots) override {
+    return tangent_packs::steps(tangent_packs::Method::semi_implicit_euler, model, F, x, lengths, slots);
   }
 
  private:
@@ -149,6 +160,11 @@ class RungeKutta4 final : public Integrator {
       }
     }
     x.t += h;
+  }
+
+  bool step_tangents_packed(const Model& model, Formulation F, TangentCoordinates& x,
+                            std::span<const double> lengths, int slots) override {
+    return tangent_packs::steps(tangent_packs::Method::rk4, model, F, x, lengths, slots);
   }
 
  private:

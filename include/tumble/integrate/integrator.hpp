@@ -17,6 +17,7 @@
 // | dopri45             | adaptive | 5(4)  | the tolerances                          |
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -61,6 +62,16 @@ class Integrator {
   /// laws, and their derivatives are those of that discrete step. Throws InvalidArgument for the
   /// integrators that do not differentiate their steps (differentiating_integrators() names the others).
   virtual void step_tangent(const Model& model, Formulation formulation, TangentCoordinates& x, double h);
+  /// Steps of x's tangents of the given lengths with every body on SIMD packs (src/integrate/
+  /// tangent_packs.hpp): the numbers step_tangent gives step by step, bit for bit, at a fraction of the
+  /// cost, with the derivatives in x's first `slots` slots. False, and x untouched, when this integrator
+  /// or the model's forces have no such path (euler, semi_implicit_euler and rk4 have it, under uniform
+  /// fields): step_tangent then. x.t is the caller's.
+  virtual bool step_tangents_packed(const Model& /*model*/, Formulation /*formulation*/,
+                                    TangentCoordinates& /*x*/, std::span<const double> /*lengths*/,
+                                    int /*slots*/) {
+    return false;
+  }
 
   /// Throws InvalidArgument, naming what is in the way, if this integrator cannot run `model` (only
   /// `exact` refuses some: it solves torque-free motion under a uniform field). simulate() asks first.
