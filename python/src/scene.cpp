@@ -183,13 +183,9 @@ struct Recorded {
     for (size_t f = 0; f < fields.size(); ++f) {
       std::vector<double>& v = body[f].values;
       const auto w = static_cast<size_t>(fields[f]->width);
-      for (size_t i = 0; i < model.bodies.size(); ++i) {
+      for (size_t r = 0; r < model.bodies.size() + state.particles.size(); ++r) {
         v.resize(v.size() + w);
-        fields[f]->of_body(model.bodies[i], state.bodies[i], v.data() + v.size() - w);
-      }
-      for (const ParticleState& p : state.particles) {
-        v.resize(v.size() + w);
-        fields[f]->of_particle(p, v.data() + v.size() - w);
+        field_of_row(*fields[f], model, state, r, v.data() + v.size() - w);
       }
     }
     for (size_t f = 0; f < system.size(); ++f) {
@@ -334,9 +330,9 @@ py::dict simulate(const Scene& scene_in, const py::dict& settings,
   RunSettings s = settings_with(scene, settings);
   if (force) s.threads = 1;
   s.sample_times = std::move(sample_times);
-  const std::vector<const BodyField*> fields =
-      body_fields(field_names ? *field_names : scene.output_fields);  // names checked here
   const Model& model = scene.model;
+  const std::vector<const BodyField*> fields =
+      body_fields(field_names ? *field_names : scene.output_fields, model);  // names checked here
   const auto rows = static_cast<py::ssize_t>(model.bodies.size() + model.particles.size());
 
   // Room for every planned sample at once: growing by doubling would hold up to twice the final size.

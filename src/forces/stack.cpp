@@ -37,6 +37,7 @@ class OnEveryRun final : public LocalForceModel {
   }
   bool needs_velocity() const override { return model_->needs_velocity(); }
   std::optional<Vec3> uniform_acceleration() const override { return model_->uniform_acceleration(); }
+  std::optional<CentralBody> central_body() const override { return model_->central_body(); }
   std::string describe(std::span<const RigidBody> bodies) const override {
     return model_->describe(bodies) + " (in every stacked run)";
   }

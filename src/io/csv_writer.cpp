@@ -215,7 +215,7 @@ class CsvWriter final : public TrajectoryWriter {
             const Model& model, TrajectoryInfo&& info, const std::optional<CsvContinuation>& continuation)
       : info_(std::move(info)),
         names_(row_names(model)),
-        fields_(body_fields(info_.fields)),
+        fields_(body_fields(info_.fields, model)),
         width_(row_width(fields_)),
         trajectory_(trajectory, header({"t", "body"}, fields_), "trajectory",
                     kept(continuation, names_.size())),

@@ -120,7 +120,7 @@ class Hdf5Writer final : public TrajectoryWriter {
       : staged_(path, /*direct_allowed=*/false),
         check_{path.string(), &driver_},
         names_(row_names(model)),
-        fields_(body_fields(info.fields)),
+        fields_(body_fields(info.fields, model)),
         planned_samples_(plan_run(info.settings, model.bodies.size(), model.particles.size()).samples),
         watch_events_(info.events) {
     // Errors are reported by return codes, turned into one FileError line; HDF5's own stack print

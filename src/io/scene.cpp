@@ -81,6 +81,16 @@ void read_output(const TableReader& root, Scene& scene) {
   scene.output_fields = std::move(names);
 }
 
+/// The [output] fields that need the forces: those relative to the orbit frame need one central body.
+void check_output_against_forces(const TableReader& root, const Scene& scene) {
+  if (scene.output_fields.empty()) return;
+  try {
+    body_fields(scene.output_fields, scene.model);
+  } catch (const InvalidArgument& e) {
+    root.table("output", "[output]", {"fields"})->fail_at("fields", e.what());
+  }
+}
+
 }  // namespace
 
 namespace {
@@ -229,6 +239,7 @@ Scene read_scene(const toml::table& root, const BodySections* sections, std::str
     r.fail_here("the scene has nothing to simulate: add [[bodies]], [[body_tables]] or [[particles]]");
   }
   read_forces(r, names, scene);
+  check_output_against_forces(r, scene);
   scene.events = read_events(r, names, scene);
   scene.text = std::move(text);  // last: the sections are views into it
   return scene;

@@ -79,6 +79,12 @@ std::vector<EventSpec> read_events(const TableReader& root, const NameTable& nam
                               s ? fmt::format("did you mean \"{}\"?", *s)
                                 : fmt::format("the columns are: {}", fmt::join(all_columns(), ", "))));
       }
+      if (found->first->of_orbit) {
+        t.fail_at("column",
+                  fmt::format("\"{}\" is relative to the orbit frame (LVLH): events watch columns in "
+                              "world or body axes (yaw, w1, com_z, ...)",
+                              column));
+      }
       e.kind = EventSpec::Kind::column;
       e.field = found->first;
       e.component = found->second;

@@ -322,14 +322,16 @@ std::optional<Quat> TableReader::rotation(std::string_view key, std::vector<std:
   const toml::node* n = node(key);
   if (!n || !n->is_table()) return quaternion(key, notes);
   const TableReader t(*n->as_table(), context_.child(" ", key), *file_,
-                      {"euler_zyx", "euler_zxz", "axis", "angle"});
-  const bool zyx = t.has("euler_zyx"), zxz = t.has("euler_zxz"), axis = t.has("axis") || t.has("angle");
-  if (zyx + zxz + axis != 1) {
+                      {"euler_zyx", "euler_zxz", "axis", "angle", "mrp"});
+  const bool zyx = t.has("euler_zyx"), zxz = t.has("euler_zxz"), axis = t.has("axis") || t.has("angle"),
+             sigma = t.has("mrp");
+  if (zyx + zxz + axis + sigma != 1) {
     fail_at(key, fmt::format("{} as a table takes one of euler_zyx = [yaw, pitch, roll], euler_zxz = [phi, "
-                             "theta, psi] or axis = [x, y, z] with angle = a (rad); or give a unit "
-                             "quaternion [w, x, y, z]",
+                             "theta, psi], axis = [x, y, z] with angle = a (rad), or mrp = [s1, s2, s3] "
+                             "(modified Rodrigues parameters); or give a unit quaternion [w, x, y, z]",
                              key));
   }
+  if (sigma) return from_mrp(*t.vec3("mrp", ""));  // any σ: a set and its shadow are one rotation
   // Angles beyond a full turn are probably degrees: a note, with the radians they would be.
   const auto check = [&](std::string_view angles_key, const Eigen::VectorXd& angles) {
     if (!notes) return;

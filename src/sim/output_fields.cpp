@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "tumble/dynamics/orbit_frame.hpp"
 #include "tumble/error.hpp"
 #include "tumble/math/huge_pages.hpp"
 #include "tumble/math/rotations.hpp"
@@ -37,10 +38,27 @@ void reference_euler_zyx(const ReferenceFrameState& r, double* out) {
 void reference_euler_zxz(const ReferenceFrameState& r, double* out) {
   put(euler_zxz(r.orientation.toRotationMatrix()), out);
 }
+void reference_mrp(const ReferenceFrameState& r, double* out) { put(mrp(r.orientation), out); }
 void reference_axis_angle(const ReferenceFrameState& r, double* out) {
   const AxisAngle a = axis_angle(r.orientation);
   put(a.axis, out);
   out[3] = a.angle;
+}
+
+// Relative to the orbit frame (orbit_frame.hpp): R_rel = R_lvlhᵀ R_ref (reference → LVLH), and the
+// reference frame's angular velocity relative to LVLH in its own axes, R_refᵀ (ω − Ω_lvlh).
+Quat relative_to_lvlh(const ReferenceFrameState& r, const Quat& lvlh) {
+  return (lvlh.conjugate() * r.orientation).normalized();
+}
+void euler_zyx_relative(const ReferenceFrameState& r, const Quat& lvlh, const Vec3&, double* out) {
+  put(euler_zyx(relative_to_lvlh(r, lvlh).toRotationMatrix()), out);
+}
+void mrp_relative(const ReferenceFrameState& r, const Quat& lvlh, const Vec3&, double* out) {
+  put(mrp(relative_to_lvlh(r, lvlh)), out);
+}
+void angular_velocity_relative(const ReferenceFrameState& r, const Quat&, const Vec3& lvlh_omega,
+                               double* out) {
+  put(Vec3(rotate_inverse<double>(r.orientation, Vec3(r.omega_w - lvlh_omega))), out);
 }
 
 // The reference frame's pose: R_ref = R Uᵀ, p = o − R_ref c, v_p = v + ω × (p − o) (state.hpp).
@@ -151,6 +169,48 @@ constexpr BodyField kBodyFields[] = {
        out[3] = 0.0;
      },
      reference_axis_angle},
+    {"mrp",
+     3,
+     {"mrp1", "mrp2", "mrp3"},
+     "1",
+     "reference -> world",
+     "modified Rodrigues parameters σ = tan(angle/4) axis of R_ref, |σ| ≤ 1: the shadow set −σ/|σ|² "
+     "where |σ| would pass 1",
+     via_reference<reference_mrp>,
+     [](const ParticleState&, double* out) { put(Vec3::Zero(), out); },
+     reference_mrp},
+    // Relative to the orbit frame of the centre of mass about the central body (central_gravity).
+    {"euler_zyx_lvlh",
+     3,
+     {"yaw_lvlh", "pitch_lvlh", "roll_lvlh"},
+     "rad",
+     "reference -> LVLH",
+     "R_lvlhᵀ R_ref = Rz(yaw) Ry(pitch) Rx(roll): attitude relative to the orbit frame (LVLH: z to the "
+     "central body, y opposite the orbit normal)",
+     nullptr,
+     nullptr,
+     nullptr,
+     euler_zyx_relative},
+    {"mrp_lvlh",
+     3,
+     {"mrp1_lvlh", "mrp2_lvlh", "mrp3_lvlh"},
+     "1",
+     "reference -> LVLH",
+     "modified Rodrigues parameters of R_lvlhᵀ R_ref, |σ| ≤ 1 (shadow set beyond)",
+     nullptr,
+     nullptr,
+     nullptr,
+     mrp_relative},
+    {"angular_velocity_lvlh",
+     3,
+     {"wx_lvlh", "wy_lvlh", "wz_lvlh"},
+     "rad/s",
+     "reference",
+     "angular velocity relative to the orbit frame, R_refᵀ (ω − Ω_lvlh), Ω_lvlh = (r × v)/|r|²",
+     nullptr,
+     nullptr,
+     nullptr,
+     angular_velocity_relative},
 };
 constexpr size_t kDefaultBodyFields = 4;
 
@@ -258,6 +318,35 @@ std::vector<const BodyField*> body_fields(const std::vector<std::string>& names)
   return out;
 }
 
+std::optional<CentralBody> central_body(const Model& model) {
+  std::optional<CentralBody> found;
+  for (const auto& f : model.forces) {
+    const std::optional<CentralBody> c = f->central_body();
+    if (!c) continue;
+    if (found && (found->center != c->center || found->mu != c->mu)) {
+      throw InvalidArgument(fmt::format(
+          "the system has two central bodies (central_gravity at {} and at {}, or two μ's): orbit frames and "
+          "orbits need one",
+          fmt::join(found->center, ", "), fmt::join(c->center, ", ")));
+    }
+    found = c;
+  }
+  return found;
+}
+
+std::vector<const BodyField*> body_fields(const std::vector<std::string>& names, const Model& model) {
+  std::vector<const BodyField*> fields = body_fields(names);
+  for (const BodyField* f : fields) {
+    if (f->of_orbit && !central_body(model)) {
+      throw InvalidArgument(fmt::format(
+          "output field '{}' is relative to the orbit frame (LVLH) of each body about its central body, and "
+          "the system has none: add a central_gravity force, or choose a field in world axes",
+          f->name));
+    }
+  }
+  return fields;
+}
+
 std::span<const SystemField> system_fields() { return kSystemFields; }
 
 std::vector<std::string> row_names(const Model& model) {
@@ -269,10 +358,44 @@ std::vector<std::string> row_names(const Model& model) {
   return names;
 }
 
+namespace {
+
+/// Row r's reference frame: a body's, or a particle's (at it, the identity orientation, ω = 0).
+ReferenceFrameState reference_of_row(const Model& model, const SystemState& state, size_t r) {
+  const size_t n = model.bodies.size();
+  if (r < n) return reference_state(model.bodies[r], state.bodies[r]);
+  const ParticleState& p = state.particles[r - n];
+  return {p.x, Quat::Identity(), p.v, Vec3::Zero()};
+}
+
+/// An orbit-frame field for row r, whose reference frame is `reference`: the LVLH frame of its centre of
+/// mass about the central body.
+void orbit_field(const BodyField& field, const Model& model, const SystemState& state, size_t r,
+                 const ReferenceFrameState& reference, double* out) {
+  const std::optional<CentralBody> c = central_body(model);
+  if (!c) (void)body_fields({std::string(field.name)}, model);  // throws, saying why
+  const size_t n = model.bodies.size();
+  const Vec3 o = r < n ? state.bodies[r].o : state.particles[r - n].x;
+  const Vec3 v = r < n ? state.bodies[r].v : state.particles[r - n].v;
+  const Vec3 rel = o - c->center;
+  const std::optional<Quat> lvlh = lvlh_orientation(rel, v);
+  if (!lvlh) {
+    throw Error(fmt::format(
+        "output field '{}': '{}' has no orbit frame at t = {} s: its velocity relative to the central body "
+        "is along its position, or zero (r × v = 0), so the orbit plane is undefined",
+        field.name, r < n ? model.bodies[r].name() : model.particles[r - n].name, state.t));
+  }
+  field.of_orbit(reference, *lvlh, lvlh_angular_velocity(rel, v), out);
+}
+
+}  // namespace
+
 void field_of_row(const BodyField& field, const Model& model, const SystemState& state, size_t r,
                   double* out) {
   const size_t n = model.bodies.size();
-  if (r < n) {
+  if (field.of_orbit) {
+    orbit_field(field, model, state, r, reference_of_row(model, state, r), out);
+  } else if (r < n) {
     field.of_body(model.bodies[r], state.bodies[r], out);
   } else {
     field.of_particle(state.particles[r - n], out);
@@ -283,9 +406,13 @@ void fields_of_row(std::span<const BodyField* const> fields, const Model& model,
                    size_t r, double* out) {
   std::optional<ReferenceFrameState> reference;
   for (const BodyField* f : fields) {
-    if (f->of_reference && r < model.bodies.size()) {
-      if (!reference) reference = reference_state(model.bodies[r], state.bodies[r]);
-      f->of_reference(*reference, out);
+    if ((f->of_reference && r < model.bodies.size()) || f->of_orbit) {
+      if (!reference) reference = reference_of_row(model, state, r);
+      if (f->of_orbit) {
+        orbit_field(*f, model, state, r, *reference, out);
+      } else {
+        f->of_reference(*reference, out);
+      }
     } else {
       field_of_row(*f, model, state, r, out);
     }
@@ -302,12 +429,22 @@ std::optional<std::pair<const BodyField*, int>> find_column(std::string_view col
   return std::nullopt;
 }
 
+namespace {
+VariableColumn::Read read_of(const BodyField& field, int component) {
+  if (field.of_orbit) {
+    throw InvalidArgument(fmt::format(
+        "the column '{}' is relative to the orbit frame: events and a study's extrema watch columns in world "
+        "or body axes only (yaw, w1, ...)",
+        field.columns[static_cast<size_t>(component)]));
+  }
+  if (field.name == "angular_velocity_principal") return VariableColumn::Read::omega_b;
+  if (field.name == "com_position") return VariableColumn::Read::com;
+  return VariableColumn::Read::state;
+}
+}  // namespace
+
 VariableColumn::VariableColumn(const BodyField& field, int component)
-    : read_(field.name == "angular_velocity_principal" ? Read::omega_b
-            : field.name == "com_position"             ? Read::com
-                                                       : Read::state),
-      field_(&field),
-      k_(component) {}
+    : read_(read_of(field, component)), field_(&field), k_(component) {}
 
 double VariableColumn::converted(const RigidBody& body, const BodyColumns& x, size_t i, Formulation F) const {
   const auto k = static_cast<size_t>(k_);

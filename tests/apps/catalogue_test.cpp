@@ -581,7 +581,8 @@ const std::vector<Case>& catalogue() {
        1,
        "tumble: error: s.toml:8:10: [output]: unknown output field 'spin': the fields are position, "
        "orientation, velocity, angular_velocity, com_position, com_velocity, angular_velocity_reference, "
-       "angular_velocity_principal, orientation_principal, euler_zyx, euler_zxz, axis_angle"},
+       "angular_velocity_principal, orientation_principal, euler_zyx, euler_zxz, axis_angle, mrp, "
+       "euler_zyx_lvlh, mrp_lvlh, angular_velocity_lvlh"},
       {"scene: repeated output field",
        {{"s.toml", std::string("[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = "
                                "\"box\", size = [1, 2, 3] }\ndensity = 1000\n[output]\nfields = "
@@ -590,6 +591,15 @@ const std::vector<Case>& catalogue() {
        "{t} check s.toml",
        1,
        "tumble: error: s.toml:8:10: [output]: output field 'position' is listed twice: give each field once"},
+      {"scene: orbit-frame field without a central body",
+       {{"s.toml", std::string("[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = "
+                               "\"box\", size = [1, 2, 3] }\ndensity = 1000\n[output]\nfields = "
+                               "[\"position\", \"euler_zyx_lvlh\"]\n")}},
+       "{t} check s.toml",
+       1,
+       "tumble: error: s.toml:8:10: [output]: output field 'euler_zyx_lvlh' is relative to the orbit frame "
+       "(LVLH) of each body about its central body, and the system has none: add a central_gravity force, or "
+       "choose a field in world axes"},
       {"scene: exact integrator with a torque (run)",
        {{"s.toml", std::string("[simulation]\nduration = 0.01\nintegrator = \"exact\"\n[[bodies]]\nname = "
                                "\"a\"\nshape = { type = \"box\", size = [1, 2, 3] }\ndensity = "
@@ -1378,7 +1388,15 @@ const std::vector<Case>& catalogue() {
        1,
        "tumble: error: unknown output field 'spin': the fields are position, orientation, velocity, "
        "angular_velocity, com_position, com_velocity, angular_velocity_reference, "
-       "angular_velocity_principal, orientation_principal, euler_zyx, euler_zxz, axis_angle"},
+       "angular_velocity_principal, orientation_principal, euler_zyx, euler_zxz, axis_angle, mrp, "
+       "euler_zyx_lvlh, mrp_lvlh, angular_velocity_lvlh"},
+      {"cli: orbit-frame field without a central body",
+       {{"s.toml", std::string("[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = "
+                               "\"box\", size = [1, 2, 3] }\ndensity = 1000\n")}},
+       "{t} run s.toml --fields position,mrp_lvlh",
+       1,
+       "tumble: error: output field 'mrp_lvlh' is relative to the orbit frame (LVLH) of each body about its "
+       "central body, and the system has none: add a central_gravity force, or choose a field in world axes"},
       {"cli: negative drift threshold",
        {{"s.toml", std::string("[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = "
                                "\"box\", size = [1, 2, 3] }\ndensity = 1000\n",

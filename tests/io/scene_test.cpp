@@ -115,11 +115,12 @@ TEST(SceneFile, VelocityOfTheCentreOfMass) {
   EXPECT_GT(b.v.norm(), 1.0) << "this part at 10 rad/s would drift at over 1 m/s";
 }
 
-TEST(SceneFile, OrientationAsEulerAnglesOrAxisAngle) {
-  // The same rotation four ways: a quaternion, ZYX and ZXZ angles, and axis–angle (rad), to rounding.
+TEST(SceneFile, OrientationAsEulerAnglesAxisAngleOrRodriguesParameters) {
+  // The same rotation six ways: a quaternion, ZYX and ZXZ angles, axis–angle (rad), and modified
+  // Rodrigues parameters (the principal set and its shadow), to rounding.
   const Quat q(Eigen::AngleAxisd(0.7, Vec3(1.0, -2.0, 0.5).normalized()));
   const Mat3 R = q.toRotationMatrix();
-  const Vec3 zyx = euler_zyx(R), zxz = euler_zxz(R);
+  const Vec3 zyx = euler_zyx(R), zxz = euler_zxz(R), sigma = mrp(q), shadow = -sigma / sigma.squaredNorm();
   const std::string shape =
       "[[bodies]]\nname = \"b\"\nshape = { type = \"sphere\", radius = 1.0 }\ndensity = 1\n";
   auto orientation_of = [&](const std::string& line) { return parse(shape + line).initial.bodies[0].q; };
@@ -128,6 +129,8 @@ TEST(SceneFile, OrientationAsEulerAnglesOrAxisAngle) {
       fmt::format("orientation = {{ euler_zyx = [{:.17g}, {:.17g}, {:.17g}] }}\n", zyx(0), zyx(1), zyx(2)),
       fmt::format("orientation = {{ euler_zxz = [{:.17g}, {:.17g}, {:.17g}] }}\n", zxz(0), zxz(1), zxz(2)),
       fmt::format("orientation = {{ axis = [1.0, -2.0, 0.5], angle = 0.7 }}\n"),
+      fmt::format("orientation = {{ mrp = [{:.17g}, {:.17g}, {:.17g}] }}\n", sigma(0), sigma(1), sigma(2)),
+      fmt::format("orientation = {{ mrp = [{:.17g}, {:.17g}, {:.17g}] }}\n", shadow(0), shadow(1), shadow(2)),
   };
   for (const std::string& way : ways) {
     // A sphere's principal frame is its reference frame (U = I), so q is the orientation given.
@@ -135,6 +138,7 @@ TEST(SceneFile, OrientationAsEulerAnglesOrAxisAngle) {
   }
   EXPECT_THROW(parse(shape + "orientation = { euler_zyx = [0, 0, 0], angle = 1 }\n"), SceneError);
   EXPECT_THROW(parse(shape + "orientation = { axis = [0, 0, 0], angle = 1 }\n"), SceneError);
+  EXPECT_THROW(parse(shape + "orientation = { mrp = [0.1, 0.2, 0.3], angle = 1 }\n"), SceneError);
 }
 
 TEST(SceneFile, OutputFieldsAreChosenInTheScene) {

@@ -12,6 +12,7 @@
 #include "../support/scene_files.hpp"
 #include "tumble/dynamics/quantities.hpp"
 #include "tumble/error.hpp"
+#include "tumble/forces/forces.hpp"
 #include "tumble/io/trajectory_writer.hpp"
 
 namespace tumble {
@@ -22,11 +23,14 @@ namespace {
 struct Fixture {
   Model model;
   std::vector<SystemState> states;
-  Fixture() {
+  /// With `central_body`, a central gravity model too (torque only: the motion stays as given), for the
+  /// fields relative to the orbit frame (LVLH), defined for the body and the particle.
+  explicit Fixture(bool central_body = false) {
     Mat3 I;
     I << 0.3, -0.02, 0.01, -0.02, 0.4, 0.0, 0.01, 0.0, 0.5;
     model.add_body(RigidBody::from_inertia(2.0, I, Vec3(0.1, -0.2, 0.05), "wheel"));
     model.add_particle(Particle{"pebble", 0.1});
+    if (central_body) model.add_force<GravityGradient>(3.986e14, Vec3(0.0, 0.0, -5.0), /*torque_only=*/true);
     for (int k = 0; k < 5; ++k) {
       const double t = 0.1 * k;
       BodyState b;
@@ -347,7 +351,7 @@ std::string dataset_attribute(hid_t file, const std::string& dataset, const char
 TEST(OutputFields, OneTableDrivesTheCsvColumnsAndTheHdf5Datasets) {
   // Every field, in reverse table order: both files follow the order and the table's names, units and
   // frames, and hold the values the table's functions compute.
-  const Fixture f;
+  const Fixture f(/*central_body=*/true);
   std::vector<std::string> names;
   for (const BodyField& field : body_fields()) names.emplace_back(field.name);
   std::reverse(names.begin(), names.end());
@@ -386,7 +390,7 @@ TEST(OutputFields, OneTableDrivesTheCsvColumnsAndTheHdf5Datasets) {
     const size_t width = static_cast<size_t>(field->width);
     ASSERT_EQ(dims, (std::vector<hsize_t>{f.states.size(), 2, width})) << name;
     double expect[4];
-    field->of_body(f.model.bodies[0], f.states.back().bodies[0], expect);
+    field_of_row(*field, f.model, f.states.back(), 0, expect);
     for (size_t k = 0; k < width; ++k, ++column) {
       const double from_csv = std::strtod(last[column].c_str(), nullptr);
       const double from_h5 = data[(f.states.size() - 1) * 2 * width + k];
@@ -411,7 +415,7 @@ TEST(OutputFields, EveryFieldIsDocumentedWithItsColumns) {
 TEST(OutputFields, ARowOfEveryFieldHasTheValuesOfEachFieldAlone) {
   // fields_of_row computes the reference frame's state once for the fields derived from it: the same
   // numbers, bit for bit, as each field on its own (body and particle rows, every sample).
-  const Fixture f;
+  const Fixture f(/*central_body=*/true);
   std::vector<const BodyField*> all;
   size_t width = 0;
   for (const BodyField& field : body_fields()) {

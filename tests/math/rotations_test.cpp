@@ -151,3 +151,47 @@ TEST(Rotations, AxisAngleOfEitherSignOfTheQuaternion) {
 
 }  // namespace
 }  // namespace tumble
+
+namespace tumble {
+namespace {
+
+// MRPs: σ = tan(angle/4) axis, the principal set |σ| ≤ 1, and its shadow −σ/|σ|² for the same rotation.
+// σ is one division from q: 1e-15 bounds its rounding; the rotations rebuilt from σ to kRebuilt, as
+// the Euler angles (measured ≤ 1.7e-15). A wrong formula is off
+// by O(1), a wrong set by 1/|σ|).
+TEST(Rotations, ModifiedRodriguesParametersAreTheQuarterAngleTangentAlongTheAxis) {
+  test::Random rng(11);
+  for (int k = 0; k < 2000; ++k) {
+    const Quat q(rng.rotation());
+    const Vec3 sigma = mrp(q);
+    const AxisAngle a = axis_angle(q);
+    EXPECT_LE(sigma.norm(), 1.0 + 1e-15) << k;
+    EXPECT_LT((sigma - std::tan(a.angle / 4) * a.axis).norm(), 1e-15) << k;
+    EXPECT_LT(test::rel_diff(from_mrp(sigma).toRotationMatrix(), q.toRotationMatrix()), kRebuilt) << k;
+    EXPECT_LT((mrp(Quat(-q.coeffs())) - sigma).norm(), 1e-16) << k;  // q and −q: one rotation, one set
+    const Vec3 shadow = -sigma / sigma.squaredNorm();
+    EXPECT_LT(test::rel_diff(from_mrp(shadow).toRotationMatrix(), q.toRotationMatrix()), kRebuilt) << k;
+  }
+  // 90° about z: σ = tan(π/8) ẑ = (√2 − 1) ẑ, to the rounding of sin, cos of π/4 and one division
+  // (4 ulp of 0.41 = 2.2e-16).
+  EXPECT_NEAR(mrp(Quat(Eigen::AngleAxisd(pi / 2, Vec3::UnitZ()))).z(), std::sqrt(2.0) - 1.0, 2.3e-16);
+  EXPECT_EQ(mrp(Quat::Identity()), Vec3::Zero());
+}
+
+TEST(Rotations, ModifiedRodriguesParametersSwitchToTheShadowSetThroughHalfATurn) {
+  // A turn about a fixed axis: σ = tan(θ/4) a grows to the unit sphere at θ = π, then continues as the
+  // shadow set −tan((2π − θ)/4) a = −a / tan(θ/4): the antipode, shrinking back to 0 at θ = 2π.
+  const Vec3 axis = Vec3(1.0, -2.0, 0.5).normalized();
+  for (double theta = 0.05; theta < 2 * pi; theta += 0.05) {
+    const Vec3 sigma = mrp(Quat(Eigen::AngleAxisd(theta, axis)));
+    const double expected = theta <= pi ? std::tan(theta / 4) : -std::tan((2 * pi - theta) / 4);
+    EXPECT_LT((sigma - expected * axis).norm(), 1e-15) << theta;
+  }
+  const Vec3 before = mrp(Quat(Eigen::AngleAxisd(pi - 1e-9, axis)));
+  const Vec3 after = mrp(Quat(Eigen::AngleAxisd(pi + 1e-9, axis)));
+  EXPECT_NEAR(before.norm(), 1.0, 1e-9);
+  EXPECT_NEAR((before + after).norm(), 0.0, 1e-9);  // the jump to the antipode
+}
+
+}  // namespace
+}  // namespace tumble

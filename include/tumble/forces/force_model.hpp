@@ -110,6 +110,12 @@ struct TangentView {
   std::span<const TangentScalar> parameters;
 };
 
+/// The body a central gravity model pulls toward: its centre (world, m) and μ = GM (m³/s²).
+struct CentralBody {
+  Vec3 center = Vec3::Zero();
+  double mu = 0.0;
+};
+
 /// A number a force model's law depends on (a component of g, a drag coefficient, a stiffness), for
 /// sensitivities with respect to it: its name (unique within the model) and value.
 struct ForceParameter {
@@ -134,6 +140,9 @@ class ForceModel {
   /// each centre of mass (no torque about it). nullopt for every other model. The `exact` integrator
   /// and the drift monitor's advice ask it.
   virtual std::optional<Vec3> uniform_acceleration() const { return std::nullopt; }
+  /// For central gravity: the central body (its centre, world, and μ = GM), which orbit frames (the
+  /// LVLH output fields) and initial orbits are relative to. nullopt for every other model.
+  virtual std::optional<CentralBody> central_body() const { return std::nullopt; }
   /// Whether the model treats every body by the same rule, whatever its index (uniform gravity, central
   /// gravity, damping of all bodies): runs stacked into one system (stack.hpp) then share it as it is.
   virtual bool acts_alike_on_every_body() const { return false; }

@@ -146,6 +146,7 @@ class GravityGradient final : public LocalForceModel {
   bool acts_alike_on_every_body() const override { return true; }
   std::string describe(std::span<const RigidBody> bodies) const override;
   std::optional<double> potential_energy(const SystemView& view) const override;
+  std::optional<CentralBody> central_body() const override { return CentralBody{center_, mu_}; }
 
  private:
   double mu_;

@@ -1,6 +1,6 @@
 #pragma once
 // Other descriptions of a rotation R (a unit quaternion q, w first, in tumble): Euler angles in two
-// named conventions and axis–angle. Used for output columns and for orientations given in scenes.
+// named conventions, axis–angle and modified Rodrigues parameters. Used for output columns and for orientations given in scenes.
 //
 //  - ZYX (yaw–pitch–roll, aerospace): R = Rz(yaw) Ry(pitch) Rx(roll), angles (yaw, pitch, roll) with
 //    yaw, roll ∈ (−π, π] and pitch ∈ [−π/2, π/2]. At pitch = ±π/2 (gimbal lock) only yaw ∓ roll is
@@ -10,6 +10,7 @@
 //    it, as of ZYX's lock, the angles still rebuild R to rounding.
 //  - Axis–angle: R = exp(angle [axis]×), angle ∈ [0, π], |axis| = 1; at angle = 0 the axis is
 //    arbitrary and given as (1, 0, 0).
+//  - Modified Rodrigues parameters (spacecraft attitude): σ = tan(angle/4) axis, |σ| ≤ 1 (mrp()).
 // Rotations are active and map the rotated frame's coordinates to the fixed frame's: x_w = R x.
 #include <algorithm>
 #include <cmath>
@@ -76,6 +77,24 @@ struct AxisAngle {
   const double s = u.norm();
   if (s == 0.0) return {};
   return {u / s, 2.0 * std::atan2(s, sign * q.w())};
+}
+
+/// Modified Rodrigues parameters σ = q_v / (1 + q_w) = tan(angle/4) axis, of the sign of q with
+/// q_w ≥ 0: the principal set, |σ| ≤ 1 (= 1 at angle π). As a rotation turns through π its σ jumps
+/// from the unit sphere to the antipode: it switches to the shadow set σˢ = −σ/|σ|² (the same rotation,
+/// of −q) where |σ| would exceed 1 (Schaub & Junkins, Analytical Mechanics of Space Systems, §3.8).
+/// 1 + |q_w| ≥ 1: no cancellation anywhere.
+[[nodiscard]] inline Vec3 mrp(const Quat& q) {
+  const double sign = q.w() < 0 ? -1.0 : 1.0;
+  return sign * q.vec() / (1.0 + sign * q.w());
+}
+
+/// The rotation σ describes, for any σ (a set and its shadow give the same rotation):
+/// q = ((1 − |σ|²), 2σ) / (1 + |σ|²), unit by construction.
+[[nodiscard]] inline Quat from_mrp(const Vec3& sigma) {
+  const double s2 = sigma.squaredNorm(), d = 1.0 + s2;
+  const Vec3 v = 2.0 * sigma / d;
+  return Quat((1.0 - s2) / d, v.x(), v.y(), v.z());
 }
 
 }  // namespace tumble

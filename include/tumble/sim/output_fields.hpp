@@ -30,13 +30,19 @@ struct BodyField {
   std::string_view unit;                    ///< SI, e.g. "m/s"; "1" for a dimensionless quantity
   std::string_view frame;                   ///< axes the vector is in, e.g. "world"
   std::string_view meaning;                 ///< one line for docs, --help and HDF5 attributes
-  /// The value for a body from its constants and its state (centre of mass, principal frame, world).
+  /// The value for a body from its constants and its state (centre of mass, principal frame, world);
+  /// null for a field relative to the orbit frame (of_orbit).
   void (*of_body)(const RigidBody& body, const BodyState& state, double* out);
   /// The value for a particle: a frame at the particle with the identity orientation and ω = 0.
   void (*of_particle)(const ParticleState& state, double* out);
   /// For a field of the reference frame's state alone: of_body is this of reference_state(body, state),
   /// which a writer of several such fields computes once per row.
   void (*of_reference)(const ReferenceFrameState& reference, double* out) = nullptr;
+  /// For a field relative to the orbit frame (LVLH, dynamics/orbit_frame.hpp): the value from the
+  /// reference frame's state and the LVLH frame (its orientation, LVLH → world, and angular velocity,
+  /// world) of the centre of mass's orbit about the system's central body. field_of_row finds them.
+  void (*of_orbit)(const ReferenceFrameState& reference, const Quat& lvlh, const Vec3& lvlh_omega,
+                   double* out) = nullptr;
 };
 
 struct SystemField {
@@ -58,10 +64,18 @@ std::vector<const BodyField*> default_body_fields();
 /// The fields with these names, in the order given; an empty list gives the defaults. Throws
 /// InvalidArgument naming an unknown or repeated field and listing the known ones.
 std::vector<const BodyField*> body_fields(const std::vector<std::string>& names);
+/// The same for a run of `model`: also throws InvalidArgument for a field relative to the orbit frame
+/// when the model has no central body (a central_gravity force) or more than one.
+std::vector<const BodyField*> body_fields(const std::vector<std::string>& names, const Model& model);
+/// The central body of the model's central gravity (ForceModel::central_body): nullopt without one;
+/// InvalidArgument when two models give different ones.
+std::optional<CentralBody> central_body(const Model& model);
 
 /// The names of a sample's rows: each body, then each particle, in model order.
 std::vector<std::string> row_names(const Model& model);
 /// The `field.width` values of a field for row r of a sample (a body, or a particle after the bodies).
+/// A field relative to the orbit frame throws Error where the row has none (r × v = 0 about the central
+/// body), naming the row and the time; InvalidArgument when the model has no central body.
 void field_of_row(const BodyField& field, const Model& model, const SystemState& state, size_t r,
                   double* out);
 /// The values of every field of `fields` for row r, one after the other (the reference frame's state,
@@ -80,6 +94,7 @@ std::optional<std::pair<const BodyField*, int>> find_column(std::string_view col
 /// the body's state alone, as the CSV computes it.
 class VariableColumn {
  public:
+  /// Throws InvalidArgument for a field relative to the orbit frame (it needs the model's central body).
   VariableColumn(const BodyField& field, int component);
   /// The value for `body`, row i of x.
   double operator()(const RigidBody& body, const BodyColumns& x, size_t i, Formulation formulation) const {
@@ -94,9 +109,10 @@ class VariableColumn {
       return static_cast<int>(BodyColumns::omega) + k_;
     return -1;
   }
+  /// Where the value comes from: the variables' ω or o, or the converted state.
+  enum class Read { omega_b, com, state };
 
  private:
-  enum class Read { omega_b, com, state };
   double converted(const RigidBody& body, const BodyColumns& x, size_t i, Formulation formulation) const;
   Read read_;
   const BodyField* field_;
