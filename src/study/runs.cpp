@@ -75,8 +75,8 @@ class RowReducer {
       }
     }
     samples_.append_extrema(lane_, v);
-    const std::vector<const BodyField*> finals = o_.final_fields.empty() ? std::vector<const BodyField*>{}
-                                                                         : body_fields(o_.final_fields, s_.model);
+    const std::vector<const BodyField*> finals =
+        o_.final_fields.empty() ? std::vector<const BodyField*>{} : body_fields(o_.final_fields, s_.model);
     for (size_t r = 0; r < n_ + s_.model.particles.size(); ++r) {
       for (const BodyField* f : finals) {
         double x[4];
