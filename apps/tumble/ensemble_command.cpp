@@ -148,7 +148,7 @@ int ensemble(const EnsembleOptions& o, const Ranks& ranks) {
   const std::filesystem::path out = o.output.empty() ? example : o.output;
   require_table_fits_in_memory(study);
   check_output(out, !o.output.empty(), study, example);
-  require_known_extension(out, o.format);
+  require_known_extension(out, o.format, /*aem_allowed=*/false);
   const bool root = ranks.rank == 0;
   std::FILE* const human = stdout;
 

@@ -11,10 +11,14 @@ namespace tumble::cli {
 /// require_known_extension refuses what is neither).
 bool hdf5_output(const std::filesystem::path& out, const std::string& format);
 
+/// True for a CCSDS attitude message: --format aem, or without --format the extension .aem (any case).
+bool aem_output(const std::filesystem::path& out, const std::string& format);
+
 /// Without --format, refuses (InvalidArgument) an output whose extension is neither CSV's (.csv, or
 /// none) nor HDF5's: a silent CSV in out.xyz is a file the user's tools then misread. Standard output
 /// (-) and a device or FIFO are CSV whatever their names. Called after the checks that an output is not
-/// an input, which say more.
-void require_known_extension(const std::filesystem::path& out, const std::string& format);
+/// an input, which say more. `aem_allowed`: the command writes attitude messages (tumble run; a study
+/// refuses .aem).
+void require_known_extension(const std::filesystem::path& out, const std::string& format, bool aem_allowed);
 
 }  // namespace tumble::cli

@@ -52,6 +52,8 @@ struct RunOptions {
   std::string report;
   bool sensitivities = false;
   std::string sensitivity_parameters = "inertia";
+  std::string epoch;      // --epoch: the UTC date of t = 0 in an attitude message (empty: J2000's)
+  std::string aem_frame;  // --aem-frame: its REF_FRAME_A (empty: EME2000)
 };
 
 /// What `tumble resume` takes.
@@ -71,6 +73,7 @@ struct Job {
   std::string scene_arg;  // the scene as named on the command line
   RunSettings settings;
   bool hdf5 = false;
+  std::optional<AemHeader> aem;  // an attitude message (.aem) instead of CSV or HDF5
   std::filesystem::path out, diagnostics;
   std::filesystem::path report;  // --report: the HTML report to write after the run (empty: none)
   std::vector<std::string> fields;
@@ -302,11 +305,12 @@ int execute(Job& j) {
   std::optional<CsvContinuation> continuation;
   if (j.resumed) continuation = CsvContinuation{j.resumed->point.samples, j.resumed->point.t_last_sample};
   std::unique_ptr<TrajectoryWriter> writer =
-      hdf5 ? make_hdf5_writer(out, scene.model, info)
-           : make_csv_writer(out, diagnostics, scene.model, std::move(info), continuation);
+      j.aem  ? make_aem_writer(out, scene.model, info, *j.aem)
+      : hdf5 ? make_hdf5_writer(out, scene.model, info)
+             : make_csv_writer(out, diagnostics, scene.model, std::move(info), continuation);
   // A CSV sample of thousands of rows takes milliseconds to format: a second core does it while the
   // run steps on (HDF5 writes binary, and its library must stay on one thread).
-  if (!hdf5 && std::thread::hardware_concurrency() > 1 &&
+  if (!hdf5 && !j.aem && std::thread::hardware_concurrency() > 1 &&
       scene.model.bodies.size() + scene.model.particles.size() >= kRowsWrittenInBackground) {
     writer = write_in_background(std::move(writer));
   }
@@ -418,7 +422,9 @@ int execute(Job& j) {
                  n > 0 ? fmt::format(", the first at t = {:.9g} s", first) : std::string());
     }
     auto where = [](const std::filesystem::path& p) { return p == "-" ? "standard output" : p.string(); };
-    if (hdf5) {
+    if (j.aem) {
+      fmt::print(human, "attitude message (CCSDS AEM, one segment per body): {}\n", where(files.front()));
+    } else if (hdf5) {
       fmt::print(human, "trajectory and diagnostics: {}\n", files.front().string());
       if (j.sensitivities) {
         fmt::print(human, "sensitivities (stm, parameter_sensitivity with respect to {}): {}\n",
@@ -464,6 +470,18 @@ int run(const RunOptions& o) {
   }
 
   const bool hdf5 = hdf5_output(o.output, o.format);
+  const bool aem = aem_output(o.output, o.format);
+  const char* const extension = hdf5 ? ".h5" : aem ? ".aem" : ".csv";
+  if (aem && !o.fields.empty()) {
+    throw InvalidArgument(
+        "an attitude message (.aem) holds each body's quaternion and body rates, whatever the fields: drop "
+        "--fields, or write CSV or HDF5");
+  }
+  if (!aem && (!o.epoch.empty() || !o.aem_frame.empty())) {
+    throw InvalidArgument(fmt::format(
+        "{} dates and frames an attitude message: give an .aem output (-o {}.aem)",
+        o.epoch.empty() ? "--aem-frame" : "--epoch", std::filesystem::path(o.scene).stem().string()));
+  }
   // Runs of a day or 100 GB are refused before anything is written; timing a few steps costs little
   // beside a run of 10⁹ body-steps, and is skipped for shorter ones.
   const RunPlan plan = plan_of(scene, settings, o.fields);
@@ -474,30 +492,34 @@ int run(const RunOptions& o) {
     fmt::print(stderr, "tumble: warning: {}\n", *warning);
   const std::string stem = std::filesystem::path(o.scene).stem().string();
   std::filesystem::path out = o.output;
-  if (out.empty()) out = stem + (hdf5 ? ".h5" : ".csv");
+  if (out.empty()) out = stem + extension;
   if (out != "-" && std::filesystem::is_directory(out)) {
-    throw InvalidArgument(
-        fmt::format("-o {} is a directory: give a file name, e.g. {}", out.string(),
-                    (out / std::filesystem::path(o.scene).stem()).string() + (hdf5 ? ".h5" : ".csv")));
+    throw InvalidArgument(fmt::format("-o {} is a directory: give a file name, e.g. {}", out.string(),
+                                      (out / std::filesystem::path(o.scene).stem()).string() + extension));
   }
   if (hdf5 && !o.diagnostics.empty()) {
     throw InvalidArgument(
         "--diagnostics names a CSV file; HDF5 output keeps the diagnostics in its "
         "'diagnostics' group: drop --diagnostics or use --format csv");
   }
+  if (aem && !o.diagnostics.empty()) {
+    throw InvalidArgument(
+        "--diagnostics goes with a CSV trajectory; an attitude message holds the attitude alone: drop "
+        "--diagnostics, or write CSV or HDF5");
+  }
   // With -o - (standard output), a device such as /dev/null, or a FIFO, the trajectory is written
   // through, and diagnostics only where --diagnostics says (never a file beside a device).
   std::error_code no_status;
   const bool written_through = out == "-" || (std::filesystem::exists(out, no_status) &&
                                               !std::filesystem::is_regular_file(out, no_status));
-  const std::filesystem::path diagnostics = hdf5                     ? std::filesystem::path()
+  const std::filesystem::path diagnostics = hdf5 || aem              ? std::filesystem::path()
                                             : !o.diagnostics.empty() ? std::filesystem::path(o.diagnostics)
                                             : written_through        ? std::filesystem::path()
                                                                      : diagnostics_path(out);
   std::vector<NamedOutput> outputs{
       {o.output.empty() ? fmt::format("the output {} (the scene's name)", out.string())
                         : fmt::format("-o {}", out.string()),
-       out, fmt::format("give another output name, e.g. -o {}{}", stem, hdf5 ? ".h5" : ".csv")}};
+       out, fmt::format("give another output name, e.g. -o {}{}", stem, extension)}};
   if (!diagnostics.empty()) {
     if (o.diagnostics.empty()) {
       outputs.push_back(
@@ -508,11 +530,11 @@ int run(const RunOptions& o) {
                          fmt::format("give another file, e.g. --diagnostics {}.diagnostics.csv", stem)});
     }
   }
-  if (!hdf5 && !written_through && !scene.events.empty()) {
+  if (!hdf5 && !aem && !written_through && !scene.events.empty()) {
     outputs.push_back({fmt::format("the events file {} (named after the output)", events_path(out).string()),
                        events_path(out), "give another output name with -o"});
   }
-  if (!hdf5 && !written_through) {
+  if (!hdf5 && !aem && !written_through) {
     outputs.push_back({fmt::format("the run file {} (named after the output)", run_facts_path(out).string()),
                        run_facts_path(out), "give another output name with -o"});
   }
@@ -528,7 +550,7 @@ int run(const RunOptions& o) {
                        fmt::format("give another file, e.g. --report {}.html", stem)});
   }
   refuse_inputs_as_outputs(outputs, scene);
-  require_known_extension(out, o.format);
+  require_known_extension(out, o.format, /*aem_allowed=*/true);
   if (o.sensitivities) {
     if (!hdf5) {
       throw InvalidArgument(fmt::format(
@@ -545,10 +567,11 @@ int run(const RunOptions& o) {
     j.sensitivities = parse_sensitivity_parameters(o.sensitivity_parameters);
   }
   if (!o.checkpoint.empty()) {
-    if (hdf5) {
-      throw InvalidArgument(
-          "--checkpoint needs CSV output: continuing an HDF5 file is not supported; use --format csv (or "
-          "a .csv output name)");
+    if (hdf5 || aem) {
+      throw InvalidArgument(fmt::format(
+          "--checkpoint needs CSV output: continuing {} is not supported; use --format csv (or a .csv output "
+          "name)",
+          hdf5 ? "an HDF5 file" : "an attitude message"));
     }
     if (written_through) {
       throw InvalidArgument(fmt::format(
@@ -576,6 +599,11 @@ int run(const RunOptions& o) {
   j.scene_arg = o.scene;
   j.settings = settings;
   j.hdf5 = hdf5;
+  if (aem) {
+    j.aem = AemHeader{};
+    if (!o.epoch.empty()) j.aem->epoch = o.epoch;
+    if (!o.aem_frame.empty()) j.aem->ref_frame = o.aem_frame;
+  }
   j.out = out;
   j.diagnostics = diagnostics;
   j.fields = o.fields.empty() ? scene.output_fields : o.fields;
@@ -704,14 +732,24 @@ Runner add_run_command(CLI::App& app) {
       "  tumble run examples/satellite.toml -o out/satellite.h5 --sensitivities   (state transition matrix, "
       "docs/sensitivities.md)");
   cmd->add_option("scene", o->scene, "scene file (TOML; see docs/scene-format.md)")->required();
-  cmd->add_option("-o,--output", o->output,
-                  "trajectory file; .h5/.hdf5 (any case) means HDF5 and .csv CSV unless --format says "
-                  "otherwise; another extension needs --format (default: the "
-                  "scene's name with .csv or .h5, in the current directory); directories are created. "
-                  "- is standard output (CSV); a symlink's target is replaced, the link kept; a device or "
-                  "FIFO is written through (CSV). Never one of the run's inputs");
-  cmd->add_option("--format", o->format, "csv (two files: trajectory and diagnostics) or hdf5 (one file)")
-      ->check(CLI::IsMember({"csv", "hdf5"}));
+  cmd->add_option(
+      "-o,--output", o->output,
+      "trajectory file; .h5/.hdf5 (any case) means HDF5, .aem a CCSDS attitude message and .csv CSV "
+      "unless --format says otherwise; another extension needs --format (default: the "
+      "scene's name with .csv, .h5 or .aem, in the current directory); directories are created. "
+      "- is standard output (CSV); a symlink's target is replaced, the link kept; a device or "
+      "FIFO is written through (CSV). Never one of the run's inputs");
+  cmd->add_option("--format", o->format,
+                  "csv (two files: trajectory and diagnostics), hdf5 (one file) or aem (a CCSDS Attitude "
+                  "Ephemeris Message, version 2.0, KVN: each body's quaternion and body rates, one segment a "
+                  "body, for Orekit and other flight-dynamics tools)")
+      ->check(CLI::IsMember({"csv", "hdf5", "aem"}));
+  cmd->add_option("--epoch", o->epoch,
+                  "attitude messages: the UTC date of t = 0, YYYY-MM-DDThh:mm:ss[.fff] (default "
+                  "2000-01-01T12:00:00.000, J2000's; a sample at t is dated epoch + t, days of 86400 s)");
+  cmd->add_option("--aem-frame", o->aem_frame,
+                  "attitude messages: REF_FRAME_A, the inertial frame tumble's world axes stand for (default "
+                  "EME2000; ICRF, GCRF, ... as CCSDS names them)");
   cmd->add_option("--diagnostics", o->diagnostics,
                   "CSV file for energy, momenta and drifts (default: OUTPUT with .diagnostics.csv; none "
                   "when OUTPUT is -, a device or a FIFO)");

@@ -1081,8 +1081,26 @@ const std::vector<Case>& catalogue() {
        {{"s.toml", kBoxScene}},
        "{t} run s.toml -o out.xyz",
        1,
-       "tumble: error: -o out.xyz: unknown extension .xyz; tumble writes CSV (.csv) or HDF5 (.h5, .hdf5): "
-       "name the file so, or give --format csv or --format hdf5"},
+       "tumble: error: -o out.xyz: unknown extension .xyz; tumble writes CSV (.csv), HDF5 (.h5, .hdf5) or "
+       "CCSDS attitude messages (.aem): name the file so, or give --format csv, hdf5 or aem"},
+      {"cli: an attitude message with chosen fields",
+       {{"s.toml", kBoxScene}},
+       "{t} run s.toml -o out.aem --fields position",
+       1,
+       "tumble: error: an attitude message (.aem) holds each body's quaternion and body rates, whatever the "
+       "fields: drop --fields, or write CSV or HDF5"},
+      {"cli: an attitude message with a malformed epoch",
+       {{"s.toml", kBoxScene}},
+       "{t} run s.toml -o out.aem --epoch 2026-02-30T00:00:00",
+       1,
+       "tumble: error: --epoch 2026-02-30T00:00:00: no such day; give a date as YYYY-MM-DDThh:mm:ss[.fff], "
+       "e.g. "
+       "2026-12-03T15:00:00.000 (UTC)"},
+      {"cli: an epoch without an attitude message",
+       {{"s.toml", kBoxScene}},
+       "{t} run s.toml -o out.csv --epoch 2026-12-03T00:00:00",
+       1,
+       "tumble: error: --epoch dates and frames an attitude message: give an .aem output (-o s.aem)"},
       {"cli: output extension in capitals is HDF5",
        {{"s.toml", kBoxScene}},
        "{t} run s.toml -o OUT.H5 -q && head -c 8 OUT.H5 | od -c | grep -q 'H   D   F'",
@@ -1410,7 +1428,7 @@ const std::vector<Case>& catalogue() {
                                109)}},
        "{t} run s.toml --format xml",
        2,
-       "tumble: error: --format: xml not in {csv,hdf5}; see tumble run --help"},
+       "tumble: error: --format: xml not in {csv,hdf5,aem}; see tumble run --help"},
       {"cli: output interval 1e-300",
        {{"s.toml", std::string("[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = "
                                "\"box\", size = [1, 2, 3] }\ndensity = 1000\n",

@@ -98,6 +98,22 @@ std::unique_ptr<TrajectoryWriter> make_csv_writer(const std::filesystem::path& t
 std::unique_ptr<TrajectoryWriter> make_hdf5_writer(const std::filesystem::path& path, const Model& model,
                                                    const TrajectoryInfo& info);
 
+/// What a CCSDS attitude message names besides the samples.
+struct AemHeader {
+  std::string epoch = "2000-01-01T12:00:00.000";  ///< the UTC date of t = 0 (default: J2000's)
+  std::string ref_frame = "EME2000";  ///< REF_FRAME_A: the inertial frame tumble's world axes stand for
+};
+
+/// A CCSDS Attitude Ephemeris Message, KVN, version 2.0 (CCSDS 504.0-B-2; docs/scene-format.md): one
+/// segment per body (OBJECT_NAME and OBJECT_ID its name) of ATTITUDE_TYPE QUATERNION/ANGVEL, a line
+/// per sample: the date (epoch + t, UTC), the quaternion of the body's reference frame (REF_FRAME_B =
+/// SC_BODY_1) relative to REF_FRAME_A, scalar last, and the angular velocity in the reference frame's
+/// axes in deg/s. Particles have no attitude and are left out; events and diagnostics are not stored.
+/// The file is written whole at commit (each segment's START and STOP times come first). Throws
+/// InvalidArgument for an invalid epoch or frame name, or a model without bodies.
+std::unique_ptr<TrajectoryWriter> make_aem_writer(const std::filesystem::path& path, const Model& model,
+                                                  const TrajectoryInfo& info, const AemHeader& header);
+
 /// `inner`, its samples formatted and written on a thread of its own while the run steps on
 /// (background_writer.cpp): the same files, byte for byte. write() copies the sample and returns once
 /// the previous one is written; every other call waits for that too, and a write error is thrown by the
