@@ -179,7 +179,7 @@ constexpr BodyField kBodyFields[] = {
      via_reference<reference_mrp>,
      [](const ParticleState&, double* out) { put(Vec3::Zero(), out); },
      reference_mrp},
-    // Relative to the orbit frame of the centre of mass about the central body (central_gravity).
+    // Relative to the orbit frame of the centre of mass about the central body (gravity_gradient).
     {"euler_zyx_lvlh",
      3,
      {"yaw_lvlh", "pitch_lvlh", "roll_lvlh"},
@@ -324,10 +324,11 @@ std::optional<CentralBody> central_body(const Model& model) {
     const std::optional<CentralBody> c = f->central_body();
     if (!c) continue;
     if (found && (found->center != c->center || found->mu != c->mu)) {
-      throw InvalidArgument(fmt::format(
-          "the system has two central bodies (central_gravity at {} and at {}, or two μ's): orbit frames and "
-          "orbits need one",
-          fmt::join(found->center, ", "), fmt::join(c->center, ", ")));
+      throw InvalidArgument(
+          fmt::format("the system has two central bodies (gravity_gradient at {} and at {}, or two μ's): "
+                      "orbit frames and "
+                      "orbits need one",
+                      fmt::join(found->center, ", "), fmt::join(c->center, ", ")));
     }
     found = c;
   }
@@ -340,7 +341,8 @@ std::vector<const BodyField*> body_fields(const std::vector<std::string>& names,
     if (f->of_orbit && !central_body(model)) {
       throw InvalidArgument(fmt::format(
           "output field '{}' is relative to the orbit frame (LVLH) of each body about its central body, and "
-          "the system has none: add a central_gravity force, or choose a field in world axes",
+          "the system has none: add a gravity_gradient force (the central body's gravity), or choose a field "
+          "in world axes",
           f->name));
     }
   }

@@ -598,7 +598,9 @@ const std::vector<Case>& catalogue() {
        "{t} check s.toml",
        1,
        "tumble: error: s.toml:8:10: [output]: output field 'euler_zyx_lvlh' is relative to the orbit frame "
-       "(LVLH) of each body about its central body, and the system has none: add a central_gravity force, or "
+       "(LVLH) of each body about its central body, and the system has none: add a gravity_gradient force "
+       "(the central "
+       "body's gravity), or "
        "choose a field in world axes"},
       {"scene: exact integrator with a torque (run)",
        {{"s.toml", std::string("[simulation]\nduration = 0.01\nintegrator = \"exact\"\n[[bodies]]\nname = "
@@ -1414,7 +1416,8 @@ const std::vector<Case>& catalogue() {
        "{t} run s.toml --fields position,mrp_lvlh",
        1,
        "tumble: error: output field 'mrp_lvlh' is relative to the orbit frame (LVLH) of each body about its "
-       "central body, and the system has none: add a central_gravity force, or choose a field in world axes"},
+       "central body, and the system has none: add a gravity_gradient force (the central body's gravity), or "
+       "choose a field in world axes"},
       {"cli: negative drift threshold",
        {{"s.toml", std::string("[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = "
                                "\"box\", size = [1, 2, 3] }\ndensity = 1000\n",

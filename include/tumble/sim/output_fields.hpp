@@ -65,7 +65,7 @@ std::vector<const BodyField*> default_body_fields();
 /// InvalidArgument naming an unknown or repeated field and listing the known ones.
 std::vector<const BodyField*> body_fields(const std::vector<std::string>& names);
 /// The same for a run of `model`: also throws InvalidArgument for a field relative to the orbit frame
-/// when the model has no central body (a central_gravity force) or more than one.
+/// when the model has no central body (a gravity_gradient force) or more than one.
 std::vector<const BodyField*> body_fields(const std::vector<std::string>& names, const Model& model);
 /// The central body of the model's central gravity (ForceModel::central_body): nullopt without one;
 /// InvalidArgument when two models give different ones.
