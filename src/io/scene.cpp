@@ -231,7 +231,7 @@ Scene read_scene(const toml::table& root, const BodySections* sections, std::str
   read_simulation(r, scene);
   read_output(r, scene);
   NameTable names(scene.model, file.name);
-  read_bodies(r, sections, path.parent_path(), names, scene);
+  read_bodies(r, sections, path.parent_path(), names, scene, central_bodies(r));
   read_body_tables(r, path.parent_path(), names, scene);
   read_particles(r, names, scene);
   names.seal();

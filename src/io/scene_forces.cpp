@@ -84,6 +84,27 @@ Spring::End spring_end(const TableReader& spring, std::string_view key, const Na
 
 }  // namespace
 
+namespace {
+/// A gravity_gradient table's central body: μ and the centre.
+CentralBody read_central_body(const TableReader& t) {
+  const double mu = t.required_number("mu", "m^3/s^2", Domain::positive);
+  return {t.vec3("center", Vec3::Zero(), "m"), mu};
+}
+}  // namespace
+
+std::vector<CentralBody> central_bodies(const TableReader& root) {
+  std::vector<CentralBody> out;
+  const auto forces = root.tables("forces");
+  for (size_t i = 0; i < forces.size(); ++i) {
+    if ((*forces[i])["type"].value<std::string>() != "gravity_gradient") continue;
+    const TableReader t(*forces[i],
+                        Context::numbered("[[forces]] #", i + 1).child(" (", "gravity_gradient", ")"),
+                        root.file(), {"mu", "center", "torque_only", "type"});
+    out.push_back(read_central_body(t));
+  }
+  return out;
+}
+
 void read_forces(const TableReader& root, const NameTable& names, Scene& scene) {
   Conservation& c = scene.conserved;
   c = Conservation{};
@@ -187,14 +208,13 @@ void read_forces(const TableReader& root, const NameTable& names, Scene& scene) 
       if (anchored) external();  // between two bodies the pair of forces is internal and central
     } else if (type == "gravity_gradient") {
       const auto t = reader({"mu", "center", "torque_only", "type"});
-      const double mu = t.required_number("mu", "m^3/s^2", Domain::positive);
-      const Vec3 center = t.vec3("center", Vec3::Zero(), "m");
+      const CentralBody central = read_central_body(t);
       const bool torque_only = t.boolean("torque_only").value_or(false);
-      scene.model.add_force<GravityGradient>(mu, center, torque_only);
+      scene.model.add_force<GravityGradient>(central.mu, central.center, torque_only);
       c.linear_momentum = false;
       // The potential is invariant under rotations about `center`, so angular momentum about it is
       // conserved; the monitor measures about the world origin.
-      if (center != Vec3::Zero()) c.angular_momentum = false;
+      if (central.center != Vec3::Zero()) c.angular_momentum = false;
       // The torque without its force is not the gradient of the potential: nothing is conserved.
       if (torque_only) c = Conservation{false, false, false};
     } else {

@@ -49,7 +49,8 @@ BodyMass read_body_mass(const TableReader& body, const std::filesystem::path& di
 /// [[bodies]]: mass properties, the rigid bodies and their initial states, from root's `bodies` or from
 /// `sections` when there are. Mesh paths are relative to `directory`.
 void read_bodies(const TableReader& root, const BodySections* sections,
-                 const std::filesystem::path& directory, NameTable& names, Scene& scene);
+                 const std::filesystem::path& directory, NameTable& names, Scene& scene,
+                 const std::vector<CentralBody>& central);
 /// [[body_tables]]: bodies from CSV files, a row each (scene_body_table.cpp).
 void read_body_tables(const TableReader& root, const std::filesystem::path& directory, NameTable& names,
                       Scene& scene);
@@ -58,6 +59,9 @@ void read_particles(const TableReader& root, NameTable& names, Scene& scene);
 /// [world] gravity and [[forces]], which name bodies and particles by `names`; sets scene.conserved
 /// from the force models present.
 void read_forces(const TableReader& root, const NameTable& names, Scene& scene);
+/// The central bodies of the [[forces]] of type gravity_gradient, read ahead of the bodies (whose
+/// `orbit` is about one), in file order.
+std::vector<CentralBody> central_bodies(const TableReader& root);
 
 /// [[events]], which name bodies and particles by `names`.
 std::vector<EventSpec> read_events(const TableReader& root, const NameTable& names, const Scene& scene);

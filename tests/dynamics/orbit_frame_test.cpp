@@ -11,6 +11,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "../support/random.hpp"
 #include "tumble/dynamics/orbit_frame.hpp"
 #include "tumble/error.hpp"
 #include "tumble/forces/forces.hpp"
@@ -123,6 +124,42 @@ TEST(OrbitFrame, FieldsRelativeToItNeedACentralBody) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("'box' has no orbit frame at t = 2.5 s"), std::string::npos)
         << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace tumble
+
+namespace tumble {
+namespace {
+
+TEST(OrbitFrame, OrbitalElementsGiveTheStateTheirIntegralsDescribe) {
+  // Independent of the perifocal construction: the vis-viva energy v²/2 − μ/r = −μ/(2a), the angular
+  // momentum |r × v| = √(μ a (1 − e²)) along Rz(Ω) Rx(i) ẑ, the eccentricity vector (v × h)/μ − r̂ of
+  // length e toward the periapsis Rz(Ω) Rx(i) Rz(ω) x̂, and r = a(1 − e²)/(1 + e cos ν).
+  const double mu = 3.986004418e14;
+  test::Random rng(17);
+  for (int k = 0; k < 200; ++k) {
+    OrbitalElements el;
+    el.a = rng.uniform(6.6e6, 4.2e7);
+    el.e = rng.uniform(0.0, 0.9);
+    el.i = rng.uniform(0.0, pi);
+    el.raan = rng.uniform(-pi, pi);
+    el.argp = rng.uniform(-pi, pi);
+    el.nu = rng.uniform(-pi, pi);
+    const auto [r, v] = orbit_state(mu, el);
+    const Vec3 h = r.cross(v);
+    const Mat3 plane = (Eigen::AngleAxisd(el.raan, Vec3::UnitZ()) * Eigen::AngleAxisd(el.i, Vec3::UnitX()))
+                           .toRotationMatrix();
+    const Vec3 periapsis = plane * Eigen::AngleAxisd(el.argp, Vec3::UnitZ()).toRotationMatrix() *
+                           Vec3::UnitX();
+    const Vec3 e_vec = v.cross(h) / mu - r.normalized();
+    // Each is a few roundings of quantities of their own size: 1e-13 relative bounds them.
+    EXPECT_NEAR((v.squaredNorm() / 2 - mu / r.norm()) / (mu / (2 * el.a)), -1.0, 1e-13) << k;
+    EXPECT_NEAR(h.norm() / std::sqrt(mu * el.a * (1 - el.e * el.e)), 1.0, 1e-13) << k;
+    EXPECT_LT((h.normalized() - plane * Vec3::UnitZ()).norm(), 1e-13) << k;
+    EXPECT_LT((e_vec - el.e * periapsis).norm(), 1e-13) << k;
+    EXPECT_NEAR(r.norm() * (1 + el.e * std::cos(el.nu)) / (el.a * (1 - el.e * el.e)), 1.0, 1e-14) << k;
   }
 }
 

@@ -7,11 +7,13 @@
 #include <numbers>
 
 #include "../support/scene_files.hpp"
+#include "tumble/dynamics/orbit_frame.hpp"
 #include "tumble/forces/forces.hpp"
 #include "tumble/integrate/euler_poinsot.hpp"
 #include "tumble/io/scene.hpp"
 #include "tumble/math/rotations.hpp"
 #include "tumble/sim/diagnostics.hpp"
+#include "tumble/sim/output_fields.hpp"
 #include "tumble/sim/simulate.hpp"
 
 namespace tumble {
@@ -556,6 +558,80 @@ stop = true
   const std::vector<EventHit> hits = crossings(s);
   ASSERT_EQ(hits.size(), 1u);
   EXPECT_NEAR(hits[0].state.t, (pi / 3) / omega, 1e-9);
+}
+
+}  // namespace
+}  // namespace tumble
+
+namespace tumble {
+namespace {
+
+TEST(SceneFile, ABodyOnItsOrbitWithItsAttitudeRelativeToTheOrbitFrame) {
+  // The orbit places the centre of mass; orientation_frame and angular_velocity_frame = "lvlh" give the
+  // attitude and rates as the _lvlh output fields report them, so the fields at t = 0 read them back.
+  const std::string scene = R"(
+[[bodies]]
+name = "sat"
+mass = 400.0
+inertia = [[300.0, 5.0, -2.0], [5.0, 350.0, 1.0], [-2.0, 1.0, 200.0]]
+center_of_mass = [0.1, 0.0, -0.2]
+orbit = { a = 7.2e6, e = 0.05, i = 0.9, raan = 0.3, argp = -1.1, nu = 2.0 }
+orientation = { euler_zyx = [0.2, -0.4, 0.6] }
+orientation_frame = "lvlh"
+angular_velocity = [0.01, -0.02, 0.03]
+angular_velocity_frame = "lvlh"
+[[forces]]
+type = "gravity_gradient"
+mu = 3.986004418e14
+center = [1.0, 2.0, 3.0]
+)";
+  const Scene s = parse(scene);
+  OrbitalElements el;
+  el.a = 7.2e6;
+  el.e = 0.05;
+  el.i = 0.9;
+  el.raan = 0.3;
+  el.argp = -1.1;
+  el.nu = 2.0;
+  const auto [r, v] = orbit_state(3.986004418e14, el);
+  EXPECT_LT((s.initial.bodies[0].o - (Vec3(1.0, 2.0, 3.0) + r)).norm(), 1e-8) << "m, of 7e6";
+  EXPECT_LT((s.initial.bodies[0].v - v).norm(), 1e-11);
+  double out[6];
+  fields_of_row(body_fields({"euler_zyx_lvlh", "angular_velocity_lvlh"}, s.model), s.model, s.initial, 0,
+                out);
+  // A rotation composed and taken apart (~1e-15 rad), rates the difference of ω and Ω_lvlh ≈ 1e-3 rad/s.
+  EXPECT_LT((Vec3(out[0], out[1], out[2]) - Vec3(0.2, -0.4, 0.6)).cwiseAbs().maxCoeff(), 1e-14);
+  EXPECT_LT((Vec3(out[3], out[4], out[5]) - Vec3(0.01, -0.02, 0.03)).cwiseAbs().maxCoeff(), 1e-16);
+}
+
+TEST(SceneFile, AnOrbitNeedsACentralBodyAndPlacesTheBodyAlone) {
+  const std::string body =
+      "[[bodies]]\nname = \"sat\"\nshape = { type = \"sphere\", radius = 1.0 }\ndensity = 1\n"
+      "orbit = { a = 7e6 }\n";
+  const std::string central = "[[forces]]\ntype = \"gravity_gradient\"\nmu = 3.986e14\n";
+  auto message = [&](const std::string& text) {
+    try {
+      (void)parse(text);
+    } catch (const SceneError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NO_THROW((void)parse(body + central));
+  EXPECT_NE(message(body).find("an orbit is about a central body"), std::string::npos) << message(body);
+  EXPECT_NE(message(body + "position = [1, 0, 0]\n" + central).find("position and orbit both place the body"),
+            std::string::npos);
+  const std::string open =
+      "[[bodies]]\nname = \"sat\"\nshape = { type = \"sphere\", radius = 1.0 }\ndensity = 1\n"
+      "orbit = { a = 7e6, e = 1.2 }\n";
+  EXPECT_NE(message(open + central).find("test.toml:7:24: body 'sat' orbit: e = 1.2 is not an ellipse"),
+            std::string::npos)
+      << message(open + central);
+  const std::string lvlh =
+      "[[bodies]]\nname = \"sat\"\nshape = { type = \"sphere\", radius = 1.0 }\ndensity = 1\n"
+      "orientation_frame = \"lvlh\"\n";
+  EXPECT_NE(message(lvlh + central).find("\"lvlh\" is relative to the orbit frame of the centre of mass"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #pragma once
-// The orbit frame of spacecraft attitude, LVLH (local vertical, local horizontal), from a body's
-// position r and velocity v relative to the central body it orbits:
+// Orbits: a state from classical orbital elements, and the orbit frame of spacecraft attitude, LVLH
+// (local vertical, local horizontal), from a body's position r and velocity v relative to the central
+// body it orbits:
 //   ẑ = −r/|r|                 (nadir: toward the central body),
 //   ŷ = −(r × v)/|r × v|       (opposite the orbit normal),
 //   x̂ = ŷ × ẑ                  (along v on a circular orbit; completes the right-handed triad).
@@ -11,6 +12,7 @@
 // acceleration).
 #include <cmath>
 #include <optional>
+#include <utility>
 
 #include "tumble/math/quaternion.hpp"
 
@@ -33,6 +35,30 @@ namespace tumble {
 /// orbit plane (central gravity alone); r ≠ 0.
 [[nodiscard]] inline Vec3 lvlh_angular_velocity(const Vec3& r, const Vec3& v) {
   return r.cross(v) / r.squaredNorm();
+}
+
+/// Classical orbital elements of an ellipse about a central body.
+struct OrbitalElements {
+  double a = 0.0;     ///< semi-major axis (m), > 0
+  double e = 0.0;     ///< eccentricity, 0 ≤ e < 1
+  double i = 0.0;     ///< inclination (rad), 0 … π
+  double raan = 0.0;  ///< right ascension of the ascending node Ω (rad)
+  double argp = 0.0;  ///< argument of periapsis ω (rad)
+  double nu = 0.0;    ///< true anomaly ν (rad)
+};
+
+/// Position and velocity relative to the central body (μ = GM, m³/s²): in the perifocal frame, with
+/// p = a(1 − e²), r = p/(1 + e cos ν) (cos ν, sin ν, 0) and v = √(μ/p) (−sin ν, e + cos ν, 0), turned
+/// into the world by Rz(Ω) Rx(i) Rz(ω) (Vallado, Fundamentals of Astrodynamics, algorithm 10).
+[[nodiscard]] inline std::pair<Vec3, Vec3> orbit_state(double mu, const OrbitalElements& k) {
+  const double p = k.a * (1.0 - k.e * k.e);
+  const double c = std::cos(k.nu), s = std::sin(k.nu);
+  const Vec3 r_pf = p / (1.0 + k.e * c) * Vec3(c, s, 0.0);
+  const Vec3 v_pf = std::sqrt(mu / p) * Vec3(-s, k.e + c, 0.0);
+  const Mat3 Q = (Eigen::AngleAxisd(k.raan, Vec3::UnitZ()) * Eigen::AngleAxisd(k.i, Vec3::UnitX()) *
+                  Eigen::AngleAxisd(k.argp, Vec3::UnitZ()))
+                     .toRotationMatrix();
+  return {Q * r_pf, Q * v_pf};
 }
 
 }  // namespace tumble
