@@ -52,8 +52,9 @@ struct RunOptions {
   std::string report;
   bool sensitivities = false;
   std::string sensitivity_parameters = "inertia";
-  std::string epoch;      // --epoch: the UTC date of t = 0 in an attitude message (empty: J2000's)
-  std::string aem_frame;  // --aem-frame: its REF_FRAME_A (empty: EME2000)
+  bool unwrap_angles = false;  // --unwrap-angles
+  std::string epoch;           // --epoch: the UTC date of t = 0 in an attitude message (empty: J2000's)
+  std::string aem_frame;       // --aem-frame: its REF_FRAME_A (empty: EME2000)
 };
 
 /// What `tumble resume` takes.
@@ -77,6 +78,7 @@ struct Job {
   std::filesystem::path out, diagnostics;
   std::filesystem::path report;  // --report: the HTML report to write after the run (empty: none)
   std::vector<std::string> fields;
+  bool unwrap_angles = false;  // Euler angles continuous from sample to sample
   bool quiet = false, progress = false, strict = false;
   std::filesystem::path checkpoint;  // empty: none
   double checkpoint_every = 60.0;
@@ -300,7 +302,7 @@ int execute(Job& j) {
   }
   // The writer keeps the scene's text (HDF5 stores it); the run needs it no more, so it is not copied.
   TrajectoryInfo info{std::move(scene.text), j.scene_arg, TUMBLE_VERSION, settings, j.fields,
-                      !scene.events.empty(), geometry};
+                      !scene.events.empty(), geometry,    j.unwrap_angles};
   const auto started = std::chrono::steady_clock::now();
   std::optional<CsvContinuation> continuation;
   if (j.resumed) continuation = CsvContinuation{j.resumed->point.samples, j.resumed->point.t_last_sample};
@@ -566,6 +568,17 @@ int run(const RunOptions& o) {
     }
     j.sensitivities = parse_sensitivity_parameters(o.sensitivity_parameters);
   }
+  const bool unwrap_angles = o.unwrap_angles || scene.unwrap_angles;
+  if (unwrap_angles && aem) {
+    throw InvalidArgument(
+        "--unwrap-angles makes Euler angles continuous, and an attitude message holds quaternions: drop it");
+  }
+  if (unwrap_angles && !o.checkpoint.empty()) {
+    throw InvalidArgument(fmt::format(
+        "{} and --checkpoint: a resumed run would not continue the unwrapped angles (not supported yet): "
+        "drop one of them",
+        o.unwrap_angles ? "--unwrap-angles" : "the scene's [output] unwrap_angles"));
+  }
   if (!o.checkpoint.empty()) {
     if (hdf5 || aem) {
       throw InvalidArgument(fmt::format(
@@ -607,6 +620,7 @@ int run(const RunOptions& o) {
   j.out = out;
   j.diagnostics = diagnostics;
   j.fields = o.fields.empty() ? scene.output_fields : o.fields;
+  j.unwrap_angles = unwrap_angles;
   j.quiet = o.quiet;
   j.progress = o.progress;
   j.strict = o.strict;
@@ -744,6 +758,12 @@ Runner add_run_command(CLI::App& app) {
                   "Ephemeris Message, version 2.0, KVN: each body's quaternion and body rates, one segment a "
                   "body, for Orekit and other flight-dynamics tools)")
       ->check(CLI::IsMember({"csv", "hdf5", "aem"}));
+  cmd->add_flag(
+      "--unwrap-angles", o->unwrap_angles,
+      "Euler angles (euler_zyx, euler_zxz, euler_zyx_lvlh) continuous from sample to sample: each "
+      "moved by the multiple of 2 pi nearest the previous sample's, so a spinning body's roll is not "
+      "a sawtooth (true where an angle changes by less than pi between samples; the scene's [output] "
+      "unwrap_angles = true says the same)");
   cmd->add_option("--epoch", o->epoch,
                   "attitude messages: the UTC date of t = 0, YYYY-MM-DDThh:mm:ss[.fff] (default "
                   "2000-01-01T12:00:00.000, J2000's; a sample at t is dated epoch + t, days of 86400 s)");

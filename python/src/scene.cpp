@@ -177,6 +177,7 @@ struct Recorded {
   std::vector<std::string>& event_names;
   std::vector<double>& event_t;
   std::vector<long>& event_rows;
+  std::optional<AngleUnwrapper> unwrap;  // the scene's [output] unwrap_angles
 
   void sample(const SystemState& state, const DriftSample& d) {
     t.push_back(state.t);
@@ -186,6 +187,7 @@ struct Recorded {
       for (size_t r = 0; r < model.bodies.size() + state.particles.size(); ++r) {
         v.resize(v.size() + w);
         field_of_row(*fields[f], model, state, r, v.data() + v.size() - w);
+        if (unwrap) unwrap->field(r, f, v.data() + v.size() - w);
       }
     }
     for (size_t f = 0; f < system.size(); ++f) {
@@ -400,7 +402,19 @@ py::dict simulate(const Scene& scene_in, const py::dict& settings,
     bool& coupled_;
     std::vector<std::string>& names_;
   };
-  Recorded recorded{model, fields, system, specs, t, body, diagnostics, event_names, event_t, event_rows};
+  Recorded recorded{model,
+                    fields,
+                    system,
+                    specs,
+                    t,
+                    body,
+                    diagnostics,
+                    event_names,
+                    event_t,
+                    event_rows,
+                    scene.unwrap_angles
+                        ? std::optional<AngleUnwrapper>(std::in_place, fields, static_cast<size_t>(rows))
+                        : std::nullopt};
   Arrays arrays_observer(recorded, stm, parameter_sensitivity, coupled, parameter_names);
   // Ctrl-C: Python's handler only sets a flag while the run holds no GIL; it is looked at every 50 ms
   // (taking the GIL for that moment), and the run then stops with the samples so far, which the caller

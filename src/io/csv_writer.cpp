@@ -217,6 +217,8 @@ class CsvWriter final : public TrajectoryWriter {
         names_(row_names(model)),
         fields_(body_fields(info_.fields, model)),
         width_(row_width(fields_)),
+        unwrap_(info_.unwrap_angles ? std::optional<AngleUnwrapper>(std::in_place, fields_, names_.size())
+                                    : std::nullopt),
         trajectory_(trajectory, header({"t", "body"}, fields_), "trajectory",
                     kept(continuation, names_.size())),
         samples_(continuation ? continuation->samples : 0) {
@@ -248,6 +250,7 @@ class CsvWriter final : public TrajectoryWriter {
       buffer_.push_back(',');
       buffer_.append(names_[r]);
       fields_of_row(fields_, model, state, r, row_.data());
+      if (unwrap_) unwrap_->row(r, row_.data());
       for (const double v : row_) {
         buffer_.push_back(',');
         io::append_number(buffer_, v);
@@ -326,8 +329,9 @@ class CsvWriter final : public TrajectoryWriter {
   TrajectoryInfo info_;
   std::vector<std::string> names_;
   std::vector<const BodyField*> fields_;
-  size_t width_ = 0;         // the values of a row: Σ field widths
-  std::vector<double> row_;  // one row's values
+  size_t width_ = 0;                      // the values of a row: Σ field widths
+  std::optional<AngleUnwrapper> unwrap_;  // --unwrap-angles
+  std::vector<double> row_;               // one row's values
   CsvFile trajectory_;
   long samples_ = 0;
   std::optional<CsvFile> diagnostics_;

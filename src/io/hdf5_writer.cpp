@@ -121,6 +121,8 @@ class Hdf5Writer final : public TrajectoryWriter {
         check_{path.string(), &driver_},
         names_(row_names(model)),
         fields_(body_fields(info.fields, model)),
+        unwrap_(info.unwrap_angles ? std::optional<AngleUnwrapper>(std::in_place, fields_, names_.size())
+                                   : std::nullopt),
         planned_samples_(plan_run(info.settings, model.bodies.size(), model.particles.size()).samples),
         watch_events_(info.events) {
     // Errors are reported by return codes, turned into one FileError line; HDF5's own stack print
@@ -172,7 +174,10 @@ class Hdf5Writer final : public TrajectoryWriter {
     size_t row_width = 0;
     for (const BodyField* f : fields_) row_width += static_cast<size_t>(f->width);
     all_.resize(names_.size() * row_width);
-    for (size_t r = 0; r < names_.size(); ++r) fields_of_row(fields_, model, state, r, &all_[r * row_width]);
+    for (size_t r = 0; r < names_.size(); ++r) {
+      fields_of_row(fields_, model, state, r, &all_[r * row_width]);
+      if (unwrap_) unwrap_->row(r, &all_[r * row_width]);
+    }
     for (size_t k = 0, at = 0; k < fields_.size(); at += static_cast<size_t>(fields_[k]->width), ++k) {
       const size_t width = static_cast<size_t>(fields_[k]->width);
       row_.resize(names_.size() * width);
@@ -395,7 +400,8 @@ class Hdf5Writer final : public TrajectoryWriter {
   Handle file_;
   Handle diagnostics_;
   std::vector<const BodyField*> fields_;
-  double planned_samples_;  // what the run's settings will write: sizes the chunks
+  std::optional<AngleUnwrapper> unwrap_;  // --unwrap-angles
+  double planned_samples_;                // what the run's settings will write: sizes the chunks
   std::optional<Series> t_;
   std::vector<Series> field_series_;
   std::vector<std::optional<Series>> diagnostic_series_;  ///< one per SystemField, empty if undefined

@@ -61,10 +61,13 @@ void read_simulation(const TableReader& root, Scene& scene) {
   }
 }
 
-/// [output] fields = ["position", ...]: what `tumble run` writes for each body unless --fields says.
+/// [output] fields = ["position", ...]: what `tumble run` writes for each body unless --fields says;
+/// unwrap_angles = true: Euler angles continuous from sample to sample.
 void read_output(const TableReader& root, Scene& scene) {
-  const auto out = root.table("output", "[output]", {"fields"});
-  if (!out || !out->has("fields")) return;
+  const auto out = root.table("output", "[output]", {"fields", "unwrap_angles"});
+  if (!out) return;
+  scene.unwrap_angles = out->boolean("unwrap_angles").value_or(false);
+  if (!out->has("fields")) return;
   const toml::array* a = out->node("fields")->as_array();
   if (!a) out->fail_at("fields", "fields must be a list of field names, e.g. [\"position\", \"euler_zyx\"]");
   std::vector<std::string> names;
@@ -87,7 +90,7 @@ void check_output_against_forces(const TableReader& root, const Scene& scene) {
   try {
     body_fields(scene.output_fields, scene.model);
   } catch (const InvalidArgument& e) {
-    root.table("output", "[output]", {"fields"})->fail_at("fields", e.what());
+    root.table("output", "[output]", {"fields", "unwrap_angles"})->fail_at("fields", e.what());
   }
 }
 

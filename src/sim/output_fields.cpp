@@ -3,6 +3,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
 
 #include "tumble/dynamics/orbit_frame.hpp"
 #include "tumble/error.hpp"
@@ -147,7 +150,9 @@ constexpr BodyField kBodyFields[] = {
      "R_ref = Rz(yaw) Ry(pitch) Rx(roll); yaw, roll in (−π, π], pitch in [−π/2, π/2]",
      via_reference<reference_euler_zyx>,
      [](const ParticleState&, double* out) { put(Vec3::Zero(), out); },
-     reference_euler_zyx},
+     reference_euler_zyx,
+     nullptr,
+     true},
     {"euler_zxz",
      3,
      {"phi", "theta", "psi"},
@@ -156,7 +161,9 @@ constexpr BodyField kBodyFields[] = {
      "R_ref = Rz(φ) Rx(θ) Rz(ψ) (3-1-3); φ, ψ in (−π, π], θ in [0, π]",
      via_reference<reference_euler_zxz>,
      [](const ParticleState&, double* out) { put(Vec3::Zero(), out); },
-     reference_euler_zxz},
+     reference_euler_zxz,
+     nullptr,
+     true},
     {"axis_angle",
      4,
      {"axis_x", "axis_y", "axis_z", "angle"},
@@ -190,7 +197,8 @@ constexpr BodyField kBodyFields[] = {
      nullptr,
      nullptr,
      nullptr,
-     euler_zyx_relative},
+     euler_zyx_relative,
+     true},
     {"mrp_lvlh",
      3,
      {"mrp1_lvlh", "mrp2_lvlh", "mrp3_lvlh"},
@@ -420,6 +428,30 @@ void fields_of_row(std::span<const BodyField* const> fields, const Model& model,
     }
     out += f->width;
   }
+}
+
+AngleUnwrapper::AngleUnwrapper(std::span<const BodyField* const> fields, size_t rows)
+    : fields_(fields.begin(), fields.end()) {
+  for (const BodyField* f : fields_) {
+    first_.push_back(columns_);
+    if (f->wraps) columns_ += static_cast<size_t>(f->width);
+  }
+  last_.assign(rows * columns_, std::numeric_limits<double>::quiet_NaN());
+}
+
+void AngleUnwrapper::field(size_t row, size_t k, double* values) {
+  if (!fields_[k]->wraps) return;
+  constexpr double turn = 2 * std::numbers::pi;
+  double* last = &last_[row * columns_ + first_[k]];
+  for (int c = 0; c < fields_[k]->width; ++c) {
+    double& x = values[c];
+    if (!std::isnan(last[c])) x += turn * std::nearbyint((last[c] - x) / turn);  // nearest the previous
+    last[c] = x;
+  }
+}
+
+void AngleUnwrapper::row(size_t row, double* values) {
+  for (size_t k = 0; k < fields_.size(); values += fields_[k]->width, ++k) field(row, k, values);
 }
 
 std::optional<std::pair<const BodyField*, int>> find_column(std::string_view column) {

@@ -511,3 +511,63 @@ TEST(CheckCli, StatesTheRunsStepsSamplesSizeAndTime) {
 
 }  // namespace
 }  // namespace tumble
+
+namespace tumble {
+namespace {
+
+using test::run_tumble;
+
+TEST(RunCli, UnwrappedAnglesFollowASpinPastEveryHalfTurn) {
+  // A sphere spinning at 3 rad/s about the world z axis: its yaw is 3t exactly (a spin about a principal
+  // axis of a free body stays one; rk4's error on a constant rotation is ~(ωh)⁵/120 a step, 1e-14 rad over
+  // the run). Wrapped, yaw jumps by −2π at each half turn; unwrapped it is 3t, through 30 rad.
+  test::TempDir dir("run_unwrap");
+  const auto scene = dir.write("spin.toml", R"([simulation]
+duration = 10.0
+timestep = 0.001
+output_interval = 0.1
+[[bodies]]
+name = "ball"
+shape = { type = "sphere", radius = 0.5 }
+density = 1000
+angular_velocity = [0.0, 0.0, 3.0]
+)");
+  for (const bool unwrap : {false, true}) {
+    const auto out = dir / (unwrap ? "unwrapped.csv" : "wrapped.csv");
+    const auto r = run_tumble("run " + scene.string() + " --fields euler_zyx -q -o " + out.string() +
+                              (unwrap ? " --unwrap-angles" : ""));
+    ASSERT_EQ(r.status, 0) << r.output;
+    const auto rows = file_lines(out);
+    ASSERT_EQ(rows.size(), 102u);  // header, 101 samples
+    double largest_jump = 0.0, previous = 0.0;
+    for (size_t k = 1; k < rows.size(); ++k) {
+      std::stringstream in(rows[k]);
+      std::string t, name, yaw;
+      std::getline(in, t, ',');
+      std::getline(in, name, ',');
+      std::getline(in, yaw, ',');
+      const double y = std::stod(yaw);
+      if (unwrap) {
+        EXPECT_NEAR(y, 3.0 * std::stod(t), 1e-11) << rows[k];  // rk4 and rounding: ~1e-13
+      }
+      if (k > 1) largest_jump = std::max(largest_jump, std::abs(y - previous));
+      previous = y;
+    }
+    if (unwrap) {
+      EXPECT_LT(largest_jump, 0.31);  // 3 rad/s × 0.1 s
+      EXPECT_NEAR(previous, 30.0, 1e-11);
+    } else {
+      EXPECT_GT(largest_jump, 5.9);  // the sawtooth: 0.3 − 2π
+    }
+  }
+  // Refused where it cannot hold: a checkpointed run, an attitude message.
+  EXPECT_NE(run_tumble("run " + scene.string() + " --unwrap-angles -o " + (dir / "c.csv").string() +
+                       " --checkpoint " + (dir / "c.ckpt").string())
+                .status,
+            0);
+  EXPECT_NE(run_tumble("run " + scene.string() + " --unwrap-angles -o " + (dir / "a.aem").string()).status,
+            0);
+}
+
+}  // namespace
+}  // namespace tumble

@@ -81,3 +81,17 @@ def test_angles_approaching_gimbal_lock_rebuild_the_rotation_to_a_few_ulps():
     # was off by 5e-16 / cos(pitch), up to 4.8e-4 at 1e-12 from the lock.
     assert worst["zyx"] < 8 * EPS, worst
     assert worst["zxz"] < 8 * EPS, worst
+
+
+def test_unwrapped_angles_follow_a_spin_past_every_half_turn(tmp_path):
+    """[output] unwrap_angles: a sphere spinning at 3 rad/s about world z has yaw = 3t through 30 rad (rk4 on a
+    constant rotation: ~1e-13 rad), where the wrapped angle jumps by 2 pi at each half turn."""
+    scene = tmp_path / "spin.toml"
+    scene.write_text('[simulation]\nduration = 10.0\ntimestep = 0.001\noutput_interval = 0.1\n'
+                     '[output]\nfields = ["euler_zyx"]\nunwrap_angles = true\n'
+                     '[[bodies]]\nname = "ball"\nshape = { type = "sphere", radius = 0.5 }\ndensity = 1000\n'
+                     'angular_velocity = [0.0, 0.0, 3.0]\n')
+    traj = tumble.simulate(str(scene))
+    yaw = traj.euler_zyx[:, 0, 0]
+    np.testing.assert_allclose(yaw, 3.0 * traj.t, rtol=0, atol=1e-11)
+    assert yaw[-1] > 29.99

@@ -50,6 +50,8 @@ struct Scene {
   Conservation conserved;
   /// Per-body output fields ([output] fields; sim/output_fields.hpp); empty: the defaults.
   std::vector<std::string> output_fields;
+  /// [output] unwrap_angles: Euler-angle fields continuous from sample to sample (AngleUnwrapper).
+  bool unwrap_angles = false;
   /// [[events]]: conditions watched during a run (make_events() turns them into RunHooks::events).
   std::vector<EventSpec> events;
   /// Things the user should know that are not errors (e.g. a mesh was inside-out and was flipped).

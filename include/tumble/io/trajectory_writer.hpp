@@ -43,6 +43,8 @@ struct TrajectoryInfo {
   /// The bodies' surfaces, mass properties and the springs, stored for `tumble report` (HDF5: group
   /// `geometry`; CSV: OUT.run.json with the run's facts); none when null.
   std::shared_ptr<const SceneGeometry> geometry;
+  /// Euler-angle fields made continuous from sample to sample (AngleUnwrapper; --unwrap-angles).
+  bool unwrap_angles = false;
 };
 
 class TrajectoryWriter {

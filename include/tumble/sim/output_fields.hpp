@@ -43,6 +43,8 @@ struct BodyField {
   /// world) of the centre of mass's orbit about the system's central body. field_of_row finds them.
   void (*of_orbit)(const ReferenceFrameState& reference, const Quat& lvlh, const Vec3& lvlh_omega,
                    double* out) = nullptr;
+  /// Angles that jump by 2π where they pass ±π (Euler angles): what AngleUnwrapper makes continuous.
+  bool wraps = false;
 };
 
 struct SystemField {
@@ -117,6 +119,26 @@ class VariableColumn {
   Read read_;
   const BodyField* field_;
   int k_;
+};
+
+/// Makes the angle fields (BodyField::wraps) of a trajectory continuous from sample to sample, on
+/// request (`--unwrap-angles`), so that a spinning body's roll is not a sawtooth: each value moves by
+/// the multiple of 2π that brings it nearest the same row's previous value of that column (as
+/// numpy.unwrap). The result is the body's true angle only where it changes by less than π between
+/// samples; the first sample is left as it is.
+class AngleUnwrapper {
+ public:
+  AngleUnwrapper(std::span<const BodyField* const> fields, size_t rows);
+  /// Field k's values for `row` (field k's width of them), in place.
+  void field(size_t row, size_t k, double* values);
+  /// Every field's values for `row`, one field after the other (fields_of_row's layout), in place.
+  void row(size_t row, double* values);
+
+ private:
+  std::vector<const BodyField*> fields_;
+  std::vector<size_t> first_;  ///< field k's first column among the wrapping ones
+  size_t columns_ = 0;         ///< wrapping columns per row
+  std::vector<double> last_;   ///< rows × columns_, NaN before the first sample
 };
 
 /// Every diagnostics field (energies, momenta, drifts), in the order they are written.
