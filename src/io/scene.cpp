@@ -230,7 +230,7 @@ Scene read_scene(const toml::table& root, const BodySections* sections, std::str
   const TomlFile file{path.string()};  // for messages; outlives every reader
   const TableReader r(root, "scene", file,
                       {"simulation", "output", "world", "bodies", "body_tables", "particles", "forces",
-                       "events", "ensemble"});
+                       "rotors", "events", "ensemble"});
   read_simulation(r, scene);
   read_output(r, scene);
   NameTable names(scene.model, file.name);
@@ -242,6 +242,7 @@ Scene read_scene(const toml::table& root, const BodySections* sections, std::str
     r.fail_here("the scene has nothing to simulate: add [[bodies]], [[body_tables]] or [[particles]]");
   }
   read_forces(r, names, scene);
+  read_rotors(r, names, scene);
   check_output_against_forces(r, scene);
   scene.events = read_events(r, names, scene);
   scene.text = std::move(text);  // last: the sections are views into it

@@ -1,12 +1,15 @@
 // [world] gravity and [[forces]]: the force models of forces.hpp, and which invariants they conserve.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <string_view>
 
 #include "scene_sections.hpp"
 #include "tumble/dynamics/quantities.hpp"
 #include "tumble/forces/forces.hpp"
+#include "tumble/forces/rotors.hpp"
 
 namespace tumble::scene {
 namespace {
@@ -224,6 +227,54 @@ void read_forces(const TableReader& root, const NameTable& names, Scene& scene) 
                                         : fmt::format("choose \"{}\"", fmt::join(types, "\", \""))));
     }
   }
+}
+
+/// [[rotors]]: spinning rotors on bodies (forces/rotors.hpp), one Rotors model for all of them.
+void read_rotors(const TableReader& root, const NameTable& names, Scene& scene) {
+  const auto tables = root.tables("rotors");
+  if (tables.empty()) return;
+  std::vector<Rotor> rotors;
+  std::vector<std::string> seen;
+  for (size_t i = 0; i < tables.size(); ++i) {
+    const auto untitled =
+        TableReader::any_keys(*tables[i], Context::numbered("[[rotors]] #", i + 1), root.file());
+    const std::string_view name =
+        untitled.required_string("name", "the rotor a name, e.g. name = \"wheel_x\"");
+    const TableReader t(*tables[i], Context::named("rotor", name), root.file(),
+                        {"name", "body", "axis", "moment", "speed", "torque", "max_speed"});
+    if (std::find(seen.begin(), seen.end(), name) != seen.end()) {
+      t.fail_at("name", fmt::format("a second rotor named \"{}\": give each rotor its own name", name));
+    }
+    seen.emplace_back(name);
+    Rotor r;
+    r.name = std::string(name);
+    r.body = required_body(t, names, scene);
+    r.axis = required_vec3(t, "axis", "");
+    if (!(std::abs(r.axis.norm() - 1.0) <= 1e-6)) {
+      t.fail_at("axis",
+                fmt::format("axis must be a unit vector (the spin axis in the body's reference frame); "
+                            "its length is {:.6g}{}",
+                            r.axis.norm(),
+                            r.axis.norm() > 0
+                                ? fmt::format(": normalised it would be [{:.6g}, {:.6g}, {:.6g}]",
+                                              r.axis.x() / r.axis.norm(), r.axis.y() / r.axis.norm(),
+                                              r.axis.z() / r.axis.norm())
+                                : std::string()));
+    }
+    r.moment = t.required_number("moment", "kg*m^2", Domain::positive);
+    r.speed = t.number("speed", 0.0, "rad/s");
+    r.torque = t.number("torque", 0.0, "N*m");
+    r.max_speed = t.number("max_speed", 0.0, "rad/s", Domain::non_negative);
+    if (r.max_speed > 0.0 && std::abs(r.speed) > r.max_speed) {
+      t.fail_at("speed",
+                fmt::format("speed = {} rad/s is beyond max_speed = {} rad/s", r.speed, r.max_speed));
+    }
+    rotors.push_back(std::move(r));
+  }
+  auto model = std::make_shared<const Rotors>(std::move(rotors), scene.model.bodies);
+  // Internal: momenta stay conserved; the bodies' kinetic energy only while no motor works.
+  if (model->motors_work()) scene.conserved.energy = false;
+  scene.model.forces.push_back(std::move(model));
 }
 
 }  // namespace tumble::scene

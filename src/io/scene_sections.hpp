@@ -59,6 +59,8 @@ void read_particles(const TableReader& root, NameTable& names, Scene& scene);
 /// [world] gravity and [[forces]], which name bodies and particles by `names`; sets scene.conserved
 /// from the force models present.
 void read_forces(const TableReader& root, const NameTable& names, Scene& scene);
+/// [[rotors]]: spinning rotors on the bodies, as one Rotors model after the forces.
+void read_rotors(const TableReader& root, const NameTable& names, Scene& scene);
 /// The central bodies of the [[forces]] of type gravity_gradient, read ahead of the bodies (whose
 /// `orbit` is about one), in file order.
 std::vector<CentralBody> central_bodies(const TableReader& root);

@@ -25,6 +25,8 @@ void add_particles_and_potential(const Model& model, const std::vector<ParticleS
     inv.linear_momentum += momentum(p, s);
     inv.angular_momentum += angular_momentum(p, s);
   }
+  // What the models' own parts carry (rotors' spin): L = Σ (o × p + R(Λω + h)) stays conserved.
+  for (const auto& f : model.forces) inv.angular_momentum += f->internal_angular_momentum(view);
   double V = 0.0;
   for (const auto& f : model.forces) {
     const auto Vf = f->potential_energy(view);

@@ -140,6 +140,9 @@ class ForceModel {
   /// each centre of mass (no torque about it). nullopt for every other model. The `exact` integrator
   /// and the drift monitor's advice ask it.
   virtual std::optional<Vec3> uniform_acceleration() const { return std::nullopt; }
+  /// Angular momentum the model's own parts carry beyond the bodies' Iω (spinning rotors: Σ R h),
+  /// world axes: the diagnostics add it to the system's L, which then stays conserved. Zero by default.
+  virtual Vec3 internal_angular_momentum(const SystemView& /*view*/) const { return Vec3::Zero(); }
   /// For central gravity: the central body (its centre, world, and μ = GM), which orbit frames (the
   /// LVLH output fields) and initial orbits are relative to. nullopt for every other model.
   virtual std::optional<CentralBody> central_body() const { return std::nullopt; }

@@ -1,0 +1,153 @@
+#include "tumble/forces/rotors.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "tumble/error.hpp"
+
+namespace tumble {
+namespace {
+
+/// The rotors' torque on their body, world axes: −ω_w × R h − R ḣ (rotors.hpp), on double or dual numbers.
+template <class T>
+Vec3T<T> rotor_torque(const QuatT<T>& q, const Vec3T<T>& omega_w, const Vec3& h_b, const Vec3& h_dot_b) {
+  const Vec3T<T> h_w = rotate<T>(q, h_b.cast<T>());
+  return -omega_w.cross(h_w) - rotate<T>(q, h_dot_b.cast<T>());
+}
+
+}  // namespace
+
+Rotors::Rotors(std::vector<Rotor> rotors, std::span<const RigidBody> bodies) : rotors_(std::move(rotors)) {
+  // Sorted by body: a body's rotors are one range (rotors_of), found by binary search.
+  std::stable_sort(rotors_.begin(), rotors_.end(),
+                   [](const Rotor& a, const Rotor& b) { return a.body < b.body; });
+  for (const Rotor& r : rotors_) {
+    const std::string name = fmt::format("rotor '{}'", r.name);
+    if (r.body >= bodies.size()) {
+      throw InvalidArgument(
+          fmt::format("{}: body index {} is out of range ({} bodies)", name, r.body, bodies.size()));
+    }
+    if (!(std::abs(r.axis.norm() - 1.0) <= 1e-6)) {
+      throw InvalidArgument(fmt::format("{}: axis [{}] has length {:.6g}: give a unit vector", name,
+                                        fmt::join(r.axis, ", "), r.axis.norm()));
+    }
+    if (!(r.moment > 0.0 && std::isfinite(r.moment))) {
+      throw InvalidArgument(
+          fmt::format("{}: moment = {} kg m^2: give the rotor's axial moment, > 0", name, r.moment));
+    }
+    if (!std::isfinite(r.speed) || !std::isfinite(r.torque) || !(r.max_speed >= 0.0)) {
+      throw InvalidArgument(
+          fmt::format("{}: speed, torque and max_speed must be finite (max_speed >= 0)", name));
+    }
+    if (r.max_speed > 0.0 && std::abs(r.speed) > r.max_speed) {
+      throw InvalidArgument(
+          fmt::format("{}: speed = {} rad/s is beyond its max_speed = {} rad/s", name, r.speed, r.max_speed));
+    }
+    // a_b = Uᵀ a: the axis in the principal frame (the reference frame's axes are R_ref = R Uᵀ).
+    axis_b_.push_back((bodies[r.body].U().transpose() * r.axis.normalized()).eval());
+    // The motor runs until |Ω| reaches max_speed (then u = 0): Ω(t) = Ω(0) + u t/J up to t_stop.
+    double t_stop = std::numeric_limits<double>::infinity();
+    if (r.torque != 0.0 && r.max_speed > 0.0) {
+      t_stop = std::max(0.0, (std::copysign(r.max_speed, r.torque) - r.speed) * r.moment / r.torque);
+    }
+    t_stop_.push_back(t_stop);
+  }
+  // Each carrying body's rotors summed while every motor runs (the step's hot path: O(1) a body).
+  for (size_t j = 0; j < rotors_.size(); ++j) {
+    const Rotor& r = rotors_[j];
+    if (carriers_.empty() || carriers_.back().body != r.body) carriers_.push_back({r.body, j, j});
+    Carrier& c = carriers_.back();
+    c.last = j + 1;
+    c.h0 += r.moment * r.speed * axis_b_[j];
+    c.h_dot += r.torque * axis_b_[j];
+    c.t_stop = std::min(c.t_stop, t_stop_[j]);
+  }
+}
+
+double Rotors::speed(size_t j, double t) const {
+  const Rotor& r = rotors_[j];
+  return t < t_stop_[j] ? r.speed + r.torque * t / r.moment : std::copysign(r.max_speed, r.torque);
+}
+double Rotors::motor_torque(size_t j, double t) const { return t < t_stop_[j] ? rotors_[j].torque : 0.0; }
+
+std::pair<Vec3, Vec3> Rotors::momentum(const Carrier& c, double t) const {
+  if (t < c.t_stop) return {c.h0 + t * c.h_dot, c.h_dot};  // every motor runs: h = h(0) + ḣ t
+  Vec3 h = Vec3::Zero(), h_dot = Vec3::Zero();
+  for (size_t j = c.first; j < c.last; ++j) {
+    h += rotors_[j].moment * speed(j, t) * axis_b_[j];  // h = Σ J Ω a
+    h_dot += motor_torque(j, t) * axis_b_[j];           // ḣ = Σ u a
+  }
+  return {h, h_dot};
+}
+
+std::pair<Vec3, Vec3> Rotors::momentum(size_t body, double t) const {
+  const auto c = std::lower_bound(carriers_.begin(), carriers_.end(), body,
+                                  [](const Carrier& a, size_t b) { return a.body < b; });
+  if (c == carriers_.end() || c->body != body) return {Vec3::Zero(), Vec3::Zero()};
+  return momentum(*c, t);
+}
+
+template <class Each>
+void Rotors::for_each_carrier(size_t begin, size_t end, Each&& each) const {
+  auto c = std::lower_bound(carriers_.begin(), carriers_.end(), begin,
+                            [](const Carrier& a, size_t b) { return a.body < b; });
+  for (; c != carriers_.end() && c->body < end; ++c) each(*c);
+}
+
+void Rotors::accumulate_block(const BodyBlock& block, BlockLoads& loads) const {
+  for_each_carrier(block.begin, block.begin + block.count, [&](const Carrier& c) {
+    const size_t j = c.body - block.begin;
+    const Quat q(block.q[0][j], block.q[1][j], block.q[2][j], block.q[3][j]);
+    const Vec3 omega_w(block.omega_w[0][j], block.omega_w[1][j], block.omega_w[2][j]);
+    const auto [h, h_dot] = momentum(c, block.t);
+    loads.add(j, Vec3::Zero(), rotor_torque<double>(q, omega_w, h, h_dot));
+  });
+}
+
+void Rotors::accumulate_tangent(const TangentView& view, std::span<WrenchT<TangentScalar>> loads) const {
+  for_each_carrier(0, view.states.size(), [&](const Carrier& c) {
+    const auto [h, h_dot] = momentum(c, view.t);
+    const BodyStateT<TangentScalar>& s = view.states[c.body];
+    loads[c.body].torque += rotor_torque<TangentScalar>(s.q, s.omega_w, h, h_dot);
+  });
+}
+
+Vec3 Rotors::internal_angular_momentum(const SystemView& view) const {
+  Vec3 L = Vec3::Zero();
+  for_each_carrier(0, view.body_states.size(), [&](const Carrier& c) {
+    L += view.body_states[c.body].q * momentum(c, view.t).first;  // Σ R h
+  });
+  return L;
+}
+
+std::optional<double> Rotors::potential_energy(const SystemView&) const {
+  return motors_work() ? std::nullopt : std::optional<double>(0.0);
+}
+
+bool Rotors::motors_work() const {
+  return std::any_of(rotors_.begin(), rotors_.end(), [](const Rotor& r) { return r.torque != 0.0; });
+}
+
+void Rotors::check(size_t n_bodies, size_t) const {
+  for (const Rotor& r : rotors_) {
+    if (r.body >= n_bodies) {
+      throw InvalidArgument(
+          fmt::format("rotor '{}': body index {} is out of range ({} bodies)", r.name, r.body, n_bodies));
+    }
+  }
+}
+
+std::string Rotors::describe(std::span<const RigidBody> bodies) const {
+  std::vector<std::string> each;
+  for (const Rotor& r : rotors_) {
+    each.push_back(fmt::format("'{}' on '{}' (J = {} kg m^2, {} rad/s, {} N m)", r.name,
+                               r.body < bodies.size() ? bodies[r.body].name() : std::to_string(r.body),
+                               r.moment, r.speed, r.torque));
+  }
+  return fmt::format("rotors {}", fmt::join(each, ", "));
+}
+
+}  // namespace tumble
