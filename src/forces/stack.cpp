@@ -53,6 +53,16 @@ class OnEveryRun final : public LocalForceModel {
     }
     return V;
   }
+  Vec3 internal_angular_momentum(const SystemView& view) const override {
+    // Σ over the runs of each run's (its rotors' R h), on its own bodies, as the potential.
+    Vec3 L = Vec3::Zero();
+    for (size_t first = 0; first < view.bodies.size(); first += n_) {
+      const SystemView run{
+          view.t, view.bodies.subspan(first, n_), view.body_states.subspan(first, n_), {}, {}};
+      L += model_->internal_angular_momentum(run);
+    }
+    return L;
+  }
   void check(size_t n_bodies, size_t n_particles) const override {
     model_->check(n_, n_particles);
     if (n_bodies % n_ != 0) model_->check(n_bodies % n_, n_particles);

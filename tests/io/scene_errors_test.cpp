@@ -50,7 +50,7 @@ TEST(SceneErrors, TomlParserUndefinedBehaviour) {
   // Upstream's report (#190): valid TOML, read to the end; only the key is tumble's error.
   EXPECT_EQ(error_of("s = \"\"\"\\\n\xc2\xa7\"\"\"\n"),
             "bad.toml:1:1: scene: unknown key 's'; the keys here are: simulation, output, world, bodies, "
-            "body_tables, particles, forces, events, ensemble");
+            "body_tables, particles, forces, rotors, events, ensemble");
 }
 
 TEST(SceneErrors, UnknownKeysSuggestTheClosest) {
