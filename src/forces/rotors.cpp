@@ -21,7 +21,7 @@ Vec3T<T> rotor_torque(const QuatT<T>& q, const Vec3T<T>& omega_w, const Vec3& h_
 }  // namespace
 
 Rotors::Rotors(std::vector<Rotor> rotors, std::span<const RigidBody> bodies) : rotors_(std::move(rotors)) {
-  // Sorted by body: a body's rotors are one range (rotors_of), found by binary search.
+  // Sorted by body: a body's rotors are one range (its Carrier), found by binary search.
   std::stable_sort(rotors_.begin(), rotors_.end(),
                    [](const Rotor& a, const Rotor& b) { return a.body < b.body; });
   for (const Rotor& r : rotors_) {
