@@ -42,6 +42,17 @@ Rotors::Rotors(std::vector<Rotor> rotors, std::span<const RigidBody> bodies) : r
       throw InvalidArgument(
           fmt::format("{}: speed, torque and max_speed must be finite (max_speed >= 0)", name));
     }
+    for (size_t k = 0; k < r.torque_table.size(); ++k) {
+      const auto [t, u] = r.torque_table[k];
+      if (!std::isfinite(t) || !std::isfinite(u) || (k > 0 && !(t > r.torque_table[k - 1].first))) {
+        throw InvalidArgument(fmt::format(
+            "{}: torque table row {} ({}, {}): give finite (t, u) rows with t increasing", name, k, t, u));
+      }
+    }
+    if (!r.torque_table.empty() && r.max_speed > 0.0) {
+      throw InvalidArgument(fmt::format(
+          "{}: max_speed goes with a constant torque; a torque table sets the speeds itself", name));
+    }
     if (r.max_speed > 0.0 && std::abs(r.speed) > r.max_speed) {
       throw InvalidArgument(
           fmt::format("{}: speed = {} rad/s is beyond its max_speed = {} rad/s", name, r.speed, r.max_speed));
@@ -63,15 +74,49 @@ Rotors::Rotors(std::vector<Rotor> rotors, std::span<const RigidBody> bodies) : r
     c.last = j + 1;
     c.h0 += r.moment * r.speed * axis_b_[j];
     c.h_dot += r.torque * axis_b_[j];
-    c.t_stop = std::min(c.t_stop, t_stop_[j]);
+    // A table's torque changes with time: such a body's h is summed rotor by rotor, always.
+    c.t_stop = r.torque_table.empty() ? std::min(c.t_stop, t_stop_[j])
+                                      : -std::numeric_limits<double>::infinity();
   }
 }
 
+namespace {
+
+/// A torque table's u(t): linear between rows, held before the first and after the last.
+double table_torque(const std::vector<std::pair<double, double>>& table, double t) {
+  if (t <= table.front().first) return table.front().second;
+  for (size_t k = 0; k + 1 < table.size(); ++k) {
+    const auto [t0, u0] = table[k];
+    const auto [t1, u1] = table[k + 1];
+    if (t < t1) return u0 + (u1 - u0) * (t - t0) / (t1 - t0);
+  }
+  return table.back().second;
+}
+
+/// ∫₀ᵗ u for t ≥ 0: the trapezoid of each linear piece within [0, t] (exact for linear pieces).
+double table_impulse(const std::vector<std::pair<double, double>>& table, double t) {
+  const double inf = std::numeric_limits<double>::infinity();
+  double impulse = 0.0;
+  for (size_t k = 0; k <= table.size(); ++k) {  // pieces (−∞, t₀], [t₀, t₁], …, [t_n, ∞)
+    const double lo = std::max(0.0, k == 0 ? -inf : table[k - 1].first);
+    const double hi = std::min(t, k == table.size() ? inf : table[k].first);
+    if (hi > lo) impulse += (hi - lo) * 0.5 * (table_torque(table, lo) + table_torque(table, hi));
+  }
+  return impulse;
+}
+
+}  // namespace
+
 double Rotors::speed(size_t j, double t) const {
   const Rotor& r = rotors_[j];
+  if (!r.torque_table.empty()) return r.speed + table_impulse(r.torque_table, t) / r.moment;
   return t < t_stop_[j] ? r.speed + r.torque * t / r.moment : std::copysign(r.max_speed, r.torque);
 }
-double Rotors::motor_torque(size_t j, double t) const { return t < t_stop_[j] ? rotors_[j].torque : 0.0; }
+double Rotors::motor_torque(size_t j, double t) const {
+  const Rotor& r = rotors_[j];
+  if (!r.torque_table.empty()) return table_torque(r.torque_table, t);
+  return t < t_stop_[j] ? r.torque : 0.0;
+}
 
 std::pair<Vec3, Vec3> Rotors::momentum(const Carrier& c, double t) const {
   if (t < c.t_stop) return {c.h0 + t * c.h_dot, c.h_dot};  // every motor runs: h = h(0) + ḣ t
@@ -128,7 +173,10 @@ std::optional<double> Rotors::potential_energy(const SystemView&) const {
 }
 
 bool Rotors::motors_work() const {
-  return std::any_of(rotors_.begin(), rotors_.end(), [](const Rotor& r) { return r.torque != 0.0; });
+  return std::any_of(rotors_.begin(), rotors_.end(), [](const Rotor& r) {
+    return r.torque != 0.0 || std::any_of(r.torque_table.begin(), r.torque_table.end(),
+                                          [](const auto& row) { return row.second != 0.0; });
+  });
 }
 
 void Rotors::check(size_t n_bodies, size_t) const {

@@ -263,8 +263,35 @@ void read_rotors(const TableReader& root, const NameTable& names, Scene& scene) 
     }
     r.moment = t.required_number("moment", "kg*m^2", Domain::positive);
     r.speed = t.number("speed", 0.0, "rad/s");
-    r.torque = t.number("torque", 0.0, "N*m");
+    if (const toml::node* table = t.node("torque"); table && table->is_array()) {
+      // [[t, u], ...]: u (N m) linear between the times t (s), held before the first and after the last.
+      const toml::array& rows = *table->as_array();
+      for (size_t k = 0; k < rows.size(); ++k) {
+        const toml::array* row = rows.get(k)->as_array();
+        if (!row || row->size() != 2) {
+          t.fail_at("torque",
+                    fmt::format("torque row {} must be [t, u] (s, N*m): a table is [[t0, u0], [t1, u1], "
+                                "...], u linear between the times",
+                                k));
+        }
+        const double at =
+            number_value(t, *row->get(0), {"torque", static_cast<int>(k), 0}, "s", Domain::finite);
+        const double u =
+            number_value(t, *row->get(1), {"torque", static_cast<int>(k), 1}, "N*m", Domain::finite);
+        if (k > 0 && !(at > r.torque_table.back().first)) {
+          t.fail_at("torque",
+                    fmt::format("torque row {}: t = {} s does not follow {} s: give the times increasing", k,
+                                at, r.torque_table.back().first));
+        }
+        r.torque_table.emplace_back(at, u);
+      }
+    } else {
+      r.torque = t.number("torque", 0.0, "N*m");
+    }
     r.max_speed = t.number("max_speed", 0.0, "rad/s", Domain::non_negative);
+    if (r.max_speed > 0.0 && !r.torque_table.empty()) {
+      t.fail_at("max_speed", "max_speed goes with a constant torque; a torque table sets the speeds itself");
+    }
     if (r.max_speed > 0.0 && std::abs(r.speed) > r.max_speed) {
       t.fail_at("speed",
                 fmt::format("speed = {} rad/s is beyond max_speed = {} rad/s", r.speed, r.max_speed));

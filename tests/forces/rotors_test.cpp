@@ -11,6 +11,8 @@
 #include <cmath>
 #include <complex>
 
+#include <fmt/format.h>
+
 #include "tumble/error.hpp"
 #include "tumble/forces/rotors.hpp"
 #include "tumble/integrate/integrator.hpp"
@@ -41,7 +43,7 @@ struct Top {
   Top() {
     model.add_body(RigidBody::from_principal_moments(10.0, Vec3(A, A, C), "top"));
     model.forces.push_back(std::make_shared<const Rotors>(
-        std::vector<Rotor>{{"wheel", 0, Vec3::UnitZ(), J, Omega, 0.0, 0.0}}, model.bodies));
+        std::vector<Rotor>{{"wheel", 0, Vec3::UnitZ(), J, Omega, 0.0, 0.0, {}}}, model.bodies));
     BodyState b;
     b.omega_w = omega0;  // q = identity: ω_b = ω_w
     s0.bodies.push_back(b);
@@ -93,11 +95,11 @@ TEST(Rotors, ThreeWheelsOffTheSpinAgreeWithAHighPrecisionReference) {
   // taylor_reference, itself checked there against the closed form to 1e-33), at t = 10 s.
   Model model;
   model.add_body(RigidBody::from_principal_moments(5.0, Vec3(1.0, 2.0, 3.0), "sat"));
-  model.forces.push_back(
-      std::make_shared<const Rotors>(std::vector<Rotor>{{"wheel_x", 0, Vec3::UnitX(), 0.01, 30.0, 0.0, 0.0},
-                                                        {"wheel_y", 0, Vec3::UnitY(), 0.01, -40.0, 0.0, 0.0},
-                                                        {"wheel_z", 0, Vec3::UnitZ(), 0.01, 50.0, 0.0, 0.0}},
-                                     model.bodies));
+  model.forces.push_back(std::make_shared<const Rotors>(
+      std::vector<Rotor>{{"wheel_x", 0, Vec3::UnitX(), 0.01, 30.0, 0.0, 0.0, {}},
+                         {"wheel_y", 0, Vec3::UnitY(), 0.01, -40.0, 0.0, 0.0, {}},
+                         {"wheel_z", 0, Vec3::UnitZ(), 0.01, 50.0, 0.0, 0.0, {}}},
+      model.bodies));
   SystemState s0;
   BodyState b;
   b.omega_w = Vec3(0.2, 1.0, -0.3);
@@ -115,6 +117,46 @@ TEST(Rotors, ThreeWheelsOffTheSpinAgreeWithAHighPrecisionReference) {
   EXPECT_LT(Eigen::AngleAxisd(dR).angle(), 1e-11) << "rad";
 }
 
+TEST(Rotors, ThreeWheelsSlewTheBodyRestToRestAboutAFixedAxis) {
+  // A body at rest, three wheels along its principal axes driven by torque tables u(t) e, e = (1, 2, 2)/3:
+  // u ramps to +0.03 N m in 0.1 s, holds, reverses through 0 at t = 10 s and holds, and ramps back to 0
+  // at 20 s (the ramps' corners on step ends). L = R(Λω + h) stays 0, so Λω = −h = −e ∫u: ω keeps the
+  // body direction n = Λ⁻¹e/|Λ⁻¹e| and the body turns about that fixed axis by
+  // θ = −|Λ⁻¹e| ∫₀²⁰ H, H = ∫u; by parts and the profile's antisymmetry about 10 s,
+  // ∫₀²⁰ H = 2 ∫₀¹⁰ (10 − s) u(s) ds = 2 u (0.49667 + 49 + 0.00333) = 99 u. It comes to rest with its
+  // wheels stopped.
+  const Vec3 Lambda(10.0, 20.0, 30.0), e = Vec3(1.0, 2.0, 2.0) / 3.0;
+  const double u = 0.03;
+  Model model;
+  model.add_body(RigidBody::from_principal_moments(50.0, Lambda, "sat"));
+  std::vector<Rotor> wheels;
+  for (int k = 0; k < 3; ++k) {
+    Rotor w{fmt::format("wheel_{}", k), 0, Vec3::Unit(k), 0.1, 0.0, 0.0, 0.0, {}};
+    const double uk = u * e(k);
+    w.torque_table = {{0.0, 0.0}, {0.1, uk}, {9.9, uk}, {10.1, -uk}, {19.9, -uk}, {20.0, 0.0}};
+    wheels.push_back(w);
+  }
+  const auto rotors = std::make_shared<const Rotors>(wheels, model.bodies);
+  model.forces.push_back(rotors);
+  SystemState s0;
+  s0.bodies.push_back(BodyState{});
+  RunSettings settings = fixed("rk4", 20.0, 1e-3);
+  settings.output_interval = 0.1;  // samples (and so step ends) on every corner of the ramps
+  const SystemState end = simulate(model, s0, settings);
+  const Vec3 Le = Lambda.cwiseInverse().cwiseProduct(e);
+  const Mat3 expected = Eigen::AngleAxisd(-Le.norm() * 99.0 * u, Le.normalized()).toRotationMatrix();
+  // ω is piecewise linear in t between step ends and keeps its axis: rk4 integrates the attitude to
+  // rounding (~1e-16 a step over 2·10⁴ steps); 1e-11 rad bounds that.
+  EXPECT_LT(Eigen::AngleAxisd(end.bodies[0].R() * expected.transpose()).angle(), 1e-11);
+  EXPECT_LT(end.bodies[0].omega_w.norm(), 1e-13) << "at rest";
+  for (size_t k = 0; k < 3; ++k)
+    EXPECT_NEAR(rotors->speed(k, 20.0), 0.0, 1e-14) << "wheel " << k << " stopped";
+  // H(10) = u (0.05 + 9.8 + 0.05) = 9.9 u: the wheels' speed at the reversal.
+  EXPECT_NEAR(rotors->speed(0, 10.0), 9.9 * u * e(0) / 0.1, 1e-13);
+  EXPECT_NEAR(rotors->motor_torque(1, 15.0), -u * e(1), 1e-17);
+  EXPECT_NEAR(rotors->motor_torque(1, 10.0), 0.0, 1e-17);
+}
+
 TEST(Rotors, AMotorSpinningUpItsWheelTurnsTheBodyTheOtherWayWithTheTotalMomentumKept) {
   // A body at rest whose wheel (axis off the principal axes) is spun up at u = 0.02 N m from rest:
   // L = R (Λ ω + h) stays 0 (no external torque): rk4's truncation on it is ~T (|ω|h)⁴|h| ≈ 1e-17, so
@@ -126,7 +168,7 @@ TEST(Rotors, AMotorSpinningUpItsWheelTurnsTheBodyTheOtherWayWithTheTotalMomentum
   model.add_body(RigidBody::from_inertia(20.0, I, Vec3::Zero(), "sat"));
   const Vec3 axis = Vec3(1.0, 2.0, 2.0) / 3.0;
   const auto rotors = std::make_shared<const Rotors>(
-      std::vector<Rotor>{{"wheel", 0, axis, 0.01, 0.0, 0.02, 0.0}}, model.bodies);
+      std::vector<Rotor>{{"wheel", 0, axis, 0.01, 0.0, 0.02, 0.0, {}}}, model.bodies);
   model.forces.push_back(rotors);
   SystemState s0;
   s0.bodies.push_back(BodyState{});
@@ -153,7 +195,7 @@ TEST(Rotors, ARotorHoldsASpinAboutTheIntermediateAxis) {
     model.add_body(RigidBody::from_principal_moments(1.0, Vec3(1.0, 2.0, 3.0), "sat"));
     if (rotor) {
       model.forces.push_back(std::make_shared<const Rotors>(
-          std::vector<Rotor>{{"wheel", 0, Vec3::UnitY(), 0.1, 100.0, 0.0, 0.0}}, model.bodies));
+          std::vector<Rotor>{{"wheel", 0, Vec3::UnitY(), 0.1, 100.0, 0.0, 0.0, {}}}, model.bodies));
     }
     SystemState s0;
     BodyState b;
@@ -221,6 +263,23 @@ TEST(Rotors, ScenesDescribeThemAndBadOnesAreRefusedWithTheirPlace) {
             std::string::npos);
   EXPECT_NE(message("name = \"w\"\nbody = \"sat\"\naxis = [1.0, 0.0, 0.0]\nmoment = 0\n").find("moment"),
             std::string::npos);
+  EXPECT_NE(message("name = \"w\"\nbody = \"sat\"\naxis = [0.0, 0.0, 1.0]\nmoment = 0.1\n"
+                    "torque = [[0, 0.1], [5, 0.2], [4, 0.0]]\n")
+                .find("torque row 2: t = 4 s does not follow 5 s"),
+            std::string::npos);
+  EXPECT_NE(
+      message("name = \"w\"\nbody = \"sat\"\naxis = [0.0, 0.0, 1.0]\nmoment = 0.1\ntorque = [[0, 0.1, 3]]\n")
+          .find("torque row 0 must be [t, u]"),
+      std::string::npos);
+  // A table: linear between rows, held outside them.
+  const Scene table = parse_scene(body +
+                                      "[[rotors]]\nname = \"w\"\nbody = \"sat\"\naxis = [0.0, 0.0, 1.0]\n"
+                                      "moment = 0.5\ntorque = [[1.0, 0.0], [3.0, 0.2]]\n",
+                                  "s.toml");
+  const auto& tr = dynamic_cast<const Rotors&>(*table.model.forces.back());
+  EXPECT_DOUBLE_EQ(tr.motor_torque(0, 2.0), 0.1);
+  EXPECT_DOUBLE_EQ(tr.motor_torque(0, 9.0), 0.2);
+  EXPECT_DOUBLE_EQ(tr.speed(0, 5.0), (0.2 + 0.4) / 0.5);  // ∫₀⁵ u = ½·2·0.2 + 2·0.2
   EXPECT_NE(message("name = \"w\"\nbody = \"sat\"\naxis = [0.0, 0.0, 1.0]\nmoment = 0.1\nspeed = 700\n"
                     "max_speed = 600\n")
                 .find("beyond max_speed"),

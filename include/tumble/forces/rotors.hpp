@@ -16,9 +16,11 @@
 // constant: the classical gyrostat).
 //
 // Here each motor torque is a constant (zero holds the relative speed), so Ω_j(t) = Ω_j(0) + u_j t/J_j
-// exactly, until a speed limit stops the motor (u_j = 0 from then on, Ω_j = ±max_speed): the rotors'
-// state is a known function of time. A torque that depends on the state (a controller) would make Ω
-// a variable of the run; that is not supported yet.
+// exactly, until a speed limit stops the motor (u_j = 0 from then on, Ω_j = ±max_speed); or a table
+// of times and torques, linear between them (an open-loop slew: a jump would cost every integrator
+// its order at the step that holds it, a ramp whose corners fall on step ends costs nothing),
+// Ω_j(t) = Ω_j(0) + (1/J_j) ∫₀ᵗ u_j: the rotors' state is a known function of time. A torque that depends on the state
+// (a controller) would make Ω a variable of the run; that is not supported yet.
 #include <limits>
 #include <optional>
 #include <span>
@@ -39,6 +41,9 @@ struct Rotor {
   double speed = 0.0;         ///< Ω(0), spin relative to the body (rad/s)
   double torque = 0.0;        ///< u, the motor torque (N·m), constant
   double max_speed = 0.0;     ///< |Ω| at which the motor stops (rad/s); 0: no limit
+  /// (t, u) rows, t increasing: u linear between rows, held before the first and after the last (then
+  /// `torque` is not used, and there is no speed limit).
+  std::vector<std::pair<double, double>> torque_table;
 };
 
 /// The rotors of a system, as the internal torque they exert on their bodies.
