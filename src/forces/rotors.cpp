@@ -7,16 +7,22 @@
 #include <limits>
 
 #include "tumble/error.hpp"
+#include "tumble/math/simd.hpp"
 
 namespace tumble {
 namespace {
 
-/// The rotors' torque on their body, world axes: −ω_w × R h − R ḣ (rotors.hpp), on double or dual numbers.
+/// The rotors' torque on their body, world axes: −ω_w × R h − R ḣ (rotors.hpp), on double, packs of
+/// bodies or dual numbers.
 template <class T>
-Vec3T<T> rotor_torque(const QuatT<T>& q, const Vec3T<T>& omega_w, const Vec3& h_b, const Vec3& h_dot_b) {
-  const Vec3T<T> h_w = rotate<T>(q, h_b.cast<T>());
-  return -omega_w.cross(h_w) - rotate<T>(q, h_dot_b.cast<T>());
+TUMBLE_INLINE Vec3T<T> rotor_torque(const QuatT<T>& q, const Vec3T<T>& omega_w, const Vec3T<T>& h_b,
+                                    const Vec3T<T>& h_dot_b) {
+  const Vec3T<T> h_w = rotate<T>(q, h_b);
+  return -omega_w.cross(h_w) - rotate<T>(q, h_dot_b);
 }
+
+using Pack = xsimd::batch<double>;
+constexpr size_t kWidth = Pack::size;
 
 }  // namespace
 
@@ -66,7 +72,12 @@ Rotors::Rotors(std::vector<Rotor> rotors, std::span<const RigidBody> bodies) : r
     }
     t_stop_.push_back(t_stop);
   }
-  // Each carrying body's rotors summed while every motor runs (the step's hot path: O(1) a body).
+  // Each carrying body's rotors summed while every motor runs (O(1) a body), and the same sums as
+  // columns over every body (zero where none), for the pack kernel.
+  for (int k = 0; k < 3; ++k) {
+    h0_[k].assign(bodies.size(), 0.0);
+    h_dot_[k].assign(bodies.size(), 0.0);
+  }
   for (size_t j = 0; j < rotors_.size(); ++j) {
     const Rotor& r = rotors_[j];
     if (carriers_.empty() || carriers_.back().body != r.body) carriers_.push_back({r.body, j, j});
@@ -77,6 +88,13 @@ Rotors::Rotors(std::vector<Rotor> rotors, std::span<const RigidBody> bodies) : r
     // A table's torque changes with time: such a body's h is summed rotor by rotor, always.
     c.t_stop = r.torque_table.empty() ? std::min(c.t_stop, t_stop_[j])
                                       : -std::numeric_limits<double>::infinity();
+  }
+  for (const Carrier& c : carriers_) {
+    for (int k = 0; k < 3; ++k) {
+      h0_[k][c.body] = c.h0(k);
+      h_dot_[k][c.body] = c.h_dot(k);
+    }
+    t_dense_ = std::min(t_dense_, c.t_stop);
   }
 }
 
@@ -143,6 +161,31 @@ void Rotors::for_each_carrier(size_t begin, size_t end, Each&& each) const {
 }
 
 void Rotors::accumulate_block(const BodyBlock& block, BlockLoads& loads) const {
+  if (block.t < t_dense_) {  // every motor runs (or none has a limit): h = h(0) + ḣ t, a pack at a time
+    const Pack t(block.t);
+    auto load = [](const double* p) { return Pack::load_unaligned(p); };
+    size_t j = 0;
+    for (; j + kWidth <= block.count; j += kWidth) {
+      const size_t i = block.begin + j;
+      const QuatT<Pack> q(load(block.q[0] + j), load(block.q[1] + j), load(block.q[2] + j),
+                          load(block.q[3] + j));
+      const Vec3T<Pack> omega_w(load(block.omega_w[0] + j), load(block.omega_w[1] + j),
+                                load(block.omega_w[2] + j));
+      const Vec3T<Pack> h_dot(load(&h_dot_[0][i]), load(&h_dot_[1][i]), load(&h_dot_[2][i]));
+      const Vec3T<Pack> h = Vec3T<Pack>(load(&h0_[0][i]), load(&h0_[1][i]), load(&h0_[2][i])) + t * h_dot;
+      const Vec3T<Pack> tau = rotor_torque<Pack>(q, omega_w, h, h_dot);  // 0 for a body without rotors
+      for (int k = 0; k < 3; ++k) (load(loads.tau[k] + j) + tau(k)).store_unaligned(loads.tau[k] + j);
+    }
+    for (; j < block.count; ++j) {  // the last few bodies
+      const size_t i = block.begin + j;
+      const Quat q(block.q[0][j], block.q[1][j], block.q[2][j], block.q[3][j]);
+      const Vec3 omega_w(block.omega_w[0][j], block.omega_w[1][j], block.omega_w[2][j]);
+      const Vec3 h_dot(h_dot_[0][i], h_dot_[1][i], h_dot_[2][i]);
+      const Vec3 h = Vec3(h0_[0][i], h0_[1][i], h0_[2][i]) + block.t * h_dot;
+      loads.add(j, Vec3::Zero(), rotor_torque<double>(q, omega_w, h, h_dot));
+    }
+    return;
+  }
   for_each_carrier(block.begin, block.begin + block.count, [&](const Carrier& c) {
     const size_t j = c.body - block.begin;
     const Quat q(block.q[0][j], block.q[1][j], block.q[2][j], block.q[3][j]);
@@ -156,7 +199,8 @@ void Rotors::accumulate_tangent(const TangentView& view, std::span<WrenchT<Tange
   for_each_carrier(0, view.states.size(), [&](const Carrier& c) {
     const auto [h, h_dot] = momentum(c, view.t);
     const BodyStateT<TangentScalar>& s = view.states[c.body];
-    loads[c.body].torque += rotor_torque<TangentScalar>(s.q, s.omega_w, h, h_dot);
+    loads[c.body].torque +=
+        rotor_torque<TangentScalar>(s.q, s.omega_w, h.cast<TangentScalar>(), h_dot.cast<TangentScalar>());
   });
 }
 

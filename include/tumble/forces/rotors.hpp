@@ -90,6 +90,10 @@ class Rotors final : public LocalForceModel {
   std::vector<Vec3> axis_b_;       ///< each axis in its body's principal frame, Uᵀ a
   std::vector<double> t_stop_;     ///< when each motor reaches its speed limit (∞: never)
   std::vector<Carrier> carriers_;  ///< sorted by body
+  /// The carriers' h(0) and ḣ as columns over every body of the model (zero where none): the pack
+  /// kernel's data, valid while t < t_dense_ (every motor runs, no table).
+  std::vector<double> h0_[3], h_dot_[3];
+  double t_dense_ = std::numeric_limits<double>::infinity();
 };
 
 }  // namespace tumble
