@@ -13,6 +13,7 @@
 
 #include <fmt/format.h>
 
+#include "../support/sim_helpers.hpp"
 #include "tumble/error.hpp"
 #include "tumble/forces/rotors.hpp"
 #include "tumble/integrate/integrator.hpp"
@@ -25,14 +26,7 @@
 namespace tumble {
 namespace {
 
-RunSettings fixed(const std::string& integrator, double duration, double h) {
-  RunSettings s;
-  s.integrator = integrator;
-  s.duration = duration;
-  s.timestep = h;
-  s.output_interval = duration;
-  return s;
-}
+using test::end_only;
 
 /// An axisymmetric body (A, A, C) with a rotor on its symmetry axis (h = J Ω, no motor torque).
 struct Top {
@@ -61,7 +55,7 @@ TEST(Rotors, AnAxisymmetricGyrostatFollowsItsClosedFormAtEachIntegratorsOrder) {
   const double T = 2.0;
   const Vec3 exact = top.omega_b(T);
   // rk4 at h = 1e-3: the target, ≤ 1e-9 rad/s (|ω|h ≈ 2e-3: error ~ T (|ω|h)⁴ |ω| ~ 1e-11).
-  const SystemState end = simulate(top.model, top.s0, fixed("rk4", T, 1e-3));
+  const SystemState end = simulate(top.model, top.s0, end_only("rk4", T, 1e-3));
   EXPECT_LT((end.bodies[0].omega_b() - exact).norm(), 1e-9);
   // Every fixed-step integrator: halving h divides the error by 2^order (within a factor 1.6 either way,
   // the next order's share at these steps). The splittings kick a velocity-dependent torque with the
@@ -73,7 +67,7 @@ TEST(Rotors, AnAxisymmetricGyrostatFollowsItsClosedFormAtEachIntegratorsOrder) {
     double error[2];
     for (int k = 0; k < 2; ++k) {
       const double h = (order >= 4 ? 2e-2 : 4e-3) / (1 << k);
-      error[k] = (simulate(top.model, top.s0, fixed(name, T, h)).bodies[0].omega_b() - exact).norm();
+      error[k] = (simulate(top.model, top.s0, end_only(name, T, h)).bodies[0].omega_b() - exact).norm();
     }
     const double ratio = error[0] / error[1], expected = std::pow(2.0, order);
     EXPECT_GT(ratio, expected / 1.6) << name << ": errors " << error[0] << ", " << error[1];
@@ -81,7 +75,7 @@ TEST(Rotors, AnAxisymmetricGyrostatFollowsItsClosedFormAtEachIntegratorsOrder) {
   }
   // The exact integrator solves torque-free motion only: the rotors' torque is refused by name.
   try {
-    (void)simulate(top.model, top.s0, fixed("exact", T, 1e-3));
+    (void)simulate(top.model, top.s0, end_only("exact", T, 1e-3));
     ADD_FAILURE() << "exact ran a gyrostat";
   } catch (const InvalidArgument& e) {
     EXPECT_NE(std::string(e.what()).find("rotors"), std::string::npos) << e.what();
@@ -111,7 +105,7 @@ TEST(Rotors, ThreeWheelsOffTheSpinAgreeWithAHighPrecisionReference) {
       -0.9903226527818217848915208, -0.1385704789596512019130414, 0.007698425038156319724507643;
   // The target for rk4 at h = 1e-3 is 1e-9 rad; its error is ~T |ω|⁵ h⁴ ≈ 1e-11 here, which
   // bounds it (measured: 1.0e-14 rad/s in ω, 9.9e-14 rad in attitude).
-  const SystemState end = simulate(model, s0, fixed("rk4", 10.0, 1e-3));
+  const SystemState end = simulate(model, s0, end_only("rk4", 10.0, 1e-3));
   EXPECT_LT((end.bodies[0].omega_b() - omega_ref).norm(), 1e-11);
   const Mat3 dR = end.bodies[0].R() * R_ref.transpose();
   EXPECT_LT(Eigen::AngleAxisd(dR).angle(), 1e-11) << "rad";
@@ -140,7 +134,7 @@ TEST(Rotors, ThreeWheelsSlewTheBodyRestToRestAboutAFixedAxis) {
   model.forces.push_back(rotors);
   SystemState s0;
   s0.bodies.push_back(BodyState{});
-  RunSettings settings = fixed("rk4", 20.0, 1e-3);
+  RunSettings settings = end_only("rk4", 20.0, 1e-3);
   settings.output_interval = 0.1;  // samples (and so step ends) on every corner of the ramps
   const SystemState end = simulate(model, s0, settings);
   const Vec3 Le = Lambda.cwiseInverse().cwiseProduct(e);
@@ -173,14 +167,14 @@ TEST(Rotors, AMotorSpinningUpItsWheelTurnsTheBodyTheOtherWayWithTheTotalMomentum
   SystemState s0;
   s0.bodies.push_back(BodyState{});
   double worst = 0.0;
-  (void)simulate(model, s0, fixed("rk4", 10.0, 1e-3), [&](const SystemState& s) {
+  (void)simulate(model, s0, end_only("rk4", 10.0, 1e-3), [&](const SystemState& s) {
     worst = std::max(worst, invariants(model, s).angular_momentum.norm());
     return true;
   });
   EXPECT_NEAR(rotors->speed(0, 10.0), 20.0, 1e-12);  // Ω = u t/J
   EXPECT_LT(worst, 4.4e-13);
   // Without the rotor in the diagnostics the body's own momentum would be −R h: 0.2 kg m²/s.
-  const SystemState end = simulate(model, s0, fixed("rk4", 10.0, 1e-3));
+  const SystemState end = simulate(model, s0, end_only("rk4", 10.0, 1e-3));
   const Vec3 body_L = end.bodies[0].q * (model.bodies[0].Lambda().asDiagonal() * end.bodies[0].omega_b());
   EXPECT_NEAR(body_L.norm(), 0.2, 1e-12);
 }
@@ -202,7 +196,7 @@ TEST(Rotors, ARotorHoldsASpinAboutTheIntermediateAxis) {
     b.omega_w = omega0;
     s0.bodies.push_back(b);
     double lowest = 1e9;
-    RunSettings settings = fixed("rk4", 30.0, 1e-3);
+    RunSettings settings = end_only("rk4", 30.0, 1e-3);
     settings.output_interval = 0.05;  // the flip lasts ~1 s (growth rate 2√(1/3) = 1.15/s)
     (void)simulate(model, s0, settings, [&](const SystemState& s) {
       lowest = std::min(lowest, s.bodies[0].omega_b().y());
@@ -243,7 +237,7 @@ TEST(Rotors, ABodyStepsTheSameOnPacksOfManyAsAlone) {
     }
   }
   all.forces.push_back(std::make_shared<const Rotors>(wheels, all.bodies));
-  const RunSettings settings = fixed("rk4", 0.5, 1e-3);
+  const RunSettings settings = end_only("rk4", 0.5, 1e-3);
   const SystemState together = simulate(all, s_all, settings);
   for (size_t b = 0; b < 13; ++b) {
     Model one;
@@ -264,7 +258,7 @@ TEST(Rotors, ABodyStepsTheSameOnPacksOfManyAsAlone) {
 TEST(Rotors, TheirStateTransitionMatrixIsThatOfCentralDifferences) {
   Top top;
   top.s0.bodies[0].q = Quat(Eigen::AngleAxisd(0.4, Vec3(1, 1, 0).normalized()));
-  const RunSettings settings = fixed("rk4", 0.5, 2e-3);
+  const RunSettings settings = end_only("rk4", 0.5, 2e-3);
   Sensitivities last;
   (void)simulate_sensitivities(top.model, top.s0, settings, SensitivityParameters::inertia,
                                [&](const SystemState&, const Sensitivities& s) {
