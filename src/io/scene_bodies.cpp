@@ -109,15 +109,19 @@ void read_body(const toml::table& body, size_t number, const TomlFile& file,
                     "orbit frame: z to the central body, y opposite the orbit normal), found \"{}\"",
                     orientation_frame));
   }
-  const bool omega_lvlh = named.string("angular_velocity_frame") == "lvlh";
-  const Frame omega_frame = omega_lvlh ? Frame::world : named.frame("angular_velocity_frame", Frame::world);
+  // (Each key looked up once: a scene of 10⁵ bodies reads these for every one.)
+  const std::optional<std::string_view> omega_frame_name = named.string("angular_velocity_frame");
+  const bool omega_lvlh = omega_frame_name == "lvlh";
+  const Frame omega_frame =
+      omega_frame_name && !omega_lvlh ? named.frame("angular_velocity_frame", Frame::world) : Frame::world;
+  const bool has_orbit = named.has("orbit");
   const bool lvlh = orientation_frame == "lvlh" || omega_lvlh;
-  if (lvlh && !named.has("orbit")) {
+  if (lvlh && !has_orbit) {
     named.fail_at(orientation_frame == "lvlh" ? "orientation_frame" : "angular_velocity_frame",
                   "\"lvlh\" is relative to the orbit frame of the centre of mass: give the body its orbit, "
                   "orbit = { a = ..., e = ..., i = ..., raan = ..., argp = ..., nu = ... } (m, rad)");
   }
-  if (named.has("orbit")) {
+  if (has_orbit) {
     for (const char* key : {"position", "velocity", "velocity_of"}) {
       if (named.has(key)) {
         named.fail_at(key, fmt::format("{} and orbit both place the body: give one of them", key));
