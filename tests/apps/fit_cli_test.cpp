@@ -10,6 +10,7 @@
 
 #include "../fit/fit_support.hpp"
 #include "../support/run.hpp"
+#include "../support/scratch_dir.hpp"
 
 namespace tumble {
 namespace {
@@ -22,8 +23,7 @@ std::string slurp(const std::string& path) {
 }
 
 std::string write_csv(const std::string& name, const fit::Telemetry& d) {
-  const std::string dir = testing::TempDir() + "/fit_cli";
-  std::filesystem::create_directories(dir);
+  const std::string dir = test::scratch_dir("fit_cli").string();
   const std::string path = dir + "/" + name;
   std::ofstream(path) << test::telemetry_csv(d);
   return path;
@@ -52,7 +52,7 @@ TEST(FitCli, PrintsTheFitAsJsonAndWritesItBesideNeverOverTheInput) {
   EXPECT_EQ(j["covariance"]["parameters"].size(), 8u);
 
   // --out: the file holds the same JSON, standard output a one-line summary.
-  const std::string out = testing::TempDir() + "/fit_cli/fit.json";
+  const std::string out = (test::scratch_dir("fit_cli") / "fit.json").string();
   std::filesystem::remove(out);
   const test::CommandResult written = test::run_tumble("fit " + csv + " --sigma 1e-3 --out " + out);
   ASSERT_EQ(written.status, 0) << written.output;
@@ -81,8 +81,7 @@ TEST(FitCli, ExitStatusSaysWhenTheDataDoNotDetermineTheInertia) {
 }
 
 TEST(FitCli, BadInputAndCommandLinesAreOneLineErrors) {
-  const std::string dir = testing::TempDir() + "/fit_cli";
-  std::filesystem::create_directories(dir);
+  const std::string dir = test::scratch_dir("fit_cli").string();
   const std::string bad = dir + "/bad.csv";
   std::ofstream(bad) << "t,wx,wy,wz\n0,1,2,3\n0.1,1,two,3\n";
   const test::CommandResult r = test::run_tumble("fit " + bad + " --sigma 1e-3");

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "../support/run.hpp"
+#include "../support/scratch_dir.hpp"
 
 namespace tumble {
 namespace {
@@ -41,8 +42,7 @@ TEST(ModelCli, CheckExitsZeroOnACleanModelAndOneOnErrors) {
 }
 
 TEST(ModelCli, FixWritesANewFileAndNeverTheInput) {
-  const std::string dir = testing::TempDir() + "/model_cli";
-  std::filesystem::create_directories(dir);
+  const std::string dir = test::scratch_dir("model_cli").string();
   const std::string input = dir + "/arm.urdf";
   std::filesystem::copy_file(kModels + "arm_flawed.urdf", input,
                              std::filesystem::copy_options::overwrite_existing);
@@ -76,8 +76,7 @@ TEST(ModelCli, FixWritesANewFileAndNeverTheInput) {
 }
 
 TEST(ModelCli, FixSaysWhenTheMeshesNoLongerResolveFromTheOutput) {
-  const std::string dir = testing::TempDir() + "/model_cli_elsewhere";
-  std::filesystem::create_directories(dir);
+  const std::string dir = test::scratch_dir("model_cli_elsewhere").string();
   const test::CommandResult fixed =
       test::run_tumble("model fix " + kModels + "arm_flawed.urdf -o " + dir + "/fixed.urdf");
   EXPECT_EQ(fixed.status, 0) << fixed.output;

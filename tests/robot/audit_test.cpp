@@ -177,7 +177,7 @@ TEST(ModelAudit, ACollidaMeshInMillimetresIsReadAtItsUnit) {
 }
 
 TEST(ModelAudit, BadInputIsACleanErrorWithTheLine) {
-  const std::string dir = testing::TempDir();
+  const std::string dir = tumble::test::scratch_dir("audit").string();
   const auto refused = [&](const std::string& text, const std::string& says) {
     const std::string path = dir + "/bad_model.urdf";
     std::ofstream(path) << text;

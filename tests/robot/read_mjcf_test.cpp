@@ -22,18 +22,14 @@
 #include "tumble/error.hpp"
 #include "tumble/robot/robot_model.hpp"
 
+#include "../support/scratch_dir.hpp"
+
 namespace tumble::robot {
 namespace {
 
 constexpr double kRotationTolerance = 1e-15;  // see the header comment
 
-/// A scratch directory of the running test's own: ctest may run the tests in parallel processes.
-std::filesystem::path model_dir() {
-  const std::filesystem::path dir = std::filesystem::path(testing::TempDir()) / "read_mjcf" /
-                                    testing::UnitTest::GetInstance()->current_test_info()->name();
-  std::filesystem::create_directories(dir);
-  return dir;
-}
+std::filesystem::path model_dir() { return tumble::test::scratch_dir("read_mjcf"); }
 
 /// Writes `text` to `name` in a scratch directory and reads it.
 RobotModel read(const std::string& name, const std::string& text) {

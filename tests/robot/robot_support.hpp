@@ -10,6 +10,8 @@
 
 #include "tumble/robot/audit.hpp"
 
+#include "../support/scratch_dir.hpp"
+
 namespace tumble::robot::test {
 
 /// tests/robot/models/ (make_models.py writes them).
@@ -39,12 +41,11 @@ inline double relative(const Mat3& A, const Mat3& B) {
   return (A - B).cwiseAbs().maxCoeff() / B.cwiseAbs().maxCoeff();
 }
 
-/// Writes `text` as `name` in a scratch directory `dir` (under the test temporary directory) beside a
-/// link to the test models' meshes, which models name relative to themselves; returns its path.
+/// Writes `text` as `name` in the running test's scratch directory under `dir` beside a link to the
+/// test models' meshes, which models name relative to themselves; returns its path.
 inline std::string written_beside_meshes(const std::string& dir, const std::string& name,
                                          const std::string& text) {
-  const std::filesystem::path d = std::filesystem::path(testing::TempDir()) / dir;
-  std::filesystem::create_directories(d);
+  const std::filesystem::path d = tumble::test::scratch_dir(dir);
   std::error_code ec;
   std::filesystem::create_directory_symlink(kModels + "meshes", d / "meshes", ec);  // exists: fine
   std::ofstream(d / name, std::ios::binary) << text;
