@@ -26,10 +26,8 @@ constexpr size_t kWidth = Pack::size;
 
 }  // namespace
 
-Rotors::Rotors(std::vector<Rotor> rotors, std::span<const RigidBody> bodies) : rotors_(std::move(rotors)) {
-  // Sorted by body: a body's rotors are one range (its Carrier), found by binary search.
-  std::stable_sort(rotors_.begin(), rotors_.end(),
-                   [](const Rotor& a, const Rotor& b) { return a.body < b.body; });
+Rotors::Rotors(std::vector<Rotor> rotors, std::span<const RigidBody> bodies)
+    : rotors_(std::move(rotors)), n_bodies_(bodies.size()) {
   for (const Rotor& r : rotors_) {
     const std::string name = fmt::format("rotor '{}'", r.name);
     if (r.body >= bodies.size()) {
@@ -44,15 +42,20 @@ Rotors::Rotors(std::vector<Rotor> rotors, std::span<const RigidBody> bodies) : r
       throw InvalidArgument(
           fmt::format("{}: moment = {} kg m^2: give the rotor's axial moment, > 0", name, r.moment));
     }
-    if (!std::isfinite(r.speed) || !std::isfinite(r.torque) || !(r.max_speed >= 0.0)) {
-      throw InvalidArgument(
-          fmt::format("{}: speed, torque and max_speed must be finite (max_speed >= 0)", name));
+    if (!std::isfinite(r.speed) || !std::isfinite(r.torque) || !(r.max_speed >= 0.0) ||
+        !std::isfinite(r.max_speed) || !(r.max_torque >= 0.0) || !std::isfinite(r.max_torque)) {
+      throw InvalidArgument(fmt::format(
+          "{}: speed, torque, max_speed and max_torque must be finite (the limits >= 0)", name));
     }
     for (size_t k = 0; k < r.torque_table.size(); ++k) {
       const auto [t, u] = r.torque_table[k];
       if (!std::isfinite(t) || !std::isfinite(u) || (k > 0 && !(t > r.torque_table[k - 1].first))) {
         throw InvalidArgument(fmt::format(
             "{}: torque table row {} ({}, {}): give finite (t, u) rows with t increasing", name, k, t, u));
+      }
+      if (r.max_torque > 0.0 && std::abs(u) > r.max_torque) {
+        throw InvalidArgument(fmt::format("{}: torque table row {} asks {} N m, beyond its max_torque = {} N m",
+                                          name, k, u, r.max_torque));
       }
     }
     if (!r.torque_table.empty() && r.max_speed > 0.0) {
@@ -63,39 +66,105 @@ Rotors::Rotors(std::vector<Rotor> rotors, std::span<const RigidBody> bodies) : r
       throw InvalidArgument(
           fmt::format("{}: speed = {} rad/s is beyond its max_speed = {} rad/s", name, r.speed, r.max_speed));
     }
+    if (r.max_torque > 0.0 && std::abs(r.torque) > r.max_torque) {
+      throw InvalidArgument(fmt::format("{}: torque = {} N m is beyond its max_torque = {} N m", name,
+                                        r.torque, r.max_torque));
+    }
     // a_b = Uᵀ a: the axis in the principal frame (the reference frame's axes are R_ref = R Uᵀ).
     axis_b_.push_back((bodies[r.body].U().transpose() * r.axis.normalized()).eval());
-    // The motor runs until |Ω| reaches max_speed (then u = 0): Ω(t) = Ω(0) + u t/J up to t_stop.
-    double t_stop = std::numeric_limits<double>::infinity();
-    if (r.torque != 0.0 && r.max_speed > 0.0) {
-      t_stop = std::max(0.0, (std::copysign(r.max_speed, r.torque) - r.speed) * r.moment / r.torque);
-    }
-    t_stop_.push_back(t_stop);
   }
+  // A body's rotors are one range of by_body_ (its Carrier), found by binary search.
+  by_body_.resize(rotors_.size());
+  for (size_t j = 0; j < rotors_.size(); ++j) by_body_[j] = j;
+  std::stable_sort(by_body_.begin(), by_body_.end(),
+                   [&](size_t a, size_t b) { return rotors_[a].body < rotors_[b].body; });
+  for (size_t j = 0; j < rotors_.size(); ++j) initial_.push_back(piece(j, 0.0, rotors_[j].speed, rotors_[j].torque));
+  hold(initial_);
+}
+
+Rotors::Piece Rotors::piece(size_t j, double t, double speed, double torque) const {
+  const Rotor& r = rotors_[j];
+  Piece p{t, speed, torque};
+  // The motor runs until |Ω| reaches max_speed (then u = 0): Ω(τ) = Ω + u (τ − t)/J up to t_stop.
+  if (torque != 0.0 && r.max_speed > 0.0) {
+    p.t_stop = t + std::max(0.0, (std::copysign(r.max_speed, torque) - speed) * r.moment / torque);
+  }
+  return p;
+}
+
+void Rotors::hold(std::vector<Piece> pieces) const {
   // Each carrying body's rotors summed while every motor runs (O(1) a body), and the same sums as
-  // columns over every body (zero where none), for the pack kernel.
+  // columns over every body (zero where none), for the pack kernel. h(t) = Σ J (Ω_p + u (t − t_p)/J) a
+  // = Σ (J Ω_p − u t_p) a + t Σ u a.
+  Held& H = held_;
+  H.pieces = std::move(pieces);
+  H.carriers.clear();
+  H.t_dense = std::numeric_limits<double>::infinity();
   for (int k = 0; k < 3; ++k) {
-    h0_[k].assign(bodies.size(), 0.0);
-    h_dot_[k].assign(bodies.size(), 0.0);
+    H.h0[k].assign(n_bodies_, 0.0);
+    H.h_dot[k].assign(n_bodies_, 0.0);
   }
-  for (size_t j = 0; j < rotors_.size(); ++j) {
+  for (size_t s = 0; s < by_body_.size(); ++s) {
+    const size_t j = by_body_[s];
     const Rotor& r = rotors_[j];
-    if (carriers_.empty() || carriers_.back().body != r.body) carriers_.push_back({r.body, j, j});
-    Carrier& c = carriers_.back();
-    c.last = j + 1;
-    c.h0 += r.moment * r.speed * axis_b_[j];
-    c.h_dot += r.torque * axis_b_[j];
+    const Piece& p = H.pieces[j];
+    if (H.carriers.empty() || H.carriers.back().body != r.body) H.carriers.push_back({r.body, s, s});
+    Carrier& c = H.carriers.back();
+    c.last = s + 1;
+    c.h0 += (r.moment * p.speed - p.torque * p.t) * axis_b_[j];
+    c.h_dot += p.torque * axis_b_[j];
     // A table's torque changes with time: such a body's h is summed rotor by rotor, always.
-    c.t_stop = r.torque_table.empty() ? std::min(c.t_stop, t_stop_[j])
-                                      : -std::numeric_limits<double>::infinity();
+    c.t_stop = r.torque_table.empty() ? std::min(c.t_stop, p.t_stop) : -std::numeric_limits<double>::infinity();
   }
-  for (const Carrier& c : carriers_) {
+  for (const Carrier& c : H.carriers) {
     for (int k = 0; k < 3; ++k) {
-      h0_[k][c.body] = c.h0(k);
-      h_dot_[k][c.body] = c.h_dot(k);
+      H.h0[k][c.body] = c.h0(k);
+      H.h_dot[k][c.body] = c.h_dot(k);
     }
-    t_dense_ = std::min(t_dense_, c.t_stop);
+    H.t_dense = std::min(H.t_dense, c.t_stop);
   }
+}
+
+std::shared_ptr<const Rotors> Rotors::controlled_by(RotorController controller) const {
+  if (!(controller.interval > 0.0) || !std::isfinite(controller.interval)) {
+    throw InvalidArgument(fmt::format(
+        "rotor controller: interval = {} s; give the time between its samples, > 0", controller.interval));
+  }
+  if (!controller.law) throw InvalidArgument("rotor controller: it has no law (a function)");
+  for (const Rotor& r : rotors_) {
+    if (!r.torque_table.empty()) {
+      throw InvalidArgument(fmt::format(
+          "rotor '{}' has a torque table, but a controller sets every rotor's torque: remove the table",
+          r.name));
+    }
+  }
+  auto out = std::make_shared<Rotors>(*this);
+  out->controller_ = std::move(controller);
+  return out;
+}
+
+void Rotors::sample_inputs(const SystemView& view, bool first) const {
+  if (!controller_) return;
+  if (first) hold(initial_);
+  const size_t n = rotors_.size();
+  std::vector<double> speeds(n), torques(n);
+  for (size_t j = 0; j < n; ++j) {
+    speeds[j] = speed(j, view.t);
+    torques[j] = held_.pieces[j].torque;
+  }
+  controller_->law(view, speeds, torques);
+  std::vector<Piece> pieces(n);
+  for (size_t j = 0; j < n; ++j) {
+    const Rotor& r = rotors_[j];
+    double u = torques[j];
+    if (!std::isfinite(u)) {
+      throw Error(fmt::format("rotor controller: the torque of rotor '{}' at t = {} s is {}: give finite torques",
+                              r.name, view.t, u));
+    }
+    if (r.max_torque > 0.0) u = std::clamp(u, -r.max_torque, r.max_torque);  // the motor's saturation
+    pieces[j] = piece(j, view.t, speeds[j], u);
+  }
+  hold(std::move(pieces));
 }
 
 namespace {
@@ -128,18 +197,21 @@ double table_impulse(const std::vector<std::pair<double, double>>& table, double
 double Rotors::speed(size_t j, double t) const {
   const Rotor& r = rotors_[j];
   if (!r.torque_table.empty()) return r.speed + table_impulse(r.torque_table, t) / r.moment;
-  return t < t_stop_[j] ? r.speed + r.torque * t / r.moment : std::copysign(r.max_speed, r.torque);
+  const Piece& p = held_.pieces[j];
+  return t < p.t_stop ? p.speed + p.torque * (t - p.t) / r.moment : std::copysign(r.max_speed, p.torque);
 }
 double Rotors::motor_torque(size_t j, double t) const {
   const Rotor& r = rotors_[j];
   if (!r.torque_table.empty()) return table_torque(r.torque_table, t);
-  return t < t_stop_[j] ? r.torque : 0.0;
+  const Piece& p = held_.pieces[j];
+  return t < p.t_stop ? p.torque : 0.0;
 }
 
 std::pair<Vec3, Vec3> Rotors::momentum(const Carrier& c, double t) const {
-  if (t < c.t_stop) return {c.h0 + t * c.h_dot, c.h_dot};  // every motor runs: h = h(0) + ḣ t
+  if (t < c.t_stop) return {c.h0 + t * c.h_dot, c.h_dot};  // every motor runs: h = h0 + ḣ t
   Vec3 h = Vec3::Zero(), h_dot = Vec3::Zero();
-  for (size_t j = c.first; j < c.last; ++j) {
+  for (size_t s = c.first; s < c.last; ++s) {
+    const size_t j = by_body_[s];
     h += rotors_[j].moment * speed(j, t) * axis_b_[j];  // h = Σ J Ω a
     h_dot += motor_torque(j, t) * axis_b_[j];           // ḣ = Σ u a
   }
@@ -147,21 +219,22 @@ std::pair<Vec3, Vec3> Rotors::momentum(const Carrier& c, double t) const {
 }
 
 std::pair<Vec3, Vec3> Rotors::momentum(size_t body, double t) const {
-  const auto c = std::lower_bound(carriers_.begin(), carriers_.end(), body,
+  const auto c = std::lower_bound(held_.carriers.begin(), held_.carriers.end(), body,
                                   [](const Carrier& a, size_t b) { return a.body < b; });
-  if (c == carriers_.end() || c->body != body) return {Vec3::Zero(), Vec3::Zero()};
+  if (c == held_.carriers.end() || c->body != body) return {Vec3::Zero(), Vec3::Zero()};
   return momentum(*c, t);
 }
 
 template <class Each>
 void Rotors::for_each_carrier(size_t begin, size_t end, Each&& each) const {
-  auto c = std::lower_bound(carriers_.begin(), carriers_.end(), begin,
+  auto c = std::lower_bound(held_.carriers.begin(), held_.carriers.end(), begin,
                             [](const Carrier& a, size_t b) { return a.body < b; });
-  for (; c != carriers_.end() && c->body < end; ++c) each(*c);
+  for (; c != held_.carriers.end() && c->body < end; ++c) each(*c);
 }
 
 void Rotors::accumulate_block(const BodyBlock& block, BlockLoads& loads) const {
-  if (block.t < t_dense_) {  // every motor runs (or none has a limit): h = h(0) + ḣ t, a pack at a time
+  const Held& H = held_;
+  if (block.t < held_.t_dense) {  // every motor runs (or none has a limit): h = h(0) + ḣ t, a pack at a time
     const Pack t(block.t);
     auto load = [](const double* p) { return Pack::load_unaligned(p); };
     size_t j = 0;
@@ -171,8 +244,8 @@ void Rotors::accumulate_block(const BodyBlock& block, BlockLoads& loads) const {
                           load(block.q[3] + j));
       const Vec3T<Pack> omega_w(load(block.omega_w[0] + j), load(block.omega_w[1] + j),
                                 load(block.omega_w[2] + j));
-      const Vec3T<Pack> h_dot(load(&h_dot_[0][i]), load(&h_dot_[1][i]), load(&h_dot_[2][i]));
-      const Vec3T<Pack> h = Vec3T<Pack>(load(&h0_[0][i]), load(&h0_[1][i]), load(&h0_[2][i])) + t * h_dot;
+      const Vec3T<Pack> h_dot(load(&H.h_dot[0][i]), load(&H.h_dot[1][i]), load(&H.h_dot[2][i]));
+      const Vec3T<Pack> h = Vec3T<Pack>(load(&H.h0[0][i]), load(&H.h0[1][i]), load(&H.h0[2][i])) + t * h_dot;
       const Vec3T<Pack> tau = rotor_torque<Pack>(q, omega_w, h, h_dot);  // 0 for a body without rotors
       for (int k = 0; k < 3; ++k) (load(loads.tau[k] + j) + tau(k)).store_unaligned(loads.tau[k] + j);
     }
@@ -180,8 +253,8 @@ void Rotors::accumulate_block(const BodyBlock& block, BlockLoads& loads) const {
       const size_t i = block.begin + j;
       const Quat q(block.q[0][j], block.q[1][j], block.q[2][j], block.q[3][j]);
       const Vec3 omega_w(block.omega_w[0][j], block.omega_w[1][j], block.omega_w[2][j]);
-      const Vec3 h_dot(h_dot_[0][i], h_dot_[1][i], h_dot_[2][i]);
-      const Vec3 h = Vec3(h0_[0][i], h0_[1][i], h0_[2][i]) + block.t * h_dot;
+      const Vec3 h_dot(H.h_dot[0][i], H.h_dot[1][i], H.h_dot[2][i]);
+      const Vec3 h = Vec3(H.h0[0][i], H.h0[1][i], H.h0[2][i]) + block.t * h_dot;
       loads.add(j, Vec3::Zero(), rotor_torque<double>(q, omega_w, h, h_dot));
     }
     return;
@@ -217,7 +290,7 @@ std::optional<double> Rotors::potential_energy(const SystemView&) const {
 }
 
 bool Rotors::motors_work() const {
-  return std::any_of(rotors_.begin(), rotors_.end(), [](const Rotor& r) {
+  return controller_ || std::any_of(rotors_.begin(), rotors_.end(), [](const Rotor& r) {
     return r.torque != 0.0 || std::any_of(r.torque_table.begin(), r.torque_table.end(),
                                           [](const auto& row) { return row.second != 0.0; });
   });
@@ -239,7 +312,14 @@ std::string Rotors::describe(std::span<const RigidBody> bodies) const {
                                r.body < bodies.size() ? bodies[r.body].name() : std::to_string(r.body),
                                r.moment, r.speed, r.torque));
   }
-  return fmt::format("rotors {}", fmt::join(each, ", "));
+  return fmt::format("rotors {}{}", fmt::join(each, ", "),
+                     controller_ ? fmt::format(", torques by a controller every {} s", controller_->interval) : "");
+}
+
+const Rotors* rotors_of(const Model& model) {
+  for (const auto& f : model.forces)
+    if (const auto* r = dynamic_cast<const Rotors*>(f.get())) return r;
+  return nullptr;
 }
 
 }  // namespace tumble

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <string_view>
 
@@ -241,7 +242,15 @@ void read_rotors(const TableReader& root, const NameTable& names, Scene& scene) 
     const std::string_view name =
         untitled.required_string("name", "the rotor a name, e.g. name = \"wheel_x\"");
     const TableReader t(*tables[i], Context::named("rotor", name), root.file(),
-                        {"name", "body", "axis", "moment", "speed", "torque", "max_speed"});
+                        {"name", "body", "axis", "moment", "speed", "torque", "max_speed", "max_torque"});
+    // The name heads CSV columns (rotor_speed_<name>): nothing a column name must not hold.
+    if (name.empty() || std::any_of(name.begin(), name.end(), [](char c) {
+          return !(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.');
+        })) {
+      t.fail_at("name", fmt::format("rotor name \"{}\": use letters, digits, '_', '-' and '.' only (it "
+                                    "names output columns, e.g. rotor_speed_wheel_x)",
+                                    name));
+    }
     if (std::find(seen.begin(), seen.end(), name) != seen.end()) {
       t.fail_at("name", fmt::format("a second rotor named \"{}\": give each rotor its own name", name));
     }
@@ -295,6 +304,17 @@ void read_rotors(const TableReader& root, const NameTable& names, Scene& scene) 
     if (r.max_speed > 0.0 && std::abs(r.speed) > r.max_speed) {
       t.fail_at("speed",
                 fmt::format("speed = {} rad/s is beyond max_speed = {} rad/s", r.speed, r.max_speed));
+    }
+    r.max_torque = t.number("max_torque", 0.0, "N*m", Domain::non_negative);
+    if (r.max_torque > 0.0 && std::abs(r.torque) > r.max_torque) {
+      t.fail_at("torque",
+                fmt::format("torque = {} N*m is beyond max_torque = {} N*m", r.torque, r.max_torque));
+    }
+    for (size_t k = 0; k < r.torque_table.size(); ++k) {
+      if (r.max_torque > 0.0 && std::abs(r.torque_table[k].second) > r.max_torque) {
+        t.fail_at("torque", fmt::format("torque row {} asks {} N*m, beyond max_torque = {} N*m", k,
+                                        r.torque_table[k].second, r.max_torque));
+      }
     }
     rotors.push_back(std::move(r));
   }

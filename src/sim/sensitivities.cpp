@@ -9,6 +9,7 @@
 #include <cmath>
 #include <memory>
 
+#include "held_inputs.hpp"
 #include "steppers.hpp"
 #include "tumble/error.hpp"
 
@@ -212,6 +213,11 @@ SystemState simulate_sensitivities(const Model& model, const SystemState& state,
   if (state.bodies.size() != model.bodies.size()) {
     throw InvalidArgument(
         fmt::format("state has {} bodies, the model {}", state.bodies.size(), model.bodies.size()));
+  }
+  if (input_interval(model) > 0.0) {
+    throw InvalidArgument(
+        "sensitivities cannot be carried through a rotor controller (tumble does not know its law's "
+        "derivatives): use finite differences (finite_difference_stm), which run it as it is");
   }
   const Formulation F = settings.formulation;
   const size_t B = model.bodies.size();

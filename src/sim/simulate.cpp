@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "held_inputs.hpp"
 #include "steppers.hpp"
 #include "tumble/error.hpp"
 #include "tumble/sim/run_plan.hpp"
@@ -290,6 +291,13 @@ std::vector<RunInBatch> runs_of(const Model& model, const RunHooks& hooks, const
 
 SystemState simulate(const Model& model, SystemState state, const RunSettings& settings,
                      const RunHooks& hooks) {
+  if (const double interval = input_interval(model); interval > 0.0)
+    return simulate_held_inputs(model, std::move(state), settings, hooks, interval);
+  return simulate_steps(model, std::move(state), settings, hooks);
+}
+
+SystemState simulate_steps(const Model& model, SystemState state, const RunSettings& settings,
+                           const RunHooks& hooks) {
   const SampleSink& on_sample = hooks.on_sample;
   IntegratorStats* stats = hooks.stats;
   const std::function<bool()>& stop_requested = hooks.stop_requested;

@@ -37,7 +37,7 @@ struct Top {
   Top() {
     model.add_body(RigidBody::from_principal_moments(10.0, Vec3(A, A, C), "top"));
     model.forces.push_back(std::make_shared<const Rotors>(
-        std::vector<Rotor>{{"wheel", 0, Vec3::UnitZ(), J, Omega, 0.0, 0.0, {}}}, model.bodies));
+        std::vector<Rotor>{{"wheel", 0, Vec3::UnitZ(), J, Omega, 0.0, 0.0, 0.0, {}}}, model.bodies));
     BodyState b;
     b.omega_w = omega0;  // q = identity: ω_b = ω_w
     s0.bodies.push_back(b);
@@ -90,9 +90,9 @@ TEST(Rotors, ThreeWheelsOffTheSpinAgreeWithAHighPrecisionReference) {
   Model model;
   model.add_body(RigidBody::from_principal_moments(5.0, Vec3(1.0, 2.0, 3.0), "sat"));
   model.forces.push_back(std::make_shared<const Rotors>(
-      std::vector<Rotor>{{"wheel_x", 0, Vec3::UnitX(), 0.01, 30.0, 0.0, 0.0, {}},
-                         {"wheel_y", 0, Vec3::UnitY(), 0.01, -40.0, 0.0, 0.0, {}},
-                         {"wheel_z", 0, Vec3::UnitZ(), 0.01, 50.0, 0.0, 0.0, {}}},
+      std::vector<Rotor>{{"wheel_x", 0, Vec3::UnitX(), 0.01, 30.0, 0.0, 0.0, 0.0, {}},
+                         {"wheel_y", 0, Vec3::UnitY(), 0.01, -40.0, 0.0, 0.0, 0.0, {}},
+                         {"wheel_z", 0, Vec3::UnitZ(), 0.01, 50.0, 0.0, 0.0, 0.0, {}}},
       model.bodies));
   SystemState s0;
   BodyState b;
@@ -125,7 +125,7 @@ TEST(Rotors, ThreeWheelsSlewTheBodyRestToRestAboutAFixedAxis) {
   model.add_body(RigidBody::from_principal_moments(50.0, Lambda, "sat"));
   std::vector<Rotor> wheels;
   for (int k = 0; k < 3; ++k) {
-    Rotor w{fmt::format("wheel_{}", k), 0, Vec3::Unit(k), 0.1, 0.0, 0.0, 0.0, {}};
+    Rotor w{fmt::format("wheel_{}", k), 0, Vec3::Unit(k), 0.1, 0.0, 0.0, 0.0, 0.0, {}};
     const double uk = u * e(k);
     w.torque_table = {{0.0, 0.0}, {0.1, uk}, {9.9, uk}, {10.1, -uk}, {19.9, -uk}, {20.0, 0.0}};
     wheels.push_back(w);
@@ -162,7 +162,7 @@ TEST(Rotors, AMotorSpinningUpItsWheelTurnsTheBodyTheOtherWayWithTheTotalMomentum
   model.add_body(RigidBody::from_inertia(20.0, I, Vec3::Zero(), "sat"));
   const Vec3 axis = Vec3(1.0, 2.0, 2.0) / 3.0;
   const auto rotors = std::make_shared<const Rotors>(
-      std::vector<Rotor>{{"wheel", 0, axis, 0.01, 0.0, 0.02, 0.0, {}}}, model.bodies);
+      std::vector<Rotor>{{"wheel", 0, axis, 0.01, 0.0, 0.02, 0.0, 0.0, {}}}, model.bodies);
   model.forces.push_back(rotors);
   SystemState s0;
   s0.bodies.push_back(BodyState{});
@@ -189,7 +189,7 @@ TEST(Rotors, ARotorHoldsASpinAboutTheIntermediateAxis) {
     model.add_body(RigidBody::from_principal_moments(1.0, Vec3(1.0, 2.0, 3.0), "sat"));
     if (rotor) {
       model.forces.push_back(std::make_shared<const Rotors>(
-          std::vector<Rotor>{{"wheel", 0, Vec3::UnitY(), 0.1, 100.0, 0.0, 0.0, {}}}, model.bodies));
+          std::vector<Rotor>{{"wheel", 0, Vec3::UnitY(), 0.1, 100.0, 0.0, 0.0, 0.0, {}}}, model.bodies));
     }
     SystemState s0;
     BodyState b;
@@ -232,6 +232,7 @@ TEST(Rotors, ABodyStepsTheSameOnPacksOfManyAsAlone) {
                         0.01 * (k + 1),
                         10.0 * (b - k),
                         0.001 * (k - 1),
+                        0.0,
                         0.0,
                         {}});
     }

@@ -143,6 +143,16 @@ class ForceModel {
   /// Angular momentum the model's own parts carry beyond the bodies' Iω (spinning rotors: Σ R h),
   /// world axes: the diagnostics add it to the system's L, which then stays conserved. Zero by default.
   virtual Vec3 internal_angular_momentum(const SystemView& /*view*/) const { return Vec3::Zero(); }
+  /// Inputs sampled at a rate and held between samples (a controller's zero-order hold, as flight
+  /// software commands its actuators at its task rate): the time between samples (s), 0 for a model
+  /// without such inputs. simulate() then ends steps at t₀ + k·interval and calls sample_inputs there,
+  /// so the loads are smooth within every step and each integrator keeps its order.
+  virtual double input_interval() const { return 0.0; }
+  /// Samples the inputs from the system's state, at its time, and holds them until the next call.
+  /// `first`: the run's start (the model goes back to its initial inputs first, so that it can run
+  /// again). Called by the time loop between steps only, never during one: the one moment a model
+  /// changes, hence const.
+  virtual void sample_inputs(const SystemView& /*view*/, bool /*first*/) const {}
   /// For central gravity: the central body (its centre, world, and μ = GM), which orbit frames (the
   /// LVLH output fields) and initial orbits are relative to. nullopt for every other model.
   virtual std::optional<CentralBody> central_body() const { return std::nullopt; }
