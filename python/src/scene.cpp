@@ -16,6 +16,7 @@
 #include "bindings.hpp"
 #include "tumble/error.hpp"
 #include "tumble/forces/forces.hpp"
+#include "tumble/forces/rotors.hpp"
 #include "tumble/integrate/integrator.hpp"
 #include "tumble/io/scene.hpp"
 #include "tumble/sim/event_specs.hpp"
@@ -49,8 +50,8 @@ struct Series {
 
 /// The world quantities of every body at a state as NumPy arrays (n, 3) and (n, 4): centre of mass,
 /// w-first quaternion of the principal frame, centre-of-mass velocity, angular velocity.
-py::tuple body_arrays(const SystemState& s) {
-  const auto n = static_cast<py::ssize_t>(s.bodies.size());
+py::tuple body_arrays(std::span<const BodyState> bodies) {
+  const auto n = static_cast<py::ssize_t>(bodies.size());
   py::array_t<double> o({n, py::ssize_t{3}}), q({n, py::ssize_t{4}}), v({n, py::ssize_t{3}}),
       w({n, py::ssize_t{3}});
   auto O = o.mutable_unchecked<2>();
@@ -58,7 +59,7 @@ py::tuple body_arrays(const SystemState& s) {
   auto V = v.mutable_unchecked<2>();
   auto W = w.mutable_unchecked<2>();
   for (py::ssize_t j = 0; j < n; ++j) {
-    const BodyState& b = s.bodies[static_cast<size_t>(j)];
+    const BodyState& b = bodies[static_cast<size_t>(j)];
     for (int k = 0; k < 3; ++k) {
       O(j, k) = b.o(k);
       V(j, k) = b.v(k);
@@ -79,7 +80,7 @@ Event python_event(const py::tuple& e) {
   Event out{e[0].cast<std::string>(), {}, e[2].cast<int>(), e[3].cast<bool>()};
   out.g = [g = e[1].cast<py::function>(), name = out.name](const SystemState& s) {
     py::gil_scoped_acquire python;
-    const py::tuple a = body_arrays(s);
+    const py::tuple a = body_arrays(s.bodies);
     const py::object r = g(s.t, a[0], a[1], a[2], a[3]);
     try {
       return r.cast<double>();
@@ -165,6 +166,41 @@ std::shared_ptr<const ForceModel> python_force(py::function f) {
       "a Python force function");
 }
 
+/// The scene's rotors driven by a controller written in Python, controller(t, position, orientation,
+/// velocity, omega, speeds) -> torques: the bodies' arrays (body_arrays) and the rotors' speeds (R,),
+/// returning R motor torques (N m), in the scene's rotor order; sampled every `interval`, held between.
+std::shared_ptr<const ForceModel> python_controller(const Model& model, py::function f, double interval) {
+  const Rotors* rotors = rotors_of(model);
+  if (!rotors) throw InvalidArgument("controller: the scene has no [[rotors]] for it to drive");
+  const size_t R = rotors->rotors().size();
+  return rotors->controlled_by(
+      {interval, [f = std::move(f), R](const SystemView& v, std::span<const double> speeds, std::span<double> u) {
+         py::gil_scoped_acquire python;
+         const py::tuple a = body_arrays(v.body_states);
+         py::array_t<double> Omega(static_cast<py::ssize_t>(R));
+         std::copy(speeds.begin(), speeds.end(), Omega.mutable_data());
+         py::object result;
+         try {
+           result = f(v.t, a[0], a[1], a[2], a[3], Omega);
+         } catch (py::error_already_set& e) {
+           if (e.matches(PyExc_KeyboardInterrupt)) throw InterruptedInForce{};
+           throw;
+         }
+         py::array_t<double, py::array::c_style | py::array::forcecast> torques;
+         try {
+           torques = result.cast<py::array_t<double, py::array::c_style | py::array::forcecast>>();
+         } catch (const py::cast_error&) {
+         }
+         if (!torques || torques.ndim() != 1 || static_cast<size_t>(torques.size()) != R) {
+           throw InvalidArgument(py::str("controller: at t = {} s it returned {!r}; it must return the {} rotors' "
+                                         "torques (N m), one per [[rotors]] in the scene's order")
+                                     .format(v.t, result, R)
+                                     .cast<std::string>());
+         }
+         std::copy_n(torques.data(), R, u.begin());
+       }});
+}
+
 /// A run's samples and crossings as they arrive, into the vectors the arrays are made of.
 struct Recorded {
   const Model& model;
@@ -174,6 +210,8 @@ struct Recorded {
   std::vector<double>& t;
   std::vector<Series>& body;
   std::vector<Series>& diagnostics;
+  Series& rotor_speed;
+  Series& rotor_torque;
   std::vector<std::string>& event_names;
   std::vector<double>& event_t;
   std::vector<long>& event_rows;
@@ -199,6 +237,8 @@ struct Recorded {
                   std::numeric_limits<double>::quiet_NaN());
       }
     }
+    rotor_speed.values.insert(rotor_speed.values.end(), d.rotor_speed.begin(), d.rotor_speed.end());
+    rotor_torque.values.insert(rotor_torque.values.end(), d.rotor_torque.begin(), d.rotor_torque.end());
   }
   void crossing(const EventHit& hit) {
     event_names.push_back(hit.name);
@@ -319,18 +359,30 @@ py::dict simulate(const Scene& scene_in, const py::dict& settings,
                   std::optional<std::vector<std::string>> field_names, std::optional<py::function> force,
                   const std::vector<EventSpec>& event_specs, const std::vector<py::tuple>& python_events,
                   const std::vector<bool>& every_body, std::vector<double> sample_times,
-                  std::optional<py::tuple> initial, std::optional<std::string> sensitivities) {
+                  std::optional<py::tuple> initial, std::optional<std::string> sensitivities,
+                  std::optional<py::tuple> controller) {
   // A Python force joins a copy of the model (the force list is shared, the bodies copied); what it
-  // conserves is unknown, so no drift is judged, and it runs on one thread (one interpreter).
+  // conserves is unknown, so no drift is judged, and it runs on one thread (one interpreter). A
+  // controller takes the place of the scene's rotors in such a copy: the motors work, so the energy is
+  // not conserved, the angular momentum still is (the rotors' torques are internal).
   std::optional<Scene> with_force;
+  if (force || controller) with_force.emplace(scene_in);
+  if (controller) {
+    const py::object interval = (*controller)[1];  // None: every step
+    const auto law = python_controller(
+        scene_in.model, (*controller)[0].cast<py::function>(),
+        interval.is_none() ? settings_with(scene_in, settings).timestep : interval.cast<double>());
+    for (auto& f : with_force->model.forces)
+      if (dynamic_cast<const Rotors*>(f.get())) f = law;
+    with_force->conserved.energy = false;
+  }
   if (force) {
-    with_force.emplace(scene_in);
     with_force->model.forces.push_back(python_force(*force));
     with_force->conserved = Conservation{false, false, false};
   }
   const Scene& scene = with_force ? *with_force : scene_in;
   RunSettings s = settings_with(scene, settings);
-  if (force) s.threads = 1;
+  if (force || controller) s.threads = 1;
   s.sample_times = std::move(sample_times);
   const Model& model = scene.model;
   const std::vector<const BodyField*> fields =
@@ -356,6 +408,10 @@ py::dict simulate(const Scene& scene_in, const py::dict& settings,
   const auto system = system_fields();
   std::vector<Series> diagnostics(system.size());
   for (size_t f = 0; f < system.size(); ++f) diagnostics[f].shape = {system[f].width};
+  std::vector<std::string> rotor_names;
+  if (const Rotors* rotors = rotors_of(model))
+    for (const Rotor& r : rotors->rotors()) rotor_names.push_back(r.name);
+  Series rotor_speed{{}, {static_cast<py::ssize_t>(rotor_names.size())}}, rotor_torque = rotor_speed;
   // Events: the scene's, those given as specs, then those written in Python; each crossing is kept as
   // (name, t, row), the row -1 for a Python event.
   std::vector<EventSpec> specs = scene.events;
@@ -409,6 +465,8 @@ py::dict simulate(const Scene& scene_in, const py::dict& settings,
                     t,
                     body,
                     diagnostics,
+                    rotor_speed,
+                    rotor_torque,
                     event_names,
                     event_t,
                     event_rows,
@@ -484,7 +542,12 @@ py::dict simulate(const Scene& scene_in, const py::dict& settings,
   out["fields"] = arrays;
   out["units"] = units;
   out["frames"] = frames;
+  if (!rotor_names.empty()) {
+    diag["rotor_speed"] = rotor_speed.release();
+    diag["rotor_torque"] = rotor_torque.release();
+  }
   out["diagnostics"] = diag;
+  out["rotor_names"] = rotor_names;
   std::vector<std::string> names;
   for (const RigidBody& b : model.bodies) names.push_back(b.name());
   for (const Particle& p : model.particles) names.push_back(p.name);
@@ -552,7 +615,7 @@ void bind_scene(py::module_& m) {
         "A scene from TOML text; `path` names it in messages and anchors relative mesh paths.");
   m.def("_simulate", &simulate, py::arg("scene"), py::arg("settings"), py::arg("fields"), py::arg("force"),
         py::arg("event_specs"), py::arg("python_events"), py::arg("every_body"), py::arg("sample_times"),
-        py::arg("initial"), py::arg("sensitivities") = std::nullopt);
+        py::arg("initial"), py::arg("sensitivities") = std::nullopt, py::arg("controller") = std::nullopt);
   m.def(
       "_run_settings",
       [] {

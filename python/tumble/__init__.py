@@ -62,7 +62,8 @@ def simulate(scene: Scene | str | _os.PathLike, integrator: str | None = None, f
              fields: Sequence[str] | None = None, force: Callable | None = None,
              events: Sequence[Event | dict] | None = None, drift_threshold: float | None = None,
              t_eval: Sequence[float] | None = None, initial: Trajectory | dict | None = None,
-             sensitivities: bool = False, sensitivity_parameters: str = "inertia") -> Trajectory:
+             sensitivities: bool = False, sensitivity_parameters: str = "inertia",
+             controller: Callable | None = None, control_interval: float | None = None) -> Trajectory:
     """Run a scene and return its Trajectory. Arguments left None take the scene's [simulation]
     values (as `tumble run` options do): integrator (e.g. "rk4", "splitting", "dopri45", "exact"),
     formulation ("world", "mixed", "body"), timestep and duration and output_interval (s; 0 = every
@@ -96,7 +97,17 @@ def simulate(scene: Scene | str | _os.PathLike, integrator: str | None = None, f
     I2, I3) of each body, or (T, 12 B, B) with respect to the masses with sensitivity_parameters="mass",
     or (T, 12 B, P) with respect to the force models' P parameters with "forces" (``parameter_names``).
     Forward-mode derivatives of the integrator's own steps (every integrator; dopri45's accepted steps,
-    their lengths held fixed); no events are watched and no Python force is differentiated."""
+    their lengths held fixed); no events are watched and no Python force is differentiated.
+
+    controller: the motor torques of the scene's [[rotors]] from the state, as flight software sets them:
+    controller(t, position, orientation, velocity, omega, speeds) with the bodies' arrays as a force
+    gets them and the rotors' speeds relative to their bodies (R,) in rad/s, returning the R motor
+    torques (N m), both in the scene's [[rotors]] order (Trajectory.rotor_names). It is called every
+    control_interval seconds from the start (default: every step) and its torques are held until the
+    next call (a zero-order hold; a rotor's max_torque clips them, its max_speed stops its motor); the
+    steps end at its calls, so each integrator keeps its order. The speeds are carried from call to call:
+    diagnostics["rotor_speed"] and ["rotor_torque"] hold them at every sample. Such a run uses one
+    thread; sensitivities are refused (the controller's derivatives are unknown)."""
     if isinstance(scene, (str, bytes)) or hasattr(scene, "__fspath__"):
         scene = load_scene(scene)
     specs, python_events, every = [], [], []
@@ -129,6 +140,11 @@ def simulate(scene: Scene | str | _os.PathLike, integrator: str | None = None, f
         specs = _event_specs(scene, specs)
     if isinstance(fields, (str, bytes)):  # list("position") would be its letters
         raise ValueError(f"fields={fields!r} must be a list of field names, e.g. fields=[{fields!r}]")
+    if controller is not None and not callable(controller):
+        raise TypeError(f"controller must be a function controller(t, position, orientation, velocity, omega, "
+                        f"speeds) returning the rotors' torques; got {type(controller).__name__}")
+    if controller is None and control_interval is not None:
+        raise ValueError("control_interval is the time between a controller's calls: give controller too")
     if force is not None and not callable(force):
         raise TypeError(f"force must be a function force(t, index, position, orientation, velocity, omega); "
                         f"got {type(force).__name__}")
@@ -146,7 +162,8 @@ def simulate(scene: Scene | str | _os.PathLike, integrator: str | None = None, f
                     drift_threshold=drift_threshold)
     raw = _tumble._simulate(scene, settings, None if fields is None else list(fields), force, specs,
                             python_events, every, sample_times, start,
-                            sensitivity_parameters if sensitivities else None)
+                            sensitivity_parameters if sensitivities else None,
+                            None if controller is None else (controller, control_interval))
     trajectory = Trajectory._from_run(raw)
     if drop_start:
         trajectory = trajectory._from(1)

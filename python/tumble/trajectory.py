@@ -52,7 +52,7 @@ class Trajectory:
     Arrays from ``simulate`` are the library's own buffers handed to NumPy (no copy)."""
 
     def __init__(self, t, names, fields, units, frames, diagnostics, events=(), integrator=None,
-                 formulation=None, timestep=None, warning=None, complete=True):
+                 formulation=None, timestep=None, warning=None, complete=True, rotor_names=()):
         self.t = t
         self.names = list(names)
         self.fields = dict(fields)
@@ -65,6 +65,9 @@ class Trajectory:
         self.timestep = timestep
         self.warning = warning
         self.complete = complete
+        #: The scene's [[rotors]] in order: the columns of diagnostics["rotor_speed"] (rad/s, relative
+        #: to the body) and diagnostics["rotor_torque"] (N m, the motor torque held until the sample).
+        self.rotor_names = list(rotor_names)
         self.sensitivities = None  # set by simulate(..., sensitivities=True): see stm
 
     @property
@@ -117,7 +120,7 @@ class Trajectory:
                   for n, t, r in zip(raw["event_names"], raw["event_t"], raw["event_rows"])]
         trajectory = cls(raw["t"], rows, raw["fields"], raw["units"], raw["frames"], raw["diagnostics"],
                          events, raw["integrator"], raw["formulation"], raw["timestep"], raw.get("warning"),
-                         complete=not raw["interrupted"])
+                         complete=not raw["interrupted"], rotor_names=raw["rotor_names"])
         if "stm" in raw:
             trajectory.sensitivities = {key: raw[key] for key in
                                         ("stm", "parameter_sensitivity", "coupled", "sensitivity_parameters",
@@ -128,7 +131,8 @@ class Trajectory:
         """The samples from the k-th on (views of the same arrays); events and settings as they are."""
         later = Trajectory(self.t[k:], self.names, {n: a[k:] for n, a in self.fields.items()}, self.units,
                            self.frames, {n: a[k:] for n, a in self.diagnostics.items()}, self.events,
-                           self.integrator, self.formulation, self.timestep, self.warning, self.complete)
+                           self.integrator, self.formulation, self.timestep, self.warning, self.complete,
+                           self.rotor_names)
         if self.sensitivities is not None:
             later.sensitivities = dict(self.sensitivities, stm=self.sensitivities["stm"][k:],
                                        parameter_sensitivity=self.sensitivities["parameter_sensitivity"][k:])
@@ -264,6 +268,12 @@ def _read_csv(path):
             block = table[:, at:at + f["width"]]
             diagnostics[f["name"]] = block[:, 0].copy() if f["width"] == 1 else block.copy()
             at += f["width"]
+        # Then rotor_speed_<name> for each rotor and rotor_torque_<name> for each.
+        rotor_names = [c[len("rotor_speed_"):] for c in columns[at:] if c.startswith("rotor_speed_")]
+        if rotor_names:
+            R = len(rotor_names)
+            diagnostics["rotor_speed"] = table[:, at:at + R].copy()
+            diagnostics["rotor_torque"] = table[:, at + R:at + 2 * R].copy()
     events = []
     epath = _companion(path, ".events.csv")
     if os.path.isfile(epath):
@@ -271,7 +281,7 @@ def _read_csv(path):
             er = list(csv.reader(f))
         events = [EventCrossing(r[1], float(r[0]), r[2]) for r in er[1:]]
     return Trajectory(t, names, arrays, {f["name"]: f["unit"] for f in fields},
-                      {f["name"]: f["frame"] for f in fields}, diagnostics, events)
+                      {f["name"]: f["frame"] for f in fields}, diagnostics, events, rotor_names=rotor_names)
 
 
 def _dataset(h5py, f, key, path, file_size):
@@ -329,6 +339,11 @@ def _read_hdf5(path):
         for field in system_fields:
             d = get("diagnostics/" + field["name"])
             diagnostics[field["name"]] = d[:] if d is not None else np.full((len(t),) + (() if field["width"] == 1 else (field["width"],)), np.nan)
+        stored = get("diagnostics/rotor_names")
+        rotor_names = [] if stored is None else [n.decode() if isinstance(n, bytes) else n for n in stored[:]]
+        if rotor_names:
+            diagnostics["rotor_speed"] = need("diagnostics/rotor_speed")[:]
+            diagnostics["rotor_torque"] = need("diagnostics/rotor_torque")[:]
         events = []
         if get("events/t") is not None:
             g = {k: need("events/" + k) for k in ("event", "t", "body")}
@@ -338,7 +353,7 @@ def _read_hdf5(path):
         text = lambda key: (attrs[key].decode() if isinstance(attrs[key], bytes) else str(attrs[key])) if key in attrs else None
         trajectory = Trajectory(t, names, arrays, units, frames, diagnostics, events, text("integrator"),
                                 text("formulation"), float(attrs["timestep"]) if "timestep" in attrs else None,
-                                complete=bool(attrs.get("complete", 1)))
+                                complete=bool(attrs.get("complete", 1)), rotor_names=rotor_names)
         if get("stm") is not None:  # tumble run --sensitivities (docs/sensitivities.md, "Files")
             stm, dp = need("stm"), need("parameter_sensitivity")
             layout = stm.attrs.get("layout", b"")

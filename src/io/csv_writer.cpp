@@ -4,8 +4,9 @@
 //                the velocity of its origin and ω, world) — one row per body and particle per sample.
 //                numbers in their shortest round-trip text (number_text.hpp): every double reads
 //                back bit for bit.
-//   diagnostics: t and the columns of every SystemField (kinetic_energy, …, angular_momentum_drift) —
-//                one row per sample. A field is empty where the quantity is undefined (no potential,
+//   diagnostics: t and the columns of every SystemField (kinetic_energy, …, angular_momentum_drift),
+//                then with rotors rotor_speed_<name> for each and rotor_torque_<name> for each — one
+//                row per sample. A field is empty where the quantity is undefined (no potential,
 //                or zero at t = 0), never "nan".
 // and, when the trajectory is a regular file:
 //   events:      t,event,body — one row per crossing, in time order (when the run watches events);
@@ -23,6 +24,7 @@
 #include "run_facts.hpp"
 #include "staged_file.hpp"
 #include "tumble/error.hpp"
+#include "tumble/forces/rotors.hpp"
 #include "tumble/io/report.hpp"
 #include "tumble/io/trajectory_writer.hpp"
 
@@ -197,6 +199,16 @@ std::string header(const std::vector<std::string_view>& first, auto fields) {
   return fmt::format("{}", fmt::join(names, ","));
 }
 
+/// ",rotor_speed_<name>,…,rotor_torque_<name>,…" for the model's rotors (scene order), or "".
+std::string rotor_columns(const Model& model) {
+  std::string out;
+  if (const Rotors* rotors = rotors_of(model)) {
+    for (const char* what : {"rotor_speed_", "rotor_torque_"})
+      for (const Rotor& r : rotors->rotors()) out += fmt::format(",{}{}", what, r.name);
+  }
+  return out;
+}
+
 std::vector<const SystemField*> all_system_fields() {
   std::vector<const SystemField*> out;
   for (const SystemField& f : system_fields()) out.push_back(&f);
@@ -223,7 +235,7 @@ class CsvWriter final : public TrajectoryWriter {
                     kept(continuation, names_.size())),
         samples_(continuation ? continuation->samples : 0) {
     if (!diagnostics.empty())
-      diagnostics_.emplace(diagnostics, header({"t"}, all_system_fields()), "diagnostics",
+      diagnostics_.emplace(diagnostics, header({"t"}, all_system_fields()) + rotor_columns(model), "diagnostics",
                            kept(continuation, 1));
     if (info_.events && trajectory_.staged().kind() == io::OutputKind::staged) {
       events_.emplace(events_path(trajectory), "t,event,body", "events", kept(continuation, 0));
@@ -275,6 +287,12 @@ class CsvWriter final : public TrajectoryWriter {
       for (int k = 0; k < f.width; ++k) {
         buffer_.push_back(',');
         if (defined) io::append_number(buffer_, values[k]);  // empty where undefined, never "nan"
+      }
+    }
+    for (const auto* rotor_values : {&d.rotor_speed, &d.rotor_torque}) {
+      for (const double v : *rotor_values) {
+        buffer_.push_back(',');
+        io::append_number(buffer_, v);
       }
     }
     buffer_.push_back('\n');

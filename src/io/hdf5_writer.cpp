@@ -9,6 +9,8 @@
 //   /diagnostics/<field> (n,) or (n, 3): every SystemField defined at t = 0 (kinetic_energy, …,
 //                      angular_momentum_drift; potential and total energy only when every force has a
 //                      potential, a drift only where its scale at t = 0 is not zero)
+//   /diagnostics/rotor_speed, rotor_torque (n, R), rotor_names (R,): with rotors, each one's speed
+//                      relative to its body (rad/s) and motor torque (N m), in scene order
 //   attributes of every field's dataset: unit, frame, meaning (from the same table)
 //   attributes of /: tumble_version, scene (the scene file's text), scene_file, integrator,
 //     formulation, timestep, duration, output_interval, complete (1, or 0 if interrupted), t_end
@@ -26,6 +28,7 @@
 #include "hdf5_util.hpp"
 #include "staged_file.hpp"
 #include "tumble/error.hpp"
+#include "tumble/forces/rotors.hpp"
 #include "tumble/integrate/integrator.hpp"
 #include "tumble/io/trajectory_writer.hpp"
 #include "tumble/sim/run_plan.hpp"
@@ -125,6 +128,8 @@ class Hdf5Writer final : public TrajectoryWriter {
                                    : std::nullopt),
         planned_samples_(plan_run(info.settings, model.bodies.size(), model.particles.size()).samples),
         watch_events_(info.events) {
+    if (const Rotors* rotors = rotors_of(model))
+      for (const Rotor& r : rotors->rotors()) rotor_names_.push_back(r.name);
     // Errors are reported by return codes, turned into one FileError line; HDF5's own stack print
     // to stderr would only add noise.
     H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
@@ -192,6 +197,10 @@ class Hdf5Writer final : public TrajectoryWriter {
       // Defined at t = 0, so defined throughout (the force models and the scales at t = 0 fix it).
       if (!f.of_sample(d, values)) std::fill_n(values, f.width, 0.0);
       diagnostic_series_[k]->append(values);
+    }
+    if (rotor_speed_) {
+      rotor_speed_->append(d.rotor_speed.data());
+      rotor_torque_->append(d.rotor_torque.data());
     }
     t_end_ = state.t;
     ++samples_;
@@ -374,6 +383,16 @@ class Hdf5Writer final : public TrajectoryWriter {
       series.emplace(diagnostics_.get(), std::string(f.name).c_str(), shape, planned_samples_, check_);
       describe(series->id(), f);
     }
+    if (d.rotor_speed.empty()) return;
+    const std::vector<hsize_t> shape{d.rotor_speed.size()};
+    rotor_speed_.emplace(diagnostics_.get(), "rotor_speed", shape, planned_samples_, check_);
+    string_attribute(rotor_speed_->id(), "unit", "rad/s", check_);
+    string_attribute(rotor_speed_->id(), "meaning", "each rotor's spin relative to its body (rotor_names)", check_);
+    rotor_torque_.emplace(diagnostics_.get(), "rotor_torque", shape, planned_samples_, check_);
+    string_attribute(rotor_torque_->id(), "unit", "N*m", check_);
+    string_attribute(rotor_torque_->id(), "meaning",
+                     "each rotor's motor torque, the one held until the sample (rotor_names)", check_);
+    string_dataset(diagnostics_.get(), "rotor_names", rotor_names_, check_);
   }
 
   template <class Field>
@@ -390,6 +409,7 @@ class Hdf5Writer final : public TrajectoryWriter {
       if (s) out.push_back(&*s);
     }
     if (stm_) out.insert(out.end(), {&*stm_, &*parameter_sensitivity_});
+    if (rotor_speed_) out.insert(out.end(), {&*rotor_speed_, &*rotor_torque_});
     return out;
   }
 
@@ -406,6 +426,8 @@ class Hdf5Writer final : public TrajectoryWriter {
   std::vector<Series> field_series_;
   std::vector<std::optional<Series>> diagnostic_series_;  ///< one per SystemField, empty if undefined
   std::optional<Series> stm_, parameter_sensitivity_;     ///< when the run carries sensitivities
+  std::optional<Series> rotor_speed_, rotor_torque_;      ///< when the model has rotors
+  std::vector<std::string> rotor_names_;
   std::vector<double> row_;                               // one field of every row
   std::vector<double> all_;                               // every field of every row, row by row
   bool watch_events_ = false;

@@ -47,7 +47,7 @@ DriftMonitor::DriftMonitor(const Model& model, const SystemState& initial, Conse
 
 DriftMonitor::DriftMonitor(const Model& model, const Invariants& initial, Conservation conserved,
                            double threshold, const RunSettings& settings)
-    : model_(model), initial_(initial), conserved_(conserved), threshold_(threshold), settings_(settings) {
+    : model_(model), rotors_(rotors_of(model)), initial_(initial), conserved_(conserved), threshold_(threshold), settings_(settings) {
   // The energy is relative to max(|E₀|, T₀): |E₀| alone can be ~0 by the choice of the potential's
   // zero (a thrown body, a bound orbit near escape), which would make any drift look infinite.
   if (const auto E0 = energy(initial_)) energy_scale_ = std::max(std::abs(*E0), initial_.kinetic_energy);
@@ -62,7 +62,14 @@ DriftSample DriftMonitor::observe(const SystemCoordinates& x, size_t first) {
 }
 
 DriftSample DriftMonitor::observe(const SystemState& state) {
-  return judge(invariants(model_, state), state.t);
+  DriftSample d = judge(invariants(model_, state), state.t);
+  if (rotors_) {
+    for (size_t j = 0; j < rotors_->rotors().size(); ++j) {
+      d.rotor_speed.push_back(rotors_->speed(j, state.t));
+      d.rotor_torque.push_back(rotors_->motor_torque(j, state.t));
+    }
+  }
+  return d;
 }
 
 DriftSample DriftMonitor::judge(const Invariants& at, double t) {

@@ -4,7 +4,9 @@
 // threshold, the monitor produces one warning saying which quantity, when, and what to change.
 #include <optional>
 #include <string>
+#include <vector>
 
+#include "tumble/forces/rotors.hpp"
 #include "tumble/sim/diagnostics.hpp"
 #include "tumble/sim/simulate.hpp"
 
@@ -24,6 +26,10 @@ struct DriftSample {
   std::optional<double> energy_drift;            ///< (E − E₀) / max(|E₀|, T₀), signed
   std::optional<double> linear_momentum_drift;   ///< |p − p₀| / |p₀|
   std::optional<double> angular_momentum_drift;  ///< |L − L₀| / |L₀|
+  /// Each rotor's speed relative to its body Ω (rad/s) and motor torque u (N·m), in scene order
+  /// (forces/rotors.hpp; empty without rotors). Taken here, with the sample, because a controller's
+  /// torques change between samples and a writer may read the sample later, on a thread of its own.
+  std::vector<double> rotor_speed, rotor_torque;
 };
 
 class DriftMonitor {
@@ -58,6 +64,7 @@ class DriftMonitor {
  private:
   DriftSample judge(const Invariants& at, double t);
   const Model& model_;
+  const Rotors* rotors_;  ///< the model's rotors, or null
   Invariants initial_;
   double energy_scale_ = 0.0;
   std::optional<double> E0_;  ///< the initial energy, |p₀| and |L₀|
