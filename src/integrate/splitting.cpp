@@ -74,6 +74,7 @@
 #include "engine.hpp"
 #include "euler_poinsot_flows.hpp"
 #include "free_flow_tangent.hpp"
+#include "gyrostat_split.hpp"
 #include "methods.hpp"
 #include "saved_state.hpp"
 #include "tumble/integrate/euler_poinsot.hpp"
@@ -159,8 +160,8 @@ class Strang {
   /// as the substeps one by one (tested).
   void steps(const Model& model, Formulation F, SystemCoordinates& x, double h, long count, int threads,
              std::span<const double> weights) {
-    engine_.prepare(model, F, threads);
-    if (!engine_.fused()) {
+    engine_.prepare(rotor_split_.kick_model(model), F, threads);
+    if (!engine_.fused() || rotor_split_.active()) {  // rotors: a(t) each (sub)step, step by step
       for (long r = 0; r < count; ++r) {
         const double t_end = x.t + h;
         for (const double w : weights) step(model, F, x, w * h, threads);
@@ -202,7 +203,8 @@ class Strang {
   }
 
   void step(const Model& model, Formulation F, SystemCoordinates& x, double h, int threads) {
-    engine_.prepare(model, F, threads);
+    engine_.prepare(rotor_split_.kick_model(model), F, threads);
+    if (rotor_split_.active()) rotor_split_.momenta(x.t, h);
     const size_t n = x.bodies.size();
     prepare(n, F);
     const bool reuse = cached_ && same(x);
@@ -330,6 +332,7 @@ class Strang {
     begin_kick_drift(F, xr, h, d, i, n);
     evaluate_flows(d, i);
     end_drift(F, d, i);
+    leave_rotors(F, d.c, h, i);
     xr.store(i, d.c);
   }
   /// The same for two packs (bodies i … i + 2W − 1), their flows evaluated together.
@@ -340,6 +343,8 @@ class Strang {
     evaluate_flows(d0, d1, i);
     end_drift(F, d0, i);
     end_drift(F, d1, i + kWidth);
+    leave_rotors(F, d0.c, h, i);
+    leave_rotors(F, d1.c, h, i + kWidth);
     xr.store(i, d0.c);
     xr.store(i + kWidth, d1.c);
   }
@@ -352,7 +357,43 @@ class Strang {
   void begin_kick_drift(Formulation F, const BodyColumnsRef& xr, double h, Drift& d, size_t i, size_t n) {
     d.c = xr.load<Pack>(i);
     kick<Pack>(F, d.c, Pack(0.5 * h), load3(0, i), load3(3, i), engine_.mass<Pack>(i));
+    enter_rotors(F, d.c, h, i);
     begin_drift(F, d, h, engine_.Lambda<Pack>(i), i, n);
+  }
+
+  /// With rotors (gyrostat_split.hpp), before the drift: ω → ω₁ = ω + a, then G(h/2); and after it the
+  /// reverse. Only the lanes of bodies with rotors change (a = 0 would leave the others as they are only
+  /// to rounding of Λ⁻¹(Λω)): the others keep their bits, and so their kept flows.
+  void enter_rotors(Formulation F, Coordinates<Pack>& c, double h, size_t i) const {
+    if (!rotor_split_.active()) return;
+    const Vec3T<Pack> h_start = rotor_split_.h<Pack>(0, i), h_mid = rotor_split_.h<Pack>(1, i);
+    const auto spins = nonzero(h_start) || nonzero(h_mid);
+    if (!xsimd::any(spins)) return;
+    Coordinates<Pack> g = c;
+    const MassConstants<Pack> mass = engine_.mass<Pack>(i);
+    gyrostat::enter<Pack>(F, g, h_start, h_mid, mass.Lambda, mass.Lambda_inv, Pack(0.5 * h));
+    blend(spins, g, c);
+  }
+  void leave_rotors(Formulation F, Coordinates<Pack>& c, double h, size_t i) const {
+    if (!rotor_split_.active()) return;
+    const Vec3T<Pack> h_mid = rotor_split_.h<Pack>(1, i), h_end = rotor_split_.h<Pack>(2, i);
+    const auto spins = nonzero(h_mid) || nonzero(h_end);
+    if (!xsimd::any(spins)) return;
+    Coordinates<Pack> g = c;
+    const MassConstants<Pack> mass = engine_.mass<Pack>(i);
+    gyrostat::leave<Pack>(F, g, h_mid, h_end, mass.Lambda, mass.Lambda_inv, Pack(0.5 * h));
+    blend(spins, g, c);
+  }
+  static Mask nonzero(const Vec3T<Pack>& v) { return v.x() != Pack(0.0) || v.y() != Pack(0.0) || v.z() != Pack(0.0); }
+  /// c ← g in the lanes of `which`.
+  static void blend(const Mask& which, const Coordinates<Pack>& g, Coordinates<Pack>& c) {
+    for (Eigen::Index k = 0; k < 3; ++k) {
+      c.o(k) = select(which, g.o(k), c.o(k));
+      c.v(k) = select(which, g.v(k), c.v(k));
+      c.omega(k) = select(which, g.omega(k), c.omega(k));
+    }
+    c.q = QuatT<Pack>(select(which, g.q.w(), c.q.w()), select(which, g.q.x(), c.q.x()),
+                      select(which, g.q.y(), c.q.y()), select(which, g.q.z(), c.q.z()));
   }
 
   /// K(h/2) with the loads at the end of the step, which are kept for the next.
@@ -577,6 +618,7 @@ class Strang {
   bool same(const SystemCoordinates& x) const { return x.t == t_ && same_variables(x, state_, particles_); }
 
   engine::Engine engine_;
+  gyrostat::RotorSplit rotor_split_;  // the model's rotors, whose torque the flows carry
   std::vector<FreeFlight> flights_;  // one per body
   Columns flows_;                    // FlowColumns, one row per body, addressed by at()
   size_t rj_steps_index_ = rj_steps_index();
@@ -603,6 +645,7 @@ class StrangTangent {
              std::span<const double> weights) {
     using T = TangentScalar;
     const double t_end = x.t + h;
+    const Model& kicked = rotor_split_.kick_model(model);  // with rotors: their torque is in the flows
     auto kick_all = [&](double tau, std::span<const WrenchT<T>> loads) {
       for (size_t i = 0; i < x.bodies.size(); ++i) {
         kick<T>(F, x.bodies[i], T(tau), loads[i].force, loads[i].torque,
@@ -612,12 +655,22 @@ class StrangTangent {
     for (const double w : weights) {
       const double hs = w * h;
       if (!same(x)) {
-        const std::span<const WrenchT<T>> start = rates_.loads(model, F, x);
+        const std::span<const WrenchT<T>> start = rates_.loads(kicked, F, x);
         loads_.assign(start.begin(), start.end());
       }
       kick_all(0.5 * hs, loads_);
+      if (rotor_split_.active()) rotor_split_.momenta(x.t, hs);
+      // Whether body i has rotors turning it (h ≠ 0 at the step's start or middle, or middle or end).
+      const auto spins = [&](size_t i, int first) {
+        return !(rotor_split_.h<double>(first, i).isZero(0.0) && rotor_split_.h<double>(1, i).isZero(0.0));
+      };
       for (size_t i = 0; i < x.bodies.size(); ++i) {
         Coordinates<T>& c = x.bodies[i];
+        const MassConstants<T> mass = mass_constants<T>(x.m[i], x.Lambda[i]);
+        if (rotor_split_.active() && spins(i, 0)) {
+          gyrostat::enter<T>(F, c, rotor_split_.h<T>(0, i), rotor_split_.h<T>(1, i), mass.Lambda, mass.Lambda_inv,
+                             T(0.5 * hs));
+        }
         const Vec3T<T> v_w = F == Formulation::body ? rotate<T>(c.q, c.v) : c.v;
         c.o += T(hs) * v_w;
         const Vec3T<T> w_b = F == Formulation::world ? rotate_inverse<T>(c.q, c.omega) : c.omega;
@@ -625,9 +678,13 @@ class StrangTangent {
         c.q = flow.q;
         c.omega = F == Formulation::world ? rotate<T>(c.q, flow.omega_b) : flow.omega_b;
         if (F == Formulation::body) c.v = rotate_inverse<T>(c.q, v_w);
+        if (rotor_split_.active() && spins(i, 2)) {
+          gyrostat::leave<T>(F, c, rotor_split_.h<T>(1, i), rotor_split_.h<T>(2, i), mass.Lambda, mass.Lambda_inv,
+                             T(0.5 * hs));
+        }
       }
       x.t += hs;
-      const std::span<const WrenchT<T>> end = rates_.loads(model, F, x);
+      const std::span<const WrenchT<T>> end = rates_.loads(kicked, F, x);
       loads_.assign(end.begin(), end.end());
       kick_all(0.5 * hs, loads_);
       remember(x);
@@ -663,6 +720,7 @@ class StrangTangent {
   }
 
   TangentRates rates_;
+  gyrostat::RotorSplit rotor_split_;
   std::vector<WrenchT<TangentScalar>> loads_;  // the loads of the next kick
   std::vector<Coordinates<double>> left_;      // the values the last substep left, at t_
   double t_ = std::numeric_limits<double>::quiet_NaN();

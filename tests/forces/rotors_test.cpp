@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <complex>
+#include <tuple>
 
 #include <fmt/format.h>
 
@@ -58,12 +59,9 @@ TEST(Rotors, AnAxisymmetricGyrostatFollowsItsClosedFormAtEachIntegratorsOrder) {
   const SystemState end = simulate(top.model, top.s0, end_only("rk4", T, 1e-3));
   EXPECT_LT((end.bodies[0].omega_b() - exact).norm(), 1e-9);
   // Every fixed-step integrator: halving h divides the error by 2^order (within a factor 1.6 either way,
-  // the next order's share at these steps). The splittings kick a velocity-dependent torque with the
-  // velocities at the kick's start, first order in it (docs/ARCHITECTURE.md; the exact gyrostat flow
-  // as their drift is docs/research/gyrostat-exact-flow.md, not built yet).
-  for (const std::string name :
-       {"euler", "semi_implicit_euler", "midpoint", "lie_rk4", "splitting", "splitting4", "implicit_gyro"}) {
-    const int order = name.starts_with("splitting") ? 1 : make_integrator(name)->order();
+  // the next order's share at these steps).
+  for (const std::string name : {"euler", "semi_implicit_euler", "midpoint", "lie_rk4", "implicit_gyro"}) {
+    const int order = make_integrator(name)->order();
     double error[2];
     for (int k = 0; k < 2; ++k) {
       const double h = (order >= 4 ? 2e-2 : 4e-3) / (1 << k);
@@ -72,6 +70,16 @@ TEST(Rotors, AnAxisymmetricGyrostatFollowsItsClosedFormAtEachIntegratorsOrder) {
     const double ratio = error[0] / error[1], expected = std::pow(2.0, order);
     EXPECT_GT(ratio, expected / 1.6) << name << ": errors " << error[0] << ", " << error[1];
     EXPECT_LT(ratio, expected * 1.6) << name << ": errors " << error[0] << ", " << error[1];
+  }
+  // The splittings split the gyrostat's Hamiltonian into the free body's and −Λ⁻¹h·M
+  // (src/integrate/gyrostat_split.hpp): here the two commute (h and M₃ lie on the symmetry axis, which
+  // the free flow of an axisymmetric body keeps), so the splitting is exact at any step: rounding only,
+  // at most n ε |ω| over n = 10³ steps, 3e-13.
+  for (const std::string name : {"splitting", "splitting4"}) {
+    for (const double h : {4e-3, 2e-2}) {
+      const Vec3 omega = simulate(top.model, top.s0, end_only(name, T, h)).bodies[0].omega_b();
+      EXPECT_LT((omega - exact).norm(), 3e-13) << name << ", h = " << h;
+    }
   }
   // The exact integrator solves torque-free motion only: the rotors' torque is refused by name.
   try {
@@ -82,33 +90,84 @@ TEST(Rotors, AnAxisymmetricGyrostatFollowsItsClosedFormAtEachIntegratorsOrder) {
   }
 }
 
-TEST(Rotors, ThreeWheelsOffTheSpinAgreeWithAHighPrecisionReference) {
-  // Moments (1, 2, 3), three wheels along the principal axes giving h = (0.3, −0.4, 0.5) kg m²/s (not
-  // along any axis of the motion), ω(0) = (0.2, 1, −0.3) rad/s, R(0) = I. Reference: the Taylor series
-  // of Euler's gyrostat equation and of Ṙ = R[ω]× at 40 digits (docs/research/gyrostat_closed_form.py,
-  // taylor_reference, itself checked there against the closed form to 1e-33), at t = 10 s.
+/// Moments (1, 2, 3), three wheels along the principal axes giving h = (0.3, −0.4, 0.5) kg m²/s (not
+/// along any axis of the motion), ω(0) = (0.2, 1, −0.3) rad/s, R(0) = I. Reference: the Taylor series
+/// of Euler's gyrostat equation and of Ṙ = R[ω]× at 40 digits (docs/research/gyrostat_closed_form.py,
+/// taylor_reference, itself checked there against the closed form to 1e-33), at t = 10 s.
+struct ThreeWheels {
   Model model;
-  model.add_body(RigidBody::from_principal_moments(5.0, Vec3(1.0, 2.0, 3.0), "sat"));
-  model.forces.push_back(std::make_shared<const Rotors>(
-      std::vector<Rotor>{{"wheel_x", 0, Vec3::UnitX(), 0.01, 30.0, 0.0, 0.0, 0.0, {}},
-                         {"wheel_y", 0, Vec3::UnitY(), 0.01, -40.0, 0.0, 0.0, 0.0, {}},
-                         {"wheel_z", 0, Vec3::UnitZ(), 0.01, 50.0, 0.0, 0.0, 0.0, {}}},
-      model.bodies));
   SystemState s0;
-  BodyState b;
-  b.omega_w = Vec3(0.2, 1.0, -0.3);
-  s0.bodies.push_back(b);
-  const Vec3 omega_ref(-0.08459671989577450312, 0.8422472705484546610, -0.5428573985527053390);
+  Vec3 omega_ref{-0.08459671989577450312, 0.8422472705484546610, -0.5428573985527053390};
   Mat3 R_ref;
-  R_ref << -0.115572960183055955510729, 0.854135560926931280837516, 0.5070456926496489079310635,
-      -0.07683706307310952457673285, 0.5012491056559895004555455, -0.8618847949797987144481655,
-      -0.9903226527818217848915208, -0.1385704789596512019130414, 0.007698425038156319724507643;
+  ThreeWheels() {
+    model.add_body(RigidBody::from_principal_moments(5.0, Vec3(1.0, 2.0, 3.0), "sat"));
+    model.forces.push_back(std::make_shared<const Rotors>(
+        std::vector<Rotor>{{"wheel_x", 0, Vec3::UnitX(), 0.01, 30.0, 0.0, 0.0, 0.0, {}},
+                           {"wheel_y", 0, Vec3::UnitY(), 0.01, -40.0, 0.0, 0.0, 0.0, {}},
+                           {"wheel_z", 0, Vec3::UnitZ(), 0.01, 50.0, 0.0, 0.0, 0.0, {}}},
+        model.bodies));
+    BodyState b;
+    b.omega_w = Vec3(0.2, 1.0, -0.3);
+    s0.bodies.push_back(b);
+    R_ref << -0.115572960183055955510729, 0.854135560926931280837516, 0.5070456926496489079310635,
+        -0.07683706307310952457673285, 0.5012491056559895004555455, -0.8618847949797987144481655,
+        -0.9903226527818217848915208, -0.1385704789596512019130414, 0.007698425038156319724507643;
+  }
+  /// The attitude error of a state at t = 10 s (rad).
+  double attitude_error(const BodyState& b) const { return Eigen::AngleAxisd(b.R() * R_ref.transpose()).angle(); }
+};
+
+TEST(Rotors, ThreeWheelsOffTheSpinAgreeWithAHighPrecisionReference) {
+  const ThreeWheels w;
   // The target for rk4 at h = 1e-3 is 1e-9 rad; its error is ~T |ω|⁵ h⁴ ≈ 1e-11 here, which
   // bounds it (measured: 1.0e-14 rad/s in ω, 9.9e-14 rad in attitude).
-  const SystemState end = simulate(model, s0, end_only("rk4", 10.0, 1e-3));
-  EXPECT_LT((end.bodies[0].omega_b() - omega_ref).norm(), 1e-11);
-  const Mat3 dR = end.bodies[0].R() * R_ref.transpose();
-  EXPECT_LT(Eigen::AngleAxisd(dR).angle(), 1e-11) << "rad";
+  const SystemState end = simulate(w.model, w.s0, end_only("rk4", 10.0, 1e-3));
+  EXPECT_LT((end.bodies[0].omega_b() - w.omega_ref).norm(), 1e-11);
+  EXPECT_LT(w.attitude_error(end.bodies[0]), 1e-11) << "rad";
+}
+
+TEST(Rotors, TheSplittingsKeepTheirOrderAndTheTotalMomentumExactly) {
+  // The gyrostat split into the free body and −Λ⁻¹h·M (src/integrate/gyrostat_split.hpp): both flows
+  // exact, so splitting is second order and splitting4 fourth against the reference (halving h divides
+  // the error by 2^order, within a factor 1.6 either way), in every formulation.
+  const ThreeWheels w;
+  for (const Formulation F : {Formulation::world, Formulation::mixed, Formulation::body}) {
+    for (const auto& [name, order, h0] : {std::tuple{"splitting", 2, 1e-2}, std::tuple{"splitting4", 4, 5e-2}}) {
+      double error[2];
+      for (int k = 0; k < 2; ++k) {
+        const SystemState end = simulate(w.model, w.s0, end_only(name, 10.0, h0 / (1 << k), F));
+        error[k] = std::max((end.bodies[0].omega_b() - w.omega_ref).norm(), w.attitude_error(end.bodies[0]));
+      }
+      const double ratio = error[0] / error[1], expected = std::pow(2.0, order);
+      EXPECT_GT(ratio, expected / 1.6) << name << ": errors " << error[0] << ", " << error[1];
+      EXPECT_LT(ratio, expected * 1.6) << name << ": errors " << error[0] << ", " << error[1];
+    }
+  }
+  // Each part keeps L = R (Λω + h) (the free flow rotates the body with M, the other turns the body one
+  // way and M the other), so L changes by rounding only: a fresh free flow every step rounds it by
+  // about ε. The target is 1e-13 relative over 100 s with constant h (10⁴ steps; 7.1e-14 is
+  // measured). With a motor spinning one wheel up (h(t) frozen mid-step, converted to and from ω with
+  // h at the step's ends) L is still exact but for rounding, and each conversion rounds h's share by ε:
+  // at most 2 n ε |h|/|L| over n steps (7e-13 here; 1.2e-13 is measured).
+  Model driven = w.model;
+  driven.forces = {std::make_shared<const Rotors>(
+      std::vector<Rotor>{{"wheel_x", 0, Vec3::UnitX(), 0.01, 30.0, 0.002, 0.0, 0.0, {}},
+                         {"wheel_y", 0, Vec3::UnitY(), 0.01, -40.0, 0.0, 0.0, 0.0, {}},
+                         {"wheel_z", 0, Vec3::UnitZ(), 0.01, 50.0, 0.0, 0.0, 0.0, {}}},
+      driven.bodies)};
+  const double n = 1e4, h_max = Vec3(0.5, -0.4, 0.5).norm();  // wheel_x reaches 50 rad/s
+  for (const Model* m : {&w.model, static_cast<const Model*>(&driven)}) {
+    const Vec3 L0 = invariants(*m, w.s0).angular_momentum;
+    double worst = 0.0;
+    RunSettings settings = end_only("splitting", 100.0, 1e-2);
+    settings.output_interval = 1.0;
+    (void)simulate(*m, w.s0, settings, [&](const SystemState& s) {
+      worst = std::max(worst, (invariants(*m, s).angular_momentum - L0).norm() / L0.norm());
+      return true;
+    });
+    const double bound = m == &driven ? 2 * n * 1.1102230246251565e-16 * h_max / L0.norm() : 1e-13;
+    EXPECT_LT(worst, bound) << (m == &driven ? "with a motor" : "without");
+  }
 }
 
 TEST(Rotors, ThreeWheelsSlewTheBodyRestToRestAboutAFixedAxis) {
@@ -257,20 +316,28 @@ TEST(Rotors, ABodyStepsTheSameOnPacksOfManyAsAlone) {
 }
 
 TEST(Rotors, TheirStateTransitionMatrixIsThatOfCentralDifferences) {
+  // rk4 on the axisymmetric gyrostat; the splittings, whose flows carry the rotors
+  // (gyrostat_split.hpp, the same templates on dual numbers), on the three wheels.
   Top top;
   top.s0.bodies[0].q = Quat(Eigen::AngleAxisd(0.4, Vec3(1, 1, 0).normalized()));
-  const RunSettings settings = end_only("rk4", 0.5, 2e-3);
-  Sensitivities last;
-  (void)simulate_sensitivities(top.model, top.s0, settings, SensitivityParameters::inertia,
-                               [&](const SystemState&, const Sensitivities& s) {
-                                 last = s;
-                                 return true;
-                               });
-  const Eigen::MatrixXd fd = stm_by_central_differences(top.model, top.s0, settings, 1e-6);
-  const Eigen::MatrixXd fd2 = stm_by_central_differences(top.model, top.s0, settings, 2e-6);
-  // As in tests/sim/sensitivities_test.cpp: within the differences' own error plus their rounding.
-  EXPECT_LT((last.stm - fd).cwiseAbs().maxCoeff(), (fd - fd2).cwiseAbs().maxCoeff() + 1e-8);
-  EXPECT_GT((last.stm - Eigen::MatrixXd::Identity(12, 12)).cwiseAbs().maxCoeff(), 0.1) << "not the identity";
+  ThreeWheels wheels;
+  wheels.s0.bodies[0].q = top.s0.bodies[0].q;
+  for (const auto& [name, model, s0] : {std::tuple{"rk4", &top.model, &top.s0},
+                                        std::tuple{"splitting", &wheels.model, &wheels.s0},
+                                        std::tuple{"splitting4", &wheels.model, &wheels.s0}}) {
+    const RunSettings settings = end_only(name, 0.5, 2e-3);
+    Sensitivities last;
+    (void)simulate_sensitivities(*model, *s0, settings, SensitivityParameters::inertia,
+                                 [&](const SystemState&, const Sensitivities& s) {
+                                   last = s;
+                                   return true;
+                                 });
+    const Eigen::MatrixXd fd = stm_by_central_differences(*model, *s0, settings, 1e-6);
+    const Eigen::MatrixXd fd2 = stm_by_central_differences(*model, *s0, settings, 2e-6);
+    // As in tests/sim/sensitivities_test.cpp: within the differences' own error plus their rounding.
+    EXPECT_LT((last.stm - fd).cwiseAbs().maxCoeff(), (fd - fd2).cwiseAbs().maxCoeff() + 1e-8) << name;
+    EXPECT_GT((last.stm - Eigen::MatrixXd::Identity(12, 12)).cwiseAbs().maxCoeff(), 0.1) << "not the identity";
+  }
 }
 
 TEST(Rotors, ScenesDescribeThemAndBadOnesAreRefusedWithTheirPlace) {
