@@ -10,6 +10,10 @@
 // changes L_w by hτ, so L_w is conserved exactly (to rounding) when no torque acts, and the free-body
 // energy is exact. Velocity-dependent forces (damping, drag) are kicked with the velocities at the
 // start of the kick: first order in them.
+// Rotors (forces/rotors.hpp) are not kicked: their torque −ω × h − ḣ is velocity-dependent, and the
+// gyrostat splits into two exact flows instead, the free one of ω₁ = ω + Λ⁻¹h and a turn about −Λ⁻¹h
+// (gyrostat_split.hpp), so that the step stays second order and keeps L to rounding: the kicks load the
+// bodies with the model's other forces, and the drift of a body with rotors is wrapped in those turns.
 // splitting4 is Yoshida's fourth-order composition S(w₁h) S(w₀h) S(w₁h), w₁ = 1/(2 − 2^⅓),
 // w₀ = 1 − 2w₁ (the middle step runs backwards in time; the exact flow handles that).
 //
