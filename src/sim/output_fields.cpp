@@ -42,6 +42,20 @@ void reference_euler_zxz(const ReferenceFrameState& r, double* out) {
   put(euler_zxz(r.orientation.toRotationMatrix()), out);
 }
 void reference_mrp(const ReferenceFrameState& r, double* out) { put(mrp(r.orientation), out); }
+
+/// A field with no value at this state (field_of_row and fields_of_row say which row and when).
+struct UndefinedField : Error {
+  using Error::Error;
+};
+void reference_crp(const ReferenceFrameState& r, double* out) {
+  const std::optional<Vec3> g = crp(r.orientation);
+  if (!g) {
+    throw UndefinedField(
+        "output field 'crp': the attitude is a half turn, where the classical Rodrigues parameters are "
+        "infinite; ask for 'mrp' (which switches to its shadow set there) or 'axis_angle'");
+  }
+  put(*g, out);
+}
 void reference_axis_angle(const ReferenceFrameState& r, double* out) {
   const AxisAngle a = axis_angle(r.orientation);
   put(a.axis, out);
@@ -186,6 +200,16 @@ constexpr BodyField kBodyFields[] = {
      via_reference<reference_mrp>,
      [](const ParticleState&, double* out) { put(Vec3::Zero(), out); },
      reference_mrp},
+    {"crp",
+     3,
+     {"crp1", "crp2", "crp3"},
+     "1",
+     "reference -> world",
+     "classical Rodrigues parameters g = tan(angle/2) axis of R_ref (the Gibbs vector); infinite at a half "
+     "turn: a sample there stops the run with an error",
+     via_reference<reference_crp>,
+     [](const ParticleState&, double* out) { put(Vec3::Zero(), out); },
+     reference_crp},
     // Relative to the orbit frame of the centre of mass about the central body (gravity_gradient).
     {"euler_zyx_lvlh",
      3,
@@ -400,8 +424,17 @@ void orbit_field(const BodyField& field, const Model& model, const SystemState& 
 
 }  // namespace
 
+namespace {
+/// An UndefinedField's message with the row and the time.
+[[noreturn]] void rethrow_with_row(const UndefinedField& e, const Model& model, const SystemState& state, size_t r) {
+  const size_t n = model.bodies.size();
+  throw Error(fmt::format("'{}' at t = {} s: {}", r < n ? model.bodies[r].name() : model.particles[r - n].name,
+                          state.t, e.what()));
+}
+}  // namespace
+
 void field_of_row(const BodyField& field, const Model& model, const SystemState& state, size_t r,
-                  double* out) {
+                  double* out) try {
   const size_t n = model.bodies.size();
   if (field.of_orbit) {
     orbit_field(field, model, state, r, reference_of_row(model, state, r), out);
@@ -410,10 +443,12 @@ void field_of_row(const BodyField& field, const Model& model, const SystemState&
   } else {
     field.of_particle(state.particles[r - n], out);
   }
+} catch (const UndefinedField& e) {
+  rethrow_with_row(e, model, state, r);
 }
 
 void fields_of_row(std::span<const BodyField* const> fields, const Model& model, const SystemState& state,
-                   size_t r, double* out) {
+                   size_t r, double* out) try {
   std::optional<ReferenceFrameState> reference;
   for (const BodyField* f : fields) {
     if ((f->of_reference && r < model.bodies.size()) || f->of_orbit) {
@@ -428,6 +463,8 @@ void fields_of_row(std::span<const BodyField* const> fields, const Model& model,
     }
     out += f->width;
   }
+} catch (const UndefinedField& e) {
+  rethrow_with_row(e, model, state, r);
 }
 
 AngleUnwrapper::AngleUnwrapper(std::span<const BodyField* const> fields, size_t rows)

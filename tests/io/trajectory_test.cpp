@@ -439,6 +439,35 @@ TEST(OutputFields, ARowOfEveryFieldHasTheValuesOfEachFieldAlone) {
   }
 }
 
+TEST(OutputFields, AFieldWithoutAValueNamesTheRowAndTheTime) {
+  // crp (classical Rodrigues parameters) is infinite at a half turn: the sample there is an error that
+  // names the body and the time and what to ask for instead, never an infinity written.
+  Model model;
+  model.add_body(RigidBody::from_principal_moments(1.0, Vec3(1.0, 2.0, 3.0), "box"));
+  SystemState x{2.5, {BodyState{}}, {}};
+  x.bodies[0].q = Quat(0.0, 0.0, 1.0, 0.0);  // a half turn about y
+  double out[3];
+  for (const bool together : {false, true}) {
+    try {
+      const auto fields = body_fields({"crp"});
+      if (together) {
+        fields_of_row(fields, model, x, 0, out);
+      } else {
+        field_of_row(*fields[0], model, x, 0, out);
+      }
+      ADD_FAILURE() << "no error";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("'box' at t = 2.5 s: output field 'crp': the attitude is a half turn"),
+                std::string::npos)
+          << e.what();
+      EXPECT_NE(std::string(e.what()).find("'mrp'"), std::string::npos) << e.what();
+    }
+  }
+  x.bodies[0].q = Quat(Eigen::AngleAxisd(2.0, Vec3::UnitY()));
+  field_of_row(*body_fields({"crp"})[0], model, x, 0, out);
+  EXPECT_NEAR(out[1], std::tan(1.0), 1e-15 * (1 + std::tan(1.0) * std::tan(1.0)));
+}
+
 TEST(OutputFields, UnknownAndRepeatedFieldsAreRefusedByName) {
   try {
     body_fields({"position", "speed"});

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 #include "../support/random.hpp"
 #include "tumble/math/rotations.hpp"
@@ -191,6 +192,27 @@ TEST(Rotations, ModifiedRodriguesParametersSwitchToTheShadowSetThroughHalfATurn)
   const Vec3 after = mrp(Quat(Eigen::AngleAxisd(pi + 1e-9, axis)));
   EXPECT_NEAR(before.norm(), 1.0, 1e-9);
   EXPECT_NEAR((before + after).norm(), 0.0, 1e-9);  // the jump to the antipode
+}
+
+// CRPs: g = tan(angle/2) axis = q_v/q_w, one division (1e-15 relative bounds its rounding, and tan's
+// of the reference), the same for q and −q; none at a half turn.
+TEST(Rotations, ClassicalRodriguesParametersAreTheHalfAngleTangentAlongTheAxis) {
+  test::Random rng(12);
+  for (int k = 0; k < 2000; ++k) {
+    const Quat q(rng.rotation());
+    const std::optional<Vec3> g = crp(q);
+    ASSERT_TRUE(g) << k;
+    const AxisAngle a = axis_angle(q);
+    const Vec3 expected = std::tan(a.angle / 2) * a.axis;
+    // tan near π/2 amplifies the rounding of the angle: relative to |g|(1 + |g|²).
+    EXPECT_LT((*g - expected).norm(), 1e-15 * (1.0 + g->squaredNorm()) * std::max(1.0, g->norm())) << k;
+    EXPECT_EQ(*crp(Quat(-q.coeffs())), *g) << k;  // q and −q: one rotation, one g
+    // g = 2σ/(1 − |σ|²) (both tangents of the same angle, at half and quarter)
+    const Vec3 sigma = mrp(q);
+    EXPECT_LT((*g - 2.0 * sigma / (1.0 - sigma.squaredNorm())).norm(), 1e-14 * (1.0 + g->squaredNorm())) << k;
+  }
+  EXPECT_FALSE(crp(Quat(0.0, 1.0, 0.0, 0.0)));  // a half turn about x
+  EXPECT_NEAR(crp(Quat(Eigen::AngleAxisd(pi / 2, Vec3::UnitZ())))->z(), 1.0, 2.3e-16);  // tan(π/4)
 }
 
 }  // namespace

@@ -1,4 +1,5 @@
 #pragma once
+#include <optional>
 // Other descriptions of a rotation R (a unit quaternion q, w first, in tumble): Euler angles in two
 // named conventions, axis–angle and modified Rodrigues parameters. Used for output columns and for orientations given in scenes.
 //
@@ -11,6 +12,7 @@
 //  - Axis–angle: R = exp(angle [axis]×), angle ∈ [0, π], |axis| = 1; at angle = 0 the axis is
 //    arbitrary and given as (1, 0, 0).
 //  - Modified Rodrigues parameters (spacecraft attitude): σ = tan(angle/4) axis, |σ| ≤ 1 (mrp()).
+//  - Classical Rodrigues parameters: g = tan(angle/2) axis, infinite at a half turn (crp()).
 // Rotations are active and map the rotated frame's coordinates to the fixed frame's: x_w = R x.
 #include <algorithm>
 #include <cmath>
@@ -87,6 +89,14 @@ struct AxisAngle {
 [[nodiscard]] inline Vec3 mrp(const Quat& q) {
   const double sign = q.w() < 0 ? -1.0 : 1.0;
   return sign * q.vec() / (1.0 + sign * q.w());
+}
+
+/// Classical Rodrigues parameters (Gibbs vector) g = q_v / q_w = tan(angle/2) axis: the same for q and
+/// −q, infinite at a half turn (q_w = 0), where nullopt. Near it they grow without bound, which is why
+/// spacecraft software prefers the MRPs above.
+[[nodiscard]] inline std::optional<Vec3> crp(const Quat& q) {
+  if (q.w() == 0.0) return std::nullopt;
+  return Vec3(q.vec() / q.w());
 }
 
 /// The rotation σ describes, for any σ (a set and its shadow give the same rotation):
