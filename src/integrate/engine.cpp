@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <type_traits>
 
 #include "tumble/integrate/integrator.hpp"
 
@@ -144,17 +145,37 @@ Block Engine::local_loads(const BodyColumnsRef& y, double t, size_t begin, size_
       view.v[k] = v_world ? y.at(BodyColumnsRef::v + k, begin) : s.world[k];
       view.omega_w[k] = omega_world ? y.at(BodyColumnsRef::omega + k, begin) : s.world[3 + k];
     }
-    for (size_t j = 0; j < count; ++j) {
-      const Quat q = y.quat(begin + j);
-      if (!v_world) {
-        const Vec3 v = q * y.vec3(BodyColumnsRef::v, begin + j);
-        for (size_t k = 0; k < 3; ++k) s.world[k][j] = v(static_cast<Eigen::Index>(k));
+    // A pack of bodies at a time, then the last few alone: rotate<T> is Eigen's formula for q * v on
+    // any number type, so a body's world velocities are the same bits wherever it sits in the block.
+    const auto rotate_into = [&](auto tag, size_t j, size_t from, double* const* to) {
+      using T = decltype(tag);
+      const auto load = [&](size_t c) -> T {
+        if constexpr (std::is_same_v<T, double>) {
+          return y.at(c, begin)[j];
+        } else {
+          return T::load_unaligned(y.at(c, begin) + j);
+        }
+      };
+      const QuatT<T> q(load(BodyColumnsRef::q), load(BodyColumnsRef::q + 1), load(BodyColumnsRef::q + 2),
+                       load(BodyColumnsRef::q + 3));
+      const Vec3T<T> r = rotate<T>(q, Vec3T<T>(load(from), load(from + 1), load(from + 2)));
+      for (size_t k = 0; k < 3; ++k) {
+        if constexpr (std::is_same_v<T, double>) {
+          to[k][j] = r(static_cast<Eigen::Index>(k));
+        } else {
+          r(static_cast<Eigen::Index>(k)).store_unaligned(to[k] + j);
+        }
       }
-      if (!omega_world) {
-        const Vec3 w = q * y.vec3(BodyColumnsRef::omega, begin + j);
-        for (size_t k = 0; k < 3; ++k) s.world[3 + k][j] = w(static_cast<Eigen::Index>(k));
-      }
-    }
+    };
+    double* const v_to[3] = {s.world[0], s.world[1], s.world[2]};
+    double* const omega_to[3] = {s.world[3], s.world[4], s.world[5]};
+    const auto rotate_body = [&](auto tag, size_t j) {
+      if (!v_world) rotate_into(tag, j, BodyColumnsRef::v, v_to);
+      if (!omega_world) rotate_into(tag, j, BodyColumnsRef::omega, omega_to);
+    };
+    size_t j = 0;
+    for (; j + kWidth <= count; j += kWidth) rotate_body(Pack(), j);
+    for (; j < count; ++j) rotate_body(0.0, j);
   }
   BlockLoads loads;
   Block block;
