@@ -582,7 +582,7 @@ const std::vector<Case>& catalogue() {
        "tumble: error: s.toml:8:10: [output]: unknown output field 'spin': the fields are position, "
        "orientation, velocity, angular_velocity, com_position, com_velocity, angular_velocity_reference, "
        "angular_velocity_principal, orientation_principal, euler_zyx, euler_zxz, axis_angle, mrp, "
-       "euler_zyx_lvlh, mrp_lvlh, angular_velocity_lvlh"},
+       "crp, euler_zyx_lvlh, mrp_lvlh, angular_velocity_lvlh"},
       {"scene: repeated output field",
        {{"s.toml", std::string("[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = "
                                "\"box\", size = [1, 2, 3] }\ndensity = 1000\n[output]\nfields = "
@@ -1409,7 +1409,7 @@ const std::vector<Case>& catalogue() {
        "tumble: error: unknown output field 'spin': the fields are position, orientation, velocity, "
        "angular_velocity, com_position, com_velocity, angular_velocity_reference, "
        "angular_velocity_principal, orientation_principal, euler_zyx, euler_zxz, axis_angle, mrp, "
-       "euler_zyx_lvlh, mrp_lvlh, angular_velocity_lvlh"},
+       "crp, euler_zyx_lvlh, mrp_lvlh, angular_velocity_lvlh"},
       {"cli: orbit-frame field without a central body",
        {{"s.toml", std::string("[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = "
                                "\"box\", size = [1, 2, 3] }\ndensity = 1000\n")}},
@@ -1418,6 +1418,14 @@ const std::vector<Case>& catalogue() {
        "tumble: error: output field 'mrp_lvlh' is relative to the orbit frame (LVLH) of each body about its "
        "central body, and the system has none: add a gravity_gradient force (the central body's gravity), or "
        "choose a field in world axes"},
+      {"cli: crp at a half turn",
+       {{"s.toml", std::string("[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = "
+                               "\"box\", size = [1, 2, 3] }\ndensity = 1000\norientation = [0, 0, 1, 0]\n")}},
+       "{t} run s.toml --fields crp -o out.csv",
+       1,
+       "tumble: error: 'a' at t = 0 s: output field 'crp': the attitude is a half turn, where the classical "
+       "Rodrigues parameters are infinite; ask for 'mrp' (which switches to its shadow set there) or "
+       "'axis_angle'"},
       {"cli: negative drift threshold",
        {{"s.toml", std::string("[simulation]\nduration = 0.01\n[[bodies]]\nname = \"a\"\nshape = { type = "
                                "\"box\", size = [1, 2, 3] }\ndensity = 1000\n",
