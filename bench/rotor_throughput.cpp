@@ -28,8 +28,15 @@ int main(int argc, char** argv) {
   std::vector<Rotor> rotors;
   for (long i = 0; i < n; ++i) {
     for (int k = 0; k < 3; ++k) {
-      rotors.push_back(
-          {fmt::format("w{}_{}", i, k), static_cast<size_t>(i), Vec3::Unit(k), 1e-3, 100.0, 1e-4, 0.0, 0.0, {}});
+      rotors.push_back({fmt::format("w{}_{}", i, k),
+                        static_cast<size_t>(i),
+                        Vec3::Unit(k),
+                        1e-3,
+                        100.0,
+                        1e-4,
+                        0.0,
+                        0.0,
+                        {}});
     }
   }
   wheels.forces.push_back(std::make_shared<const Rotors>(std::move(rotors), wheels.bodies));

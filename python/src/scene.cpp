@@ -174,7 +174,8 @@ std::shared_ptr<const ForceModel> python_controller(const Model& model, py::func
   if (!rotors) throw InvalidArgument("controller: the scene has no [[rotors]] for it to drive");
   const size_t R = rotors->rotors().size();
   return rotors->controlled_by(
-      {interval, [f = std::move(f), R](const SystemView& v, std::span<const double> speeds, std::span<double> u) {
+      {interval,
+       [f = std::move(f), R](const SystemView& v, std::span<const double> speeds, std::span<double> u) {
          py::gil_scoped_acquire python;
          const py::tuple a = body_arrays(v.body_states);
          py::array_t<double> Omega(static_cast<py::ssize_t>(R));
@@ -192,10 +193,11 @@ std::shared_ptr<const ForceModel> python_controller(const Model& model, py::func
          } catch (const py::cast_error&) {
          }
          if (!torques || torques.ndim() != 1 || static_cast<size_t>(torques.size()) != R) {
-           throw InvalidArgument(py::str("controller: at t = {} s it returned {!r}; it must return the {} rotors' "
-                                         "torques (N m), one per [[rotors]] in the scene's order")
-                                     .format(v.t, result, R)
-                                     .cast<std::string>());
+           throw InvalidArgument(
+               py::str("controller: at t = {} s it returned {!r}; it must return the {} rotors' "
+                       "torques (N m), one per [[rotors]] in the scene's order")
+                   .format(v.t, result, R)
+                   .cast<std::string>());
          }
          std::copy_n(torques.data(), R, u.begin());
        }});
@@ -369,9 +371,9 @@ py::dict simulate(const Scene& scene_in, const py::dict& settings,
   if (force || controller) with_force.emplace(scene_in);
   if (controller) {
     const py::object interval = (*controller)[1];  // None: every step
-    const auto law = python_controller(
-        scene_in.model, (*controller)[0].cast<py::function>(),
-        interval.is_none() ? settings_with(scene_in, settings).timestep : interval.cast<double>());
+    const auto law = python_controller(scene_in.model, (*controller)[0].cast<py::function>(),
+                                       interval.is_none() ? settings_with(scene_in, settings).timestep
+                                                          : interval.cast<double>());
     for (auto& f : with_force->model.forces)
       if (dynamic_cast<const Rotors*>(f.get())) f = law;
     with_force->conserved.energy = false;

@@ -44,8 +44,8 @@ Rotors::Rotors(std::vector<Rotor> rotors, std::span<const RigidBody> bodies)
     }
     if (!std::isfinite(r.speed) || !std::isfinite(r.torque) || !(r.max_speed >= 0.0) ||
         !std::isfinite(r.max_speed) || !(r.max_torque >= 0.0) || !std::isfinite(r.max_torque)) {
-      throw InvalidArgument(fmt::format(
-          "{}: speed, torque, max_speed and max_torque must be finite (the limits >= 0)", name));
+      throw InvalidArgument(
+          fmt::format("{}: speed, torque, max_speed and max_torque must be finite (the limits >= 0)", name));
     }
     for (size_t k = 0; k < r.torque_table.size(); ++k) {
       const auto [t, u] = r.torque_table[k];
@@ -54,8 +54,8 @@ Rotors::Rotors(std::vector<Rotor> rotors, std::span<const RigidBody> bodies)
             "{}: torque table row {} ({}, {}): give finite (t, u) rows with t increasing", name, k, t, u));
       }
       if (r.max_torque > 0.0 && std::abs(u) > r.max_torque) {
-        throw InvalidArgument(fmt::format("{}: torque table row {} asks {} N m, beyond its max_torque = {} N m",
-                                          name, k, u, r.max_torque));
+        throw InvalidArgument(fmt::format(
+            "{}: torque table row {} asks {} N m, beyond its max_torque = {} N m", name, k, u, r.max_torque));
       }
     }
     if (!r.torque_table.empty() && r.max_speed > 0.0) {
@@ -67,8 +67,8 @@ Rotors::Rotors(std::vector<Rotor> rotors, std::span<const RigidBody> bodies)
           fmt::format("{}: speed = {} rad/s is beyond its max_speed = {} rad/s", name, r.speed, r.max_speed));
     }
     if (r.max_torque > 0.0 && std::abs(r.torque) > r.max_torque) {
-      throw InvalidArgument(fmt::format("{}: torque = {} N m is beyond its max_torque = {} N m", name,
-                                        r.torque, r.max_torque));
+      throw InvalidArgument(
+          fmt::format("{}: torque = {} N m is beyond its max_torque = {} N m", name, r.torque, r.max_torque));
     }
     // a_b = Uᵀ a: the axis in the principal frame (the reference frame's axes are R_ref = R Uᵀ).
     axis_b_.push_back((bodies[r.body].U().transpose() * r.axis.normalized()).eval());
@@ -78,7 +78,8 @@ Rotors::Rotors(std::vector<Rotor> rotors, std::span<const RigidBody> bodies)
   for (size_t j = 0; j < rotors_.size(); ++j) by_body_[j] = j;
   std::stable_sort(by_body_.begin(), by_body_.end(),
                    [&](size_t a, size_t b) { return rotors_[a].body < rotors_[b].body; });
-  for (size_t j = 0; j < rotors_.size(); ++j) initial_.push_back(piece(j, 0.0, rotors_[j].speed, rotors_[j].torque));
+  for (size_t j = 0; j < rotors_.size(); ++j)
+    initial_.push_back(piece(j, 0.0, rotors_[j].speed, rotors_[j].torque));
   hold(initial_);
 }
 
@@ -114,7 +115,8 @@ void Rotors::hold(std::vector<Piece> pieces) const {
     c.h0 += (r.moment * p.speed - p.torque * p.t) * axis_b_[j];
     c.h_dot += p.torque * axis_b_[j];
     // A table's torque changes with time: such a body's h is summed rotor by rotor, always.
-    c.t_stop = r.torque_table.empty() ? std::min(c.t_stop, p.t_stop) : -std::numeric_limits<double>::infinity();
+    c.t_stop = r.torque_table.empty() ? std::min(c.t_stop, p.t_stop)
+                                      : -std::numeric_limits<double>::infinity();
   }
   for (const Carrier& c : H.carriers) {
     for (int k = 0; k < 3; ++k) {
@@ -158,8 +160,9 @@ void Rotors::sample_inputs(const SystemView& view, bool first) const {
     const Rotor& r = rotors_[j];
     double u = torques[j];
     if (!std::isfinite(u)) {
-      throw Error(fmt::format("rotor controller: the torque of rotor '{}' at t = {} s is {}: give finite torques",
-                              r.name, view.t, u));
+      throw Error(
+          fmt::format("rotor controller: the torque of rotor '{}' at t = {} s is {}: give finite torques",
+                      r.name, view.t, u));
     }
     if (r.max_torque > 0.0) u = std::clamp(u, -r.max_torque, r.max_torque);  // the motor's saturation
     pieces[j] = piece(j, view.t, speeds[j], u);
@@ -291,9 +294,9 @@ std::optional<double> Rotors::potential_energy(const SystemView&) const {
 
 bool Rotors::motors_work() const {
   return controller_ || std::any_of(rotors_.begin(), rotors_.end(), [](const Rotor& r) {
-    return r.torque != 0.0 || std::any_of(r.torque_table.begin(), r.torque_table.end(),
-                                          [](const auto& row) { return row.second != 0.0; });
-  });
+           return r.torque != 0.0 || std::any_of(r.torque_table.begin(), r.torque_table.end(),
+                                                 [](const auto& row) { return row.second != 0.0; });
+         });
 }
 
 void Rotors::check(size_t n_bodies, size_t) const {
@@ -313,7 +316,8 @@ std::string Rotors::describe(std::span<const RigidBody> bodies) const {
                                r.moment, r.speed, r.torque));
   }
   return fmt::format("rotors {}{}", fmt::join(each, ", "),
-                     controller_ ? fmt::format(", torques by a controller every {} s", controller_->interval) : "");
+                     controller_ ? fmt::format(", torques by a controller every {} s", controller_->interval)
+                                 : "");
 }
 
 const Rotors* rotors_of(const Model& model) {

@@ -369,26 +369,30 @@ class Strang {
   /// reverse. Only the lanes of bodies with rotors change (a = 0 would leave the others as they are only
   /// to rounding of Λ⁻¹(Λω)): the others keep their bits, and so their kept flows.
   void enter_rotors(Formulation F, Coordinates<Pack>& c, double h, size_t i) const {
-    if (!rotor_split_.active()) return;
-    const Vec3T<Pack> h_start = rotor_split_.h<Pack>(0, i), h_mid = rotor_split_.h<Pack>(1, i);
-    const auto spins = nonzero(h_start) || nonzero(h_mid);
-    if (!xsimd::any(spins)) return;
-    Coordinates<Pack> g = c;
-    const MassConstants<Pack> mass = engine_.mass<Pack>(i);
-    gyrostat::enter<Pack>(F, g, h_start, h_mid, mass.Lambda, mass.Lambda_inv, Pack(0.5 * h));
-    blend(spins, g, c);
+    turn_rotors(F, c, h, i, true);
   }
   void leave_rotors(Formulation F, Coordinates<Pack>& c, double h, size_t i) const {
+    turn_rotors(F, c, h, i, false);
+  }
+  /// Entering: h at the step's start and middle; leaving: at its middle and end.
+  void turn_rotors(Formulation F, Coordinates<Pack>& c, double h, size_t i, bool entering) const {
     if (!rotor_split_.active()) return;
-    const Vec3T<Pack> h_mid = rotor_split_.h<Pack>(1, i), h_end = rotor_split_.h<Pack>(2, i);
-    const auto spins = nonzero(h_mid) || nonzero(h_end);
+    const int first = entering ? 0 : 1;
+    const Vec3T<Pack> h_a = rotor_split_.h<Pack>(first, i), h_b = rotor_split_.h<Pack>(first + 1, i);
+    const auto spins = nonzero(h_a) || nonzero(h_b);
     if (!xsimd::any(spins)) return;
     Coordinates<Pack> g = c;
     const MassConstants<Pack> mass = engine_.mass<Pack>(i);
-    gyrostat::leave<Pack>(F, g, h_mid, h_end, mass.Lambda, mass.Lambda_inv, Pack(0.5 * h));
+    if (entering) {
+      gyrostat::enter<Pack>(F, g, h_a, h_b, mass.Lambda, mass.Lambda_inv, Pack(0.5 * h));
+    } else {
+      gyrostat::leave<Pack>(F, g, h_a, h_b, mass.Lambda, mass.Lambda_inv, Pack(0.5 * h));
+    }
     blend(spins, g, c);
   }
-  static Mask nonzero(const Vec3T<Pack>& v) { return v.x() != Pack(0.0) || v.y() != Pack(0.0) || v.z() != Pack(0.0); }
+  static Mask nonzero(const Vec3T<Pack>& v) {
+    return v.x() != Pack(0.0) || v.y() != Pack(0.0) || v.z() != Pack(0.0);
+  }
   /// c ← g in the lanes of `which`.
   static void blend(const Mask& which, const Coordinates<Pack>& g, Coordinates<Pack>& c) {
     for (Eigen::Index k = 0; k < 3; ++k) {
@@ -623,8 +627,8 @@ class Strang {
 
   engine::Engine engine_;
   gyrostat::RotorSplit rotor_split_;  // the model's rotors, whose torque the flows carry
-  std::vector<FreeFlight> flights_;  // one per body
-  Columns flows_;                    // FlowColumns, one row per body, addressed by at()
+  std::vector<FreeFlight> flights_;   // one per body
+  Columns flows_;                     // FlowColumns, one row per body, addressed by at()
   size_t rj_steps_index_ = rj_steps_index();
   Formulation flights_formulation_ = Formulation::mixed;
   Columns loads_;  // loads at the end of the last step: f (3), τ (3)
@@ -672,8 +676,8 @@ class StrangTangent {
         Coordinates<T>& c = x.bodies[i];
         const MassConstants<T> mass = mass_constants<T>(x.m[i], x.Lambda[i]);
         if (rotor_split_.active() && spins(i, 0)) {
-          gyrostat::enter<T>(F, c, rotor_split_.h<T>(0, i), rotor_split_.h<T>(1, i), mass.Lambda, mass.Lambda_inv,
-                             T(0.5 * hs));
+          gyrostat::enter<T>(F, c, rotor_split_.h<T>(0, i), rotor_split_.h<T>(1, i), mass.Lambda,
+                             mass.Lambda_inv, T(0.5 * hs));
         }
         const Vec3T<T> v_w = F == Formulation::body ? rotate<T>(c.q, c.v) : c.v;
         c.o += T(hs) * v_w;
@@ -683,8 +687,8 @@ class StrangTangent {
         c.omega = F == Formulation::world ? rotate<T>(c.q, flow.omega_b) : flow.omega_b;
         if (F == Formulation::body) c.v = rotate_inverse<T>(c.q, v_w);
         if (rotor_split_.active() && spins(i, 2)) {
-          gyrostat::leave<T>(F, c, rotor_split_.h<T>(1, i), rotor_split_.h<T>(2, i), mass.Lambda, mass.Lambda_inv,
-                             T(0.5 * hs));
+          gyrostat::leave<T>(F, c, rotor_split_.h<T>(1, i), rotor_split_.h<T>(2, i), mass.Lambda,
+                             mass.Lambda_inv, T(0.5 * hs));
         }
       }
       x.t += hs;

@@ -235,8 +235,8 @@ class CsvWriter final : public TrajectoryWriter {
                     kept(continuation, names_.size())),
         samples_(continuation ? continuation->samples : 0) {
     if (!diagnostics.empty())
-      diagnostics_.emplace(diagnostics, header({"t"}, all_system_fields()) + rotor_columns(model), "diagnostics",
-                           kept(continuation, 1));
+      diagnostics_.emplace(diagnostics, header({"t"}, all_system_fields()) + rotor_columns(model),
+                           "diagnostics", kept(continuation, 1));
     if (info_.events && trajectory_.staged().kind() == io::OutputKind::staged) {
       events_.emplace(events_path(trajectory), "t,event,body", "events", kept(continuation, 0));
     }

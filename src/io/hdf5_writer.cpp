@@ -387,7 +387,8 @@ class Hdf5Writer final : public TrajectoryWriter {
     const std::vector<hsize_t> shape{d.rotor_speed.size()};
     rotor_speed_.emplace(diagnostics_.get(), "rotor_speed", shape, planned_samples_, check_);
     string_attribute(rotor_speed_->id(), "unit", "rad/s", check_);
-    string_attribute(rotor_speed_->id(), "meaning", "each rotor's spin relative to its body (rotor_names)", check_);
+    string_attribute(rotor_speed_->id(), "meaning", "each rotor's spin relative to its body (rotor_names)",
+                     check_);
     rotor_torque_.emplace(diagnostics_.get(), "rotor_torque", shape, planned_samples_, check_);
     string_attribute(rotor_torque_->id(), "unit", "N*m", check_);
     string_attribute(rotor_torque_->id(), "meaning",
@@ -428,8 +429,8 @@ class Hdf5Writer final : public TrajectoryWriter {
   std::optional<Series> stm_, parameter_sensitivity_;     ///< when the run carries sensitivities
   std::optional<Series> rotor_speed_, rotor_torque_;      ///< when the model has rotors
   std::vector<std::string> rotor_names_;
-  std::vector<double> row_;                               // one field of every row
-  std::vector<double> all_;                               // every field of every row, row by row
+  std::vector<double> row_;  // one field of every row
+  std::vector<double> all_;  // every field of every row, row by row
   bool watch_events_ = false;
   std::vector<std::string> warnings_;
   std::vector<std::string> event_names_;

@@ -47,7 +47,12 @@ DriftMonitor::DriftMonitor(const Model& model, const SystemState& initial, Conse
 
 DriftMonitor::DriftMonitor(const Model& model, const Invariants& initial, Conservation conserved,
                            double threshold, const RunSettings& settings)
-    : model_(model), rotors_(rotors_of(model)), initial_(initial), conserved_(conserved), threshold_(threshold), settings_(settings) {
+    : model_(model),
+      rotors_(rotors_of(model)),
+      initial_(initial),
+      conserved_(conserved),
+      threshold_(threshold),
+      settings_(settings) {
   // The energy is relative to max(|E₀|, T₀): |E₀| alone can be ~0 by the choice of the potential's
   // zero (a thrown body, a bound orbit near escape), which would make any drift look infinite.
   if (const auto E0 = energy(initial_)) energy_scale_ = std::max(std::abs(*E0), initial_.kinetic_energy);

@@ -16,7 +16,8 @@ double input_interval(const Model& model) {
     if (d <= 0.0) continue;
     if (interval > 0.0 && d != interval) {
       throw InvalidArgument(fmt::format(
-          "two force models sample their inputs every {} s and every {} s: give them one interval", interval, d));
+          "two force models sample their inputs every {} s and every {} s: give them one interval", interval,
+          d));
     }
     interval = d;
   }

@@ -426,10 +426,11 @@ void orbit_field(const BodyField& field, const Model& model, const SystemState& 
 
 namespace {
 /// An UndefinedField's message with the row and the time.
-[[noreturn]] void rethrow_with_row(const UndefinedField& e, const Model& model, const SystemState& state, size_t r) {
+[[noreturn]] void rethrow_with_row(const UndefinedField& e, const Model& model, const SystemState& state,
+                                   size_t r) {
   const size_t n = model.bodies.size();
-  throw Error(fmt::format("'{}' at t = {} s: {}", r < n ? model.bodies[r].name() : model.particles[r - n].name,
-                          state.t, e.what()));
+  throw Error(fmt::format("'{}' at t = {} s: {}",
+                          r < n ? model.bodies[r].name() : model.particles[r - n].name, state.t, e.what()));
 }
 }  // namespace
 

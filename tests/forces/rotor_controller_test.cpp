@@ -56,7 +56,8 @@ std::vector<Sampled> recurrence(const Slew& s, int samples) {
   for (int k = 1; k < samples; ++k) {
     const Sampled& x = out.back();
     const double u = s.Kp * (x.theta - s.target) + s.Kd * x.omega, d = s.interval;
-    out.push_back({x.theta + d * x.omega - d * d * u / (2 * s.C), x.omega - d * u / s.C, x.Omega + d * u / s.J});
+    out.push_back(
+        {x.theta + d * x.omega - d * d * u / (2 * s.C), x.omega - d * u / s.C, x.Omega + d * u / s.J});
   }
   return out;
 }
@@ -204,14 +205,14 @@ TEST(RotorController, WhatItCannotDoIsAClearError) {
   }
   // A torque that is not a number, named with its rotor and time.
   Model model = s.model;
-  model.forces = {open_loop.controlled_by({0.1, [](const SystemView& v, auto, std::span<double> u) {
-    u[0] = v.t > 0.25 ? std::nan("") : 0.1;
-  }})};
+  model.forces = {open_loop.controlled_by(
+      {0.1, [](const SystemView& v, auto, std::span<double> u) { u[0] = v.t > 0.25 ? std::nan("") : 0.1; }})};
   try {
     (void)simulate(model, s.s0, end_only("rk4", 1.0, 1e-2));
     ADD_FAILURE() << "a NaN torque was held";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("torque of rotor 'wheel' at t = 0.3"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("torque of rotor 'wheel' at t = 0.3"), std::string::npos)
+        << e.what();
   }
   // Sensitivities (the law's derivatives are unknown) and run points (the held torques are not in them).
   EXPECT_THROW((void)simulate_sensitivities(s.model, s.s0, end_only("rk4", 1.0, 1e-2),

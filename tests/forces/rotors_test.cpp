@@ -114,7 +114,9 @@ struct ThreeWheels {
         -0.9903226527818217848915208, -0.1385704789596512019130414, 0.007698425038156319724507643;
   }
   /// The attitude error of a state at t = 10 s (rad).
-  double attitude_error(const BodyState& b) const { return Eigen::AngleAxisd(b.R() * R_ref.transpose()).angle(); }
+  double attitude_error(const BodyState& b) const {
+    return Eigen::AngleAxisd(b.R() * R_ref.transpose()).angle();
+  }
 };
 
 TEST(Rotors, ThreeWheelsOffTheSpinAgreeWithAHighPrecisionReference) {
@@ -132,7 +134,8 @@ TEST(Rotors, TheSplittingsKeepTheirOrderAndTheTotalMomentumExactly) {
   // the error by 2^order, within a factor 1.6 either way), in every formulation.
   const ThreeWheels w;
   for (const Formulation F : {Formulation::world, Formulation::mixed, Formulation::body}) {
-    for (const auto& [name, order, h0] : {std::tuple{"splitting", 2, 1e-2}, std::tuple{"splitting4", 4, 5e-2}}) {
+    for (const auto& [name, order, h0] :
+         {std::tuple{"splitting", 2, 1e-2}, std::tuple{"splitting4", 4, 5e-2}}) {
       double error[2];
       for (int k = 0; k < 2; ++k) {
         const SystemState end = simulate(w.model, w.s0, end_only(name, 10.0, h0 / (1 << k), F));
@@ -322,9 +325,9 @@ TEST(Rotors, TheirStateTransitionMatrixIsThatOfCentralDifferences) {
   top.s0.bodies[0].q = Quat(Eigen::AngleAxisd(0.4, Vec3(1, 1, 0).normalized()));
   ThreeWheels wheels;
   wheels.s0.bodies[0].q = top.s0.bodies[0].q;
-  for (const auto& [name, model, s0] : {std::tuple{"rk4", &top.model, &top.s0},
-                                        std::tuple{"splitting", &wheels.model, &wheels.s0},
-                                        std::tuple{"splitting4", &wheels.model, &wheels.s0}}) {
+  for (const auto& [name, model, s0] :
+       {std::tuple{"rk4", &top.model, &top.s0}, std::tuple{"splitting", &wheels.model, &wheels.s0},
+        std::tuple{"splitting4", &wheels.model, &wheels.s0}}) {
     const RunSettings settings = end_only(name, 0.5, 2e-3);
     Sensitivities last;
     (void)simulate_sensitivities(*model, *s0, settings, SensitivityParameters::inertia,
@@ -336,7 +339,8 @@ TEST(Rotors, TheirStateTransitionMatrixIsThatOfCentralDifferences) {
     const Eigen::MatrixXd fd2 = stm_by_central_differences(*model, *s0, settings, 2e-6);
     // As in tests/sim/sensitivities_test.cpp: within the differences' own error plus their rounding.
     EXPECT_LT((last.stm - fd).cwiseAbs().maxCoeff(), (fd - fd2).cwiseAbs().maxCoeff() + 1e-8) << name;
-    EXPECT_GT((last.stm - Eigen::MatrixXd::Identity(12, 12)).cwiseAbs().maxCoeff(), 0.1) << "not the identity";
+    EXPECT_GT((last.stm - Eigen::MatrixXd::Identity(12, 12)).cwiseAbs().maxCoeff(), 0.1)
+        << "not the identity";
   }
 }
 

@@ -457,7 +457,8 @@ TEST(OutputFields, AFieldWithoutAValueNamesTheRowAndTheTime) {
       }
       ADD_FAILURE() << "no error";
     } catch (const Error& e) {
-      EXPECT_NE(std::string(e.what()).find("'box' at t = 2.5 s: output field 'crp': the attitude is a half turn"),
+      EXPECT_NE(std::string(e.what()).find(
+                    "'box' at t = 2.5 s: output field 'crp': the attitude is a half turn"),
                 std::string::npos)
           << e.what();
       EXPECT_NE(std::string(e.what()).find("'mrp'"), std::string::npos) << e.what();

@@ -211,7 +211,7 @@ TEST(Rotations, ClassicalRodriguesParametersAreTheHalfAngleTangentAlongTheAxis) 
     const Vec3 sigma = mrp(q);
     EXPECT_LT((*g - 2.0 * sigma / (1.0 - sigma.squaredNorm())).norm(), 1e-14 * (1.0 + g->squaredNorm())) << k;
   }
-  EXPECT_FALSE(crp(Quat(0.0, 1.0, 0.0, 0.0)));  // a half turn about x
+  EXPECT_FALSE(crp(Quat(0.0, 1.0, 0.0, 0.0)));                                          // a half turn about x
   EXPECT_NEAR(crp(Quat(Eigen::AngleAxisd(pi / 2, Vec3::UnitZ())))->z(), 1.0, 2.3e-16);  // tan(π/4)
 }
 

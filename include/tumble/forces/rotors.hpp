@@ -137,11 +137,11 @@ class Rotors final : public LocalForceModel {
   template <class Each>
   void for_each_carrier(size_t begin, size_t end, Each&& each) const;
 
-  std::vector<Rotor> rotors_;     ///< scene order
-  std::vector<size_t> by_body_;   ///< rotor indices sorted by body (scene order within a body)
-  std::vector<Vec3> axis_b_;      ///< each axis in its body's principal frame, Uᵀ a
+  std::vector<Rotor> rotors_;    ///< scene order
+  std::vector<size_t> by_body_;  ///< rotor indices sorted by body (scene order within a body)
+  std::vector<Vec3> axis_b_;     ///< each axis in its body's principal frame, Uᵀ a
   size_t n_bodies_ = 0;
-  std::vector<Piece> initial_;    ///< the scene's pieces, from t = 0
+  std::vector<Piece> initial_;  ///< the scene's pieces, from t = 0
   std::optional<RotorController> controller_;
   mutable Held held_;
 };
