@@ -38,6 +38,11 @@ SystemState simulate_held_inputs(const Model& model, SystemState state, const Ru
   const double t_end = grid.end();
   // Two times closer than this are one: the output grid and the inputs' samples may round apart.
   const double tiny = 1e-9 * settings.timestep;
+  if (!(interval > tiny)) {
+    throw InvalidArgument(fmt::format("inputs sampled every {} s: give an interval longer than 1e-9 of the "
+                                      "timestep ({} s)",
+                                      interval, settings.timestep));
+  }
 
   // The run's samples and the inputs' samples, merged: each piece runs from one input sample to the next
   // (or the end) and samples the output grid's times inside it and its own end, which is handed on only
