@@ -38,8 +38,8 @@ from ._tumble import (  # noqa: F401  (re-exported)
 )
 from . import _dict_toml, _tumble
 from .model import (  # noqa: F401
-    Body, Damping, Drag, Event, Gravity, GravityGradient, Part, Particle, PointForce, Shape, Spring, Torque,
-    make_scene, scene_dict, spring_end,
+    Body, Damping, Drag, Event, Gravity, GravityGradient, Part, Particle, PointForce, Rotor, Shape, Spring,
+    Torque, make_scene, scene_dict, spring_end,
 )
 from .ensemble import EnsembleResult, ensemble, read_ensemble  # noqa: F401
 from .trajectory import (  # noqa: F401
@@ -48,7 +48,7 @@ from .trajectory import (  # noqa: F401
 
 __all__ = [
     "Body", "Damping", "Drag", "EnsembleResult", "Event", "EventCrossing", "ensemble", "read_ensemble", "Gravity", "GravityGradient", "Interrupted",
-    "MassProperties", "MeshMassProperties", "Part", "Particle", "PointForce", "Scene", "Shape", "Spring",
+    "MassProperties", "MeshMassProperties", "Part", "Particle", "PointForce", "Rotor", "Scene", "Shape", "Spring",
     "Torque", "Trajectory", "bodies", "box", "capsule", "cone", "cylinder", "ellipsoid", "euler_poinsot",
     "field_table", "fit", "from_xyzw", "inertia", "load_scene", "make_scene", "mesh_mass_properties", "model_check",
     "output_fields", "parse_scene", "read_trajectory", "save_scene", "scene_dict", "scene_from_dict",

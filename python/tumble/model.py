@@ -84,7 +84,10 @@ class Body:
     mass in reference axes: [Ixx, Iyy, Izz] or 3x3; + center_of_mass), or parts. Initial state of its
     reference frame: position (m, world), orientation (w, x, y, z, or {"euler_zyx": [...]}, ...),
     velocity (m/s, world, of the origin or with velocity_of="com" of the centre of mass),
-    angular_velocity (rad/s) in angular_velocity_frame ("world", "reference" or "principal")."""
+    angular_velocity (rad/s) in angular_velocity_frame ("world", "reference", "principal" or "lvlh").
+    Under a GravityGradient: orbit={"a": ..., "e": ..., "i": ..., "raan": ..., "argp": ..., "nu": ...}
+    (m, rad) places it on that orbit, and orientation_frame="lvlh" takes the orientation relative to its
+    orbit frame."""
     name: str
     shape: Shape | dict | None = None
     mesh: str | None = None
@@ -101,6 +104,8 @@ class Body:
     velocity_of: str | None = None
     angular_velocity: Vector | None = None
     angular_velocity_frame: str | None = None
+    orbit: dict | None = None
+    orientation_frame: str | None = None
 
     def to_dict(self):
         return _table(self)
@@ -213,6 +218,26 @@ class GravityGradient:
 
 
 @dataclass
+class Rotor:
+    """A rotor spinning on a body ([[rotors]]: a reaction or momentum wheel, a dual-spin rotor). The
+    body's mass properties include it as if locked; the rotor adds its spin relative to the body: `speed`
+    (rad/s) about the unit `axis` (the body's reference frame), `moment` its axial moment (kg m^2).
+    torque (N m): the motor's, a number or a table [[t, u], ...] (u linear between the rows); or set by
+    simulate(controller=...). max_speed (rad/s) stops the motor, max_torque (N m) clips a controller."""
+    name: str
+    body: str
+    axis: Vector
+    moment: float
+    speed: float | None = None
+    torque: Any = None
+    max_speed: float | None = None
+    max_torque: float | None = None
+
+    def to_dict(self):
+        return _table(self)
+
+
+@dataclass
 class Event:
     """A moment to catch during a run ([[events]]), on one body or particle: a column of the output
     table crossing `value` (column="w2": omega_2 about the intermediate axis changes sign at each flip;
@@ -252,9 +277,9 @@ from . import _tumble  # noqa: E402
 _SIMULATION_KEYS = tuple(s["key"] for s in _tumble._run_settings() if s["in_scene"])
 
 
-def scene_dict(bodies=(), particles=(), forces=(), events=(), fields=None, **simulation) -> dict:
-    """The dict of a scene file from Body, Particle, force and Event objects (or dicts of the file's
-    keys) and the [simulation] values as keywords (duration, timestep, integrator, formulation,
+def scene_dict(bodies=(), particles=(), forces=(), events=(), fields=None, rotors=(), **simulation) -> dict:
+    """The dict of a scene file from Body, Particle, force, Event and Rotor objects (or dicts of the
+    file's keys) and the [simulation] values as keywords (duration, timestep, integrator, formulation,
     output_interval, rtol, atol, drift_threshold); fields: the [output] fields."""
     unknown = set(simulation) - set(_SIMULATION_KEYS)
     if unknown:
@@ -278,11 +303,14 @@ def scene_dict(bodies=(), particles=(), forces=(), events=(), fields=None, **sim
         d["forces"] = tables
     if events:
         d["events"] = [as_table(e) for e in events]
+    if rotors:
+        d["rotors"] = [as_table(r) for r in rotors]
     return d
 
 
-def make_scene(bodies=(), particles=(), forces=(), events=(), fields=None, path="scene.toml", **simulation):
+def make_scene(bodies=(), particles=(), forces=(), events=(), fields=None, path="scene.toml", rotors=(),
+               **simulation):
     """A Scene from Python objects (see scene_dict), read by the scene-file reader: a mistake raises
     ValueError with the file's message ("scene.toml:7:3: body 'a': ..."); `path` anchors mesh paths."""
     from . import scene_from_dict
-    return scene_from_dict(scene_dict(bodies, particles, forces, events, fields, **simulation), path)
+    return scene_from_dict(scene_dict(bodies, particles, forces, events, fields, rotors, **simulation), path)
