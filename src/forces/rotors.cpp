@@ -145,9 +145,12 @@ std::shared_ptr<const Rotors> Rotors::controlled_by(RotorController controller) 
   return out;
 }
 
-void Rotors::sample_inputs(const SystemView& view, bool first) const {
+void Rotors::restart_inputs() const {
+  if (controller_) hold(initial_);
+}
+
+void Rotors::sample_inputs(const SystemView& view) const {
   if (!controller_) return;
-  if (first) hold(initial_);
   const size_t n = rotors_.size();
   std::vector<double> speeds(n), torques(n);
   for (size_t j = 0; j < n; ++j) {

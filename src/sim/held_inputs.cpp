@@ -39,9 +39,10 @@ SystemState simulate_held_inputs(const Model& model, SystemState state, const Ru
   // Two times closer than this are one: the output grid and the inputs' samples may round apart.
   const double tiny = 1e-9 * settings.timestep;
   if (!(interval > tiny)) {
-    throw InvalidArgument(fmt::format("inputs sampled every {} s: give an interval longer than 1e-9 of the "
-                                      "timestep ({} s)",
-                                      interval, settings.timestep));
+    throw InvalidArgument(
+        fmt::format("inputs sampled every {} s: give an interval longer than 1e-9 of the "
+                    "timestep ({} s)",
+                    interval, settings.timestep));
   }
 
   // The run's samples and the inputs' samples, merged: each piece runs from one input sample to the next
@@ -55,8 +56,11 @@ SystemState simulate_held_inputs(const Model& model, SystemState state, const Ru
   RunSettings piece = settings;
   while (true) {
     const SystemView view{state.t, model.bodies, state.bodies, model.particles, state.particles};
-    for (const auto& f : model.forces)
-      if (f->input_interval() > 0.0) f->sample_inputs(view, first);
+    for (const auto& f : model.forces) {
+      if (f->input_interval() <= 0.0) continue;
+      if (first) f->restart_inputs();
+      f->sample_inputs(view);
+    }
     // The piece's end: the next input sample, or the run's end.
     double t_next = t0 + static_cast<double>(k_input) * interval;
     if (t_next >= t_end - tiny) t_next = t_end;

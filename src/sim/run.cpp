@@ -5,12 +5,22 @@
 #include "tumble/error.hpp"
 
 namespace tumble {
+namespace {
+
+/// The model with its held inputs back at the start (ForceModel::restart_inputs), so that the drift
+/// monitor's invariants at t = 0 are the start's even for a model that ran before.
+const Model& restarted(const Model& model) {
+  for (const auto& f : model.forces) f->restart_inputs();
+  return model;
+}
+
+}  // namespace
 
 Run::Run(const Model& model, SystemState initial, const RunSettings& settings, Conservation conserved)
     : model_(model),
       initial_(std::move(initial)),
       settings_((validate(settings), settings)),
-      monitor_(model, initial_, conserved, settings.drift_threshold, settings) {}
+      monitor_(restarted(model), initial_, conserved, settings.drift_threshold, settings) {}
 
 Run& Run::watch(std::vector<Event> events) {
   events_.insert(events_.end(), std::make_move_iterator(events.begin()),

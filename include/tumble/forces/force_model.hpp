@@ -148,11 +148,13 @@ class ForceModel {
   /// without such inputs. simulate() then ends steps at t₀ + k·interval and calls sample_inputs there,
   /// so the loads are smooth within every step and each integrator keeps its order.
   virtual double input_interval() const { return 0.0; }
+  /// Goes back to the inputs a run starts with (the scene's): called before a run (Run, simulate), so
+  /// that a model can run again and its diagnostics at the start are the start's.
+  virtual void restart_inputs() const {}
   /// Samples the inputs from the system's state, at its time, and holds them until the next call.
-  /// `first`: the run's start (the model goes back to its initial inputs first, so that it can run
-  /// again). Called by the time loop between steps only, never during one: the one moment a model
-  /// changes, hence const.
-  virtual void sample_inputs(const SystemView& /*view*/, bool /*first*/) const {}
+  /// Called by the time loop between steps only, never during one: with restart_inputs, the one moment a
+  /// model changes, hence const.
+  virtual void sample_inputs(const SystemView& /*view*/) const {}
   /// For central gravity: the central body (its centre, world, and μ = GM), which orbit frames (the
   /// LVLH output fields) and initial orbits are relative to. nullopt for every other model.
   virtual std::optional<CentralBody> central_body() const { return std::nullopt; }

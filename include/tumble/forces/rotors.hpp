@@ -98,7 +98,9 @@ class Rotors final : public LocalForceModel {
   /// Calls the controller with the speeds at view.t and holds the torques it gives (clipped to
   /// max_torque; a motor at its speed limit that would pass it stays stopped). Throws Error naming the
   /// rotor and the time for a torque that is not finite.
-  void sample_inputs(const SystemView& view, bool first) const override;
+  void sample_inputs(const SystemView& view) const override;
+  /// The scene's speeds and torques again (as from t = 0).
+  void restart_inputs() const override;
   /// Whether a motor torque is ever non-zero (then the bodies' kinetic energy is not conserved).
   bool motors_work() const;
   /// The rotors, in scene order.
