@@ -1,6 +1,10 @@
 #include "tumble/forces/stack.hpp"
 
 #include <algorithm>
+#include <utility>
+#include <vector>
+
+#include "tumble/forces/rotors.hpp"
 
 namespace tumble {
 namespace {
@@ -81,8 +85,14 @@ std::optional<Model> stack_runs(std::span<const Model* const> runs) {
   const size_t n = first.bodies.size();
   if (n == 0) return std::nullopt;
   Model stacked;
+  // Rotors become one Rotors of every run's copies (built once the bodies are stacked): the splittings
+  // find them there (rotors_of) and carry them in their flows, as in the run alone.
+  std::vector<std::pair<size_t, const Rotors*>> rotors;
   for (const auto& f : first.forces) {
-    if (f->acts_alike_on_every_body()) {
+    if (const auto* r = dynamic_cast<const Rotors*>(f.get())) {
+      rotors.emplace_back(stacked.forces.size(), r);
+      stacked.forces.push_back(nullptr);
+    } else if (f->acts_alike_on_every_body()) {
       stacked.forces.push_back(f);
     } else if (auto local = std::dynamic_pointer_cast<const LocalForceModel>(f)) {
       stacked.forces.push_back(std::make_shared<const OnEveryRun>(std::move(local), n));
@@ -95,6 +105,17 @@ std::optional<Model> stack_runs(std::span<const Model* const> runs) {
     if (run->bodies.size() != n || !run->particles.empty() || run->forces.size() != first.forces.size())
       return std::nullopt;
     stacked.bodies.insert(stacked.bodies.end(), run->bodies.begin(), run->bodies.end());
+  }
+  for (const auto& [slot, r] : rotors) {
+    if (r->input_interval() > 0.0) return std::nullopt;  // a controller's state is its run's own
+    std::vector<Rotor> every;
+    for (size_t k = 0; k < runs.size(); ++k) {
+      for (Rotor rotor : r->rotors()) {
+        rotor.body += k * n;
+        every.push_back(std::move(rotor));
+      }
+    }
+    stacked.forces[slot] = std::make_shared<const Rotors>(std::move(every), stacked.bodies);
   }
   return stacked;
 }

@@ -15,7 +15,7 @@ namespace tumble {
 /// nullopt when the runs cannot share a system: particles, a system force model (a spring, a user
 /// ForceModel: they may read any body), or differing body counts. A local model that treats every body
 /// alike (uniform gravity) is shared as it is; another (a force on body #i) acts on each run's copy of
-/// body i.
+/// body i. Rotors are stacked as one Rotors of every copy's wheels (a controller's: nullopt).
 std::optional<Model> stack_runs(std::span<const Model* const> runs);
 
 }  // namespace tumble
