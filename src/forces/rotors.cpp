@@ -314,13 +314,18 @@ void Rotors::check(size_t n_bodies, size_t) const {
 std::string Rotors::describe(std::span<const RigidBody> bodies) const {
   std::vector<std::string> each;
   for (const Rotor& r : rotors_) {
-    each.push_back(fmt::format("'{}' on '{}' (J = {} kg m^2, {} rad/s, {} N m)", r.name,
+    std::string motor = controller_ ? std::string("torque by the controller")
+                        : r.torque_table.empty()
+                            ? fmt::format("{} N m", r.torque)
+                            : fmt::format("a torque table of {} rows", r.torque_table.size());
+    if (r.max_speed > 0.0) motor += fmt::format(", up to {} rad/s", r.max_speed);
+    if (r.max_torque > 0.0) motor += fmt::format(", at most {} N m", r.max_torque);
+    each.push_back(fmt::format("'{}' on '{}' (J = {} kg m^2, {} rad/s, {})", r.name,
                                r.body < bodies.size() ? bodies[r.body].name() : std::to_string(r.body),
-                               r.moment, r.speed, r.torque));
+                               r.moment, r.speed, motor));
   }
   return fmt::format("rotors {}{}", fmt::join(each, ", "),
-                     controller_ ? fmt::format(", torques by a controller every {} s", controller_->interval)
-                                 : "");
+                     controller_ ? fmt::format("; a controller every {} s", controller_->interval) : "");
 }
 
 const Rotors* rotors_of(const Model& model) {

@@ -387,6 +387,8 @@ TEST(Rotors, ScenesDescribeThemAndBadOnesAreRefusedWithTheirPlace) {
   EXPECT_EQ(r.motor_torque(0, 1e4), 0.0);
   EXPECT_FALSE(s.conserved.energy);  // the motor works
   EXPECT_TRUE(s.conserved.angular_momentum);
+  EXPECT_EQ(r.describe(s.model.bodies),
+            "rotors 'wheel_x' on 'sat' (J = 0.02 kg m^2, 500 rad/s, 0.01 N m, up to 600 rad/s)");
   auto message = [&](const std::string& rotor) {
     try {
       (void)parse_scene(body + "[[rotors]]\n" + rotor, "s.toml");
