@@ -228,9 +228,10 @@ TEST(RotorController, TheMotorsLimitsClipTheCommandAndHoldTheTopSpeed) {
 TEST(RotorController, WhatItCannotDoIsAClearError) {
   const Slew s;
   const Rotors& open_loop = *s.rotors;
-  EXPECT_EQ(open_loop.describe(s.model.bodies),
-            "rotors 'wheel' on 'sat' (J = 0.05 kg m^2, 0 rad/s, torque by the controller); a controller every "
-            "0.1 s");
+  EXPECT_EQ(
+      open_loop.describe(s.model.bodies),
+      "rotors 'wheel' on 'sat' (J = 0.05 kg m^2, 0 rad/s, torque by the controller); a controller every "
+      "0.1 s");
   // No interval, no law.
   EXPECT_THROW((void)open_loop.controlled_by({0.0, [](auto&, auto, auto) {}}), InvalidArgument);
   EXPECT_THROW((void)open_loop.controlled_by({0.1, {}}), InvalidArgument);
