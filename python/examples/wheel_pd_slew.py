@@ -96,9 +96,13 @@ ax[1].set_ylabel("body rates (rad/s)")
 ax[2].set_ylabel("wheel speeds (rad/s)")
 ax[3].set_ylabel("motor torques (N m)")
 ax[3].set_xlabel("t (s)")
-for a in ax[1:]:
-    a.legend(loc="upper right")
 fig.suptitle("A 60 deg slew by three reaction wheels, PD controller at 10 Hz (tumble)")
+# Beside the axes, not over them.
+for a in ax[1:]:
+    a.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
+fig.canvas.draw()
+for a in ax[1:]:
+    assert not a.get_legend().get_window_extent().overlaps(a.get_window_extent()), "a legend covers the data"
 os.makedirs(os.path.dirname(os.path.abspath(plot_path)), exist_ok=True)
 fig.savefig(plot_path, dpi=110)
 print(f"wrote {plot_path}")

@@ -303,7 +303,8 @@ def test_ctrl_c_raises_keyboard_interrupt_with_the_samples_so_far(tmp_path):
 @pytest.mark.parametrize("example,args", [("t_handle_flips.py", ["{tmp}/omega.png"]),
                                           ("mesh_inertia.py", ["{tmp}/bracket_mm.stl"]),
                                           ("monte_carlo_flips.py", ["2000", "{tmp}/flips.png"]),
-                                          ("wheel_pd_slew.py", ["{tmp}/pd_slew.png"])])
+                                          ("wheel_pd_slew.py", ["{tmp}/pd_slew.png"]),
+                                          ("dual_spin_flip.py", ["{tmp}/dual_spin.png"])])
 def test_every_python_example_runs(tmp_path, example, args):
     # Each example checks its own physics (the flip spacing, the bracket against two boxes, the first
     # flips against K(m)/lambda) with asserts; here they run as a user runs them.
