@@ -43,10 +43,7 @@ assert w2.min() > 1.99 and len(with_rotor.event_times("flip")) == 0
 assert len(flips) >= 4
 assert abs(np.diff(flips).mean() / exact.flip_interval - 1) < 1e-6
 
-import matplotlib  # noqa: E402  (after the physics: the numbers print even without a display)
-
-matplotlib.use("Agg")  # files only, no window needed
-import matplotlib.pyplot as plt  # noqa: E402
+from example_plots import plt, save  # noqa: E402  (after the physics: the numbers print without matplotlib)
 
 fig, ax = plt.subplots(figsize=(11, 4), constrained_layout=True)
 ax.plot(with_rotor.t, w2, label="with its rotor (h = 100 kg m$^2$/s)")
@@ -56,9 +53,4 @@ for t in flips:
 ax.set_xlabel("t (s)")
 ax.set_ylabel("$\\omega_2$, intermediate axis (rad/s)")
 ax.set_title("A dual-spin satellite: the flip that does not happen (dashed: the bare platform's flips)")
-ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
-fig.canvas.draw()
-assert not ax.get_legend().get_window_extent().overlaps(ax.get_window_extent()), "the legend covers the data"
-os.makedirs(os.path.dirname(plot_path) or ".", exist_ok=True)
-fig.savefig(plot_path, dpi=110)
-print(f"plot: {plot_path}")
+save(fig, [ax], plot_path)

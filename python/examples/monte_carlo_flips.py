@@ -76,10 +76,7 @@ print(f"largest |simulated - predicted| {np.abs(diff).max():.1e} s (linear inter
 # 20 ms spacing: ~(0.02 s)^3 lambda^2 ~ 1e-5 s; RK4's phase error at h = 1 ms is far below.
 assert np.abs(diff).max() < 1e-4, np.abs(diff).max()
 
-import matplotlib  # noqa: E402
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+from example_plots import plt, save  # noqa: E402  (after the physics: the numbers print without matplotlib)
 
 fig, ax = plt.subplots(figsize=(10.5, 4), constrained_layout=True)
 bins = np.linspace(min(simulated.min(), predicted.min()), max(simulated.max(), predicted.max()), 80)
@@ -88,10 +85,4 @@ ax.hist(predicted, bins=bins, histtype="step", linewidth=1.5, color="k", label="
 ax.set_xlabel("time of the first flip (s)")
 ax.set_ylabel("bodies")
 ax.set_title("T-handle: first flip over random spins and wobbles")
-# Beside the axes, not over them: no corner of these plots is free of data.
-ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
-fig.canvas.draw()
-assert not ax.get_legend().get_window_extent().overlaps(ax.get_window_extent()), "the legend covers the data"
-os.makedirs(os.path.dirname(plot_path) or ".", exist_ok=True)
-fig.savefig(plot_path, dpi=110)
-print(f"plot: {plot_path}")
+save(fig, [ax], plot_path)

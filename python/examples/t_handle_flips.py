@@ -28,10 +28,7 @@ print(f"spacing {np.diff(flips).mean():.9f} s; exact 2K(m)/lambda = {exact.flip_
       f"({exact.regime.replace('_', ' ')})")
 print(f"energy drift over {traj.t[-1]:g} s with rk4: {np.nanmax(np.abs(traj.energy_drift)):.1e}")
 
-import matplotlib  # noqa: E402  (after the physics: the numbers print even without a display)
-
-matplotlib.use("Agg")  # files only, no window needed
-import matplotlib.pyplot as plt  # noqa: E402
+from example_plots import plt, save  # noqa: E402  (after the physics: the numbers print without matplotlib)
 
 fig, ax = plt.subplots(figsize=(11, 4), constrained_layout=True)
 for k, label in enumerate(["$\\omega_1$ (minor axis)", "$\\omega_2$ (intermediate: the stem)", "$\\omega_3$ (major axis)"]):
@@ -41,10 +38,4 @@ for t in flips:
 ax.set_xlabel("t (s)")
 ax.set_ylabel("angular velocity, principal axes (rad/s)")
 ax.set_title(f"T-handle: a flip every {exact.flip_interval:.3f} s (dashed: tumble's flip events)")
-# Beside the axes, not over them: no corner of these plots is free of data.
-ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
-fig.canvas.draw()
-assert not ax.get_legend().get_window_extent().overlaps(ax.get_window_extent()), "the legend covers the data"
-os.makedirs(os.path.dirname(plot_path) or ".", exist_ok=True)
-fig.savefig(plot_path, dpi=110)
-print(f"plot: {plot_path}")
+save(fig, [ax], plot_path)

@@ -80,10 +80,7 @@ assert np.abs(speeds[-1]).max() < 1e-2
 assert L.max() < 1e-12, L.max()
 assert np.allclose(J * np.diff(speeds, axis=0), torques[1:] * 0.1, rtol=0, atol=1e-12)
 
-import matplotlib  # noqa: E402  (after the physics: the numbers print even without a display)
-
-matplotlib.use("Agg")  # files only, no window needed
-import matplotlib.pyplot as plt  # noqa: E402
+from example_plots import plt, save  # noqa: E402  (after the physics: the numbers print without matplotlib)
 
 fig, ax = plt.subplots(4, 1, figsize=(9, 10), sharex=True, constrained_layout=True)
 ax[0].semilogy(traj.t, np.degrees(np.maximum(errors, 1e-12)))
@@ -97,12 +94,4 @@ ax[2].set_ylabel("wheel speeds (rad/s)")
 ax[3].set_ylabel("motor torques (N m)")
 ax[3].set_xlabel("t (s)")
 fig.suptitle("A 60 deg slew by three reaction wheels, PD controller at 10 Hz (tumble)")
-# Beside the axes, not over them.
-for a in ax[1:]:
-    a.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
-fig.canvas.draw()
-for a in ax[1:]:
-    assert not a.get_legend().get_window_extent().overlaps(a.get_window_extent()), "a legend covers the data"
-os.makedirs(os.path.dirname(os.path.abspath(plot_path)), exist_ok=True)
-fig.savefig(plot_path, dpi=110)
-print(f"wrote {plot_path}")
+save(fig, ax[1:], plot_path)
