@@ -37,6 +37,13 @@ class FreeBodyTaylorT {
   /// The principal moments in Real (seeded dual numbers give the derivatives with respect to them).
   FreeBodyTaylorT(const std::array<Real, 3>& I, int order) : order_(std::min(order, kMaxOrder)) {
     a_ = {(I[1] - I[2]) / I[0], (I[2] - I[0]) / I[1], (I[0] - I[1]) / I[2]};
+    inv_I_ = {Real(1) / I[0], Real(1) / I[1], Real(1) / I[2]};
+  }
+  /// A gyrostat: rotors of constant momentum h relative to the body (principal axes), whose equation
+  /// Λ ω̇ = (Λω + h) × ω adds the linear term Λ⁻¹(h × ω):  ω[n+1] += Λ⁻¹(h × ω[n])/(n+1).
+  FreeBodyTaylorT(const Vec3& I, const Vec3& h, int order) : FreeBodyTaylorT(I, order) {
+    h_ = {Real(h(0)), Real(h(1)), Real(h(2))};
+    gyrostat_ = h != Vec3::Zero();
   }
   /// aᵢ = (I_j − I_k)/Iᵢ: ω̇ᵢ = aᵢ ω_j ω_k.
   const std::array<Real, 3>& a() const { return a_; }
@@ -64,7 +71,14 @@ class FreeBodyTaylorT {
         cq[2] += p[0] * y[1] + p[3] * y[0] - p[1] * y[2];
         cq[3] += p[0] * y[2] + p[1] * y[1] - p[2] * y[0];
       }
-      for (int i = 0; i < 3; ++i) w[n + 1][i] = a_[i] * cw[i] / Real(n + 1);
+      for (int i = 0; i < 3; ++i) cw[i] *= a_[i];
+      if (gyrostat_) {
+        const auto& y = w[n];
+        cw[0] += (h_[1] * y[2] - h_[2] * y[1]) * inv_I_[0];
+        cw[1] += (h_[2] * y[0] - h_[0] * y[2]) * inv_I_[1];
+        cw[2] += (h_[0] * y[1] - h_[1] * y[0]) * inv_I_[2];
+      }
+      for (int i = 0; i < 3; ++i) w[n + 1][i] = cw[i] / Real(n + 1);
       for (int i = 0; i < 4; ++i) q[n + 1][i] = cq[i] / Real(2 * (n + 1));
     }
     FreeBodyStateT<Real> out{{0, 0, 0}, {0, 0, 0, 0}};
@@ -84,7 +98,9 @@ class FreeBodyTaylorT {
 
  private:
   int order_;
-  std::array<Real, 3> a_;
+  std::array<Real, 3> a_, inv_I_;
+  std::array<Real, 3> h_{Real(0), Real(0), Real(0)};
+  bool gyrostat_ = false;
 };
 
 }  // namespace tumble
