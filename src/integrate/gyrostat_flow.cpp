@@ -18,16 +18,6 @@ namespace {
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr cplx kI{0.0, 1.0};
 
-using CVec3 = std::array<cplx, 3>;
-
-cplx bilinear(const Mat3& J, const CVec3& x, const CVec3& y) {  // xᵀ J y, no conjugation
-  cplx s = 0.0;
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) s += x[i] * J(i, j) * y[j];
-  }
-  return s;
-}
-
 /// p(x) = Σ c[k] xᵏ and its derivatives p⁽ʲ⁾(x), j = 0 … 4, for a quartic.
 std::array<cplx, 5> derivatives_at(const std::array<cplx, 5>& c, cplx x) {
   std::array<cplx, 5> d{};
@@ -110,39 +100,60 @@ void GyrostatFlow::set_up_curve(const Vec3& b) {
   S_ = frame_from_pole(b);
   Jinv_ = S_ * Lambda_.cwiseInverse().asDiagonal() * S_.transpose();
   h_aux_ = S_ * h_;
-  const double m = m_;
+  const Vec3 M_aux = S_ * M0_;
+  // The curve of the gyrostat (J, h′, M′₀) — this frame's data, rounded once — in long double: near a
+  // steady spin or a separatrix the invariants' discriminant is a small difference, from which the
+  // lattice's shape follows (weierstrass.cpp). m and 2E are this data's own.
+  using LD = long double;
+  using C = std::complex<LD>;
+  const LD m = std::sqrt(LD(M_aux(0)) * M_aux(0) + LD(M_aux(1)) * M_aux(1) + LD(M_aux(2)) * M_aux(2));
+  LD two_E = 0;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) two_E += (LD(M_aux(i)) - h_aux_(i)) * Jinv_(i, j) * (LD(M_aux(j)) - h_aux_(j));
+  }
   // V(z, w) = m N(z, w) − (1 + zw) h′, N = (z + w, −i(z − w), zw − 1): M′ = V/(1 + zw) on the sphere.
-  const CVec3 V[2][2] = {{CVec3{-h_aux_(0), -h_aux_(1), -m - h_aux_(2)}, CVec3{m, kI * m, 0.0}},
-                         {CVec3{m, -kI * m, 0.0}, CVec3{-h_aux_(0), -h_aux_(1), m - h_aux_(2)}}};
+  const C i(0, 1);
+  const std::array<C, 3> V[2][2] = {
+      {std::array<C, 3>{-LD(h_aux_(0)), -LD(h_aux_(1)), -m - h_aux_(2)}, std::array<C, 3>{m, i * m, 0}},
+      {std::array<C, 3>{m, -i * m, 0}, std::array<C, 3>{-LD(h_aux_(0)), -LD(h_aux_(1)), m - h_aux_(2)}}};
   // The energy integral F(z, w) = Vᵀ J V − 2E (1 + zw)² = 0, J = Λ⁻¹ in the pole frame.
-  for (auto& row : F_) row.fill(0.0);
+  std::array<std::array<C, 3>, 3> F{};
   for (int a1 = 0; a1 < 2; ++a1) {
     for (int b1 = 0; b1 < 2; ++b1) {
       for (int a2 = 0; a2 < 2; ++a2) {
-        for (int b2 = 0; b2 < 2; ++b2) F_[a1 + a2][b1 + b2] += bilinear(Jinv_, V[a1][b1], V[a2][b2]);
+        for (int b2 = 0; b2 < 2; ++b2) {
+          for (int r = 0; r < 3; ++r) {
+            for (int c = 0; c < 3; ++c) F[a1 + a2][b1 + b2] += V[a1][b1][r] * LD(Jinv_(r, c)) * V[a2][b2][c];
+          }
+        }
       }
     }
   }
-  F_[0][0] -= two_E_, F_[1][1] -= 2 * two_E_, F_[2][2] -= two_E_;
+  F[0][0] -= two_E, F[1][1] -= 2 * two_E, F[2][2] -= two_E;
   // ż = κ ∂F/∂w with κ = −i/(4m) (the Lie–Poisson bracket on the sphere), so ż² = P(z) = κ²(b² − 4ac)
   // with F = a(z)w² + b(z)w + c(z).
-  std::array<cplx, 5> P{};
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) P[i + j] += F_[i][1] * F_[j][1] - 4.0 * F_[i][2] * F_[j][0];
+  std::array<C, 5> P{};
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) P[r + c] += F[r][1] * F[c][1] - LD(4) * F[r][2] * F[c][0];
   }
-  for (cplx& p : P) p *= -1.0 / (16 * m * m);
-  const Vec3 M_aux = S_ * M0_, M_aux_dot = M_aux.cross(Jinv_ * (M_aux - h_aux_));
+  for (C& p : P) p *= LD(-1) / (16 * m * m);
+  // The invariants of P = a₀z⁴ + 4a₁z³ + 6a₂z² + 4a₃z + a₄ (real on the real motion's curve).
+  const C a0 = P[4], a1 = P[3] / LD(4), a2 = P[2] / LD(6), a3 = P[1] / LD(4), a4 = P[0];
+  const C g2 = a0 * a4 - LD(4) * a1 * a3 + LD(3) * a2 * a2;
+  const C g3 = a0 * a2 * a4 + LD(2) * a1 * a2 * a3 - a2 * a2 * a2 - a0 * a3 * a3 - a1 * a1 * a4;
+  lattice_ = detail::RealLattice(g2.real(), g3.real());
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) F_[r][c] = cplx(F[r][c]);
+  }
+  std::array<cplx, 5> Pd;
+  for (int k = 0; k < 5; ++k) Pd[k] = cplx(P[k]);
+  const Vec3 M_aux_dot = M_aux.cross(Jinv_ * (M_aux - h_aux_));
   const cplx xy(M_aux(0), M_aux(1)), xy_dot(M_aux_dot(0), M_aux_dot(1));
-  const double below = m - M_aux(2);
+  const double below = m_ - M_aux(2);
   z0_ = xy / below;
   zdot0_ = (xy_dot * below + xy * M_aux_dot(2)) / (below * below);
-  const std::array<cplx, 5> d = derivatives_at(P, z0_);
+  const std::array<cplx, 5> d = derivatives_at(Pd, z0_);
   std::copy(d.begin(), d.end(), P_);
-  // The invariants of P = a₀z⁴ + 4a₁z³ + 6a₂z² + 4a₃z + a₄ (real on the real motion's curve).
-  const cplx a0 = P[4], a1 = P[3] / 4.0, a2 = P[2] / 6.0, a3 = P[1] / 4.0, a4 = P[0];
-  const cplx g2 = a0 * a4 - 4.0 * a1 * a3 + 3.0 * a2 * a2;
-  const cplx g3 = a0 * a2 * a4 + 2.0 * a1 * a2 * a3 - a2 * a2 * a2 - a0 * a3 * a3 - a1 * a1 * a4;
-  lattice_ = detail::RealLattice(g2.real(), g3.real());
 }
 
 cplx GyrostatFlow::z_at(double t) const {
@@ -215,6 +226,21 @@ void GyrostatFlow::set_up_attitude() {
     const cplx p = c + sign * std::sqrt(PP4 / 2.0);
     const cplx u = lattice_.inverse(p), pp = lattice_.p_prime_of_inverse(p);
     u_[k++] = std::abs(numerator(p, pp)) >= std::abs(numerator(p, -pp)) ? u : -u;
+  }
+  // ℘(u*) from the point has the rounding of a few terms that may cancel, and u* = ℘⁻¹ amplifies it by
+  // 1/|℘′(u*)|; Newton's method on the point's own equation (z = 0 for the first two, 1/z = D/N = 0 for
+  // the others), with ℘ and ℘′ from θ₁ at the complex u, brings each uₖ to rounding (two steps, from
+  // ~1e-12 off: measured on a near-steady dual spin, where the error moved ψ by 3.5e-13 per period).
+  const double g2 = lattice_.g2();
+  for (int j = 0; j < 4; ++j) {
+    for (int iteration = 0; iteration < 2; ++iteration) {
+      const auto [p, dp] = lattice_.p_and_derivative(u_[j]);
+      const cplx ddp = 6.0 * p * p - 0.5 * g2;
+      const cplx N = numerator(p, dp), dN = -zdot0_ * ddp + 0.5 * P_[1] * dp;
+      const cplx D = 2.0 * (p - c) * (p - c) - PP4, dD = 4.0 * (p - c) * dp;
+      u_[j] -= j < 2 ? (N + (z0_ * D)) * D / (dN * D - N * dD)  // z = z₀ + N/D: z/z′
+                     : D * N / (dD * N - D * dN);              // (D/N)/(D/N)′
+    }
   }
   const Vec3 M_aux0 = S_ * M0_;
   C0_ = precession_rate(M_aux0);

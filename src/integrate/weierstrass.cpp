@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "tumble/error.hpp"
@@ -38,47 +39,55 @@ cplx carlson_rf(cplx x, cplx y, cplx z) {
 
 }  // namespace
 
-RealLattice::RealLattice(double g2, double g3) {
-  const double Delta = g2 * g2 * g2 - 27 * g3 * g3;
-  const double scale = std::max(std::abs(g2 * g2 * g2), 27 * g3 * g3);
-  if (!std::isfinite(Delta) || !(std::abs(Delta) > 64 * 2.220446049250313e-16 * scale)) {
-    throw InvalidArgument(fmt::format("a degenerate Weierstrass lattice: g2 = {}, g3 = {}", g2, g3));
+RealLattice::RealLattice(long double g2, long double g3) : g2_(static_cast<double>(g2)) {
+  // In long double: near a steady spin or a separatrix two roots nearly coincide, and m (or m₁), the
+  // parameter of the Jacobi functions, is the small difference of the roots over their spread. The
+  // invariants come in long double (gyrostat_flow.cpp), so m keeps its relative accuracy in double.
+  using LD = long double;
+  constexpr LD pi = std::numbers::pi_v<LD>;
+  const LD Delta = g2 * g2 * g2 - 27 * g3 * g3;
+  const LD scale = std::max(std::abs(g2 * g2 * g2), 27 * g3 * g3);
+  if (!std::isfinite(Delta) || !(std::abs(Delta) > 64 * std::numeric_limits<LD>::epsilon() * scale)) {
+    throw InvalidArgument(fmt::format("a degenerate Weierstrass lattice: g2 = {}, g3 = {}", double(g2), double(g3)));
   }
   rectangular_ = Delta > 0;
   if (rectangular_) {
     // 4x³ − g₂x − g₃ = 0 by its trigonometric form, x = r cos(φ − 2πj/3), r = 2√(g₂/12), and the
     // differences of the roots as products of sines (no cancellation near coincident roots).
-    const double r = 2 * std::sqrt(g2 / 12);
-    const double c3 = std::clamp(g3 / (r * r * r), -1.0, 1.0);  // cos 3φ, as 4x³ − 3r²x = r³ cos 3φ
-    const double phi = std::acos(c3) / 3;                             // φ ∈ [0, π/3]
-    e_[0] = r * std::cos(phi);
-    e_[1] = r * std::cos(phi - 2 * kPi / 3);
-    e_[2] = r * std::cos(phi + 2 * kPi / 3);
-    const double s3 = std::sqrt(3.0) * r;
-    const double e13 = s3 * std::sin(phi + kPi / 3), e23 = s3 * std::sin(phi), e12 = s3 * std::sin(kPi / 3 - phi);
-    jacobi_ = JacobiElliptic(e23 / e13, e12 / e13);
-    lambda_ = std::sqrt(e13);
-    a_ = e13;
+    const LD r = 2 * std::sqrt(g2 / 12);
+    const LD c3 = std::clamp(g3 / (r * r * r), LD(-1), LD(1));  // cos 3φ, as 4x³ − 3r²x = r³ cos 3φ
+    const LD phi = std::acos(c3) / 3;                            // φ ∈ [0, π/3]
+    e_[0] = double(r * std::cos(phi));
+    e_[1] = double(r * std::cos(phi - 2 * pi / 3));
+    e_[2] = double(r * std::cos(phi + 2 * pi / 3));
+    const LD s3 = std::sqrt(LD(3)) * r;
+    const LD e13 = s3 * std::sin(phi + pi / 3), e23 = s3 * std::sin(phi), e12 = s3 * std::sin(pi / 3 - phi);
+    jacobi_ = JacobiElliptic(double(e23 / e13), double(e12 / e13));
+    a_ = double(e13);
+    lambda_ = std::sqrt(a_);
     const double K = jacobi_.K(), Kp = JacobiElliptic(jacobi_.m1(), jacobi_.m()).K();
     omega1_ = K / lambda_;
     omega3_ = kI * (Kp / lambda_);
     q2_ = std::exp(-2 * kPi * Kp / K);
   } else {
     // The real root by Cardano in its cancellation-free form, one Newton step; then H² = (e₂ − e₁)(e₂ − e₃)
-    // = (12e₂² − g₂)/4 and e₁ = −e₂/2 + i√(H² − 9e₂²/4).
-    const double p = -g2 / 4, q = -g3 / 4;
-    const double A = -std::copysign(std::cbrt(std::abs(q) / 2 + std::sqrt(q * q / 4 + p * p * p / 27)), q);
-    double e2 = A == 0 ? 0.0 : A - p / (3 * A);
+    // = (12e₂² − g₂)/4, e₁ = −e₂/2 + iβ with β² = H² − 9e₂²/4, and m = ½ − 3e₂/4H = β²/(H(2H + 3e₂))
+    // (no cancellation where β is small: a near-steady spin).
+    const LD p = -g2 / 4, q = -g3 / 4;
+    const LD A = -std::copysign(std::cbrt(std::abs(q) / 2 + std::sqrt(q * q / 4 + p * p * p / 27)), q);
+    LD e2 = A == 0 ? LD(0) : A - p / (3 * A);
     e2 -= (4 * e2 * e2 * e2 - g2 * e2 - g3) / (12 * e2 * e2 - g2);
-    const double H2 = (12 * e2 * e2 - g2) / 4, H = std::sqrt(H2);
-    const double beta = std::sqrt(std::max(0.0, H2 - 2.25 * e2 * e2));
-    e_[0] = cplx(-e2 / 2, beta), e_[1] = e2, e_[2] = cplx(-e2 / 2, -beta);
-    jacobi_ = JacobiElliptic(0.5 - 0.75 * e2 / H, 0.5 + 0.75 * e2 / H);
-    lambda_ = 2 * std::sqrt(H);
-    a_ = H;
+    const LD H2 = (12 * e2 * e2 - g2) / 4, H = std::sqrt(H2);
+    const LD beta2 = std::max(LD(0), -Delta / (64 * H2 * H2));  // Δ = −64 H⁴ β²
+    e_[0] = cplx(double(-e2 / 2), double(std::sqrt(beta2))), e_[1] = double(e2), e_[2] = std::conj(e_[0]);
+    const LD m = e2 > 0 ? beta2 / (H * (2 * H + 3 * e2)) : LD(0.5) - LD(0.75) * e2 / H;
+    const LD m1 = e2 < 0 ? beta2 / (H * (2 * H - 3 * e2)) : LD(0.5) + LD(0.75) * e2 / H;
+    jacobi_ = JacobiElliptic(double(m), double(m1));
+    a_ = double(H);
+    lambda_ = 2 * std::sqrt(a_);
     const double K = jacobi_.K(), Kp = JacobiElliptic(jacobi_.m1(), jacobi_.m()).K();
-    omega1_ = K / std::sqrt(H);
-    omega3_ = cplx(K, Kp) / (2 * std::sqrt(H));
+    omega1_ = K / std::sqrt(a_);
+    omega3_ = cplx(K, Kp) / (2 * std::sqrt(a_));
     q2_ = -std::exp(-kPi * Kp / K);  // q = i e^{−πK′/2K}
   }
   m1_ = jacobi_.m1();
@@ -104,34 +113,55 @@ RealLattice::Scaled RealLattice::p_scaled(double t, cplx c) const {
   return {s, (e_[1] - c) * s + a_ * (2 - s), -4 * a_ * std::sqrt(a_) * v.sn * v.dn};
 }
 
-void RealLattice::log_theta1(cplx v, cplx* log, cplx* derivative) const {
-  // ln sin v and cot v on the side of the real axis v lies: e^{±2iv} is then inside the unit circle.
+void RealLattice::log_theta1(cplx v, int derivatives, cplx d[4]) const {
+  // ln sin v on the side of the real axis v lies, where E = e^{±2iv} is inside the unit circle:
+  //   ln sin v = ln(±i/2) ∓ iv + ln(1 − E),  (ln sin)′ = ∓i(1 + E)/(1 − E) = cot v,
+  //   (ln sin)″ = −csc²v = 4E/(1 − E)²,  (ln sin)‴ = ±8iE(1 + E)/(1 − E)³.
   const bool upper = v.imag() > 0;
   const cplx E = std::exp(upper ? 2.0 * kI * v : -2.0 * kI * v);
-  const cplx sign = upper ? kI : -kI;
-  *log = std::log(0.5 * sign) - sign * v + std::log(1.0 - E);
-  *derivative = -sign * (1.0 + E) / (1.0 - E);
+  const cplx sign = upper ? kI : -kI, one_minus = 1.0 - E;
+  d[0] = std::log(0.5 * sign) - sign * v + std::log(one_minus);
+  d[1] = -sign * (1.0 + E) / one_minus;
+  if (derivatives >= 2) {
+    d[2] = 4.0 * E / (one_minus * one_minus);
+    d[3] = 2.0 * sign * d[2] * (1.0 + E) / one_minus;
+  }
+  // Each factor ln(1 − X), X = q²ⁿe^{±2iv} (X′ = ±2iX): derivatives ∓2iX/(1 − X), 4X/(1 − X)²,
+  // ±8iX(1 + X)/(1 − X)³.
   const cplx up = std::exp(2.0 * kI * v), down = std::exp(-2.0 * kI * v);
   double qn = 1.0;
   for (int n = 1; n <= terms_; ++n) {
     qn *= q2_;
-    const cplx a = qn * up, b = qn * down;
-    *log += std::log(1.0 - a) + std::log(1.0 - b);
-    *derivative += 2.0 * kI * (b / (1.0 - b) - a / (1.0 - a));
+    for (const auto& [X, s] : {std::pair{qn * up, 1.0}, std::pair{qn * down, -1.0}}) {
+      const cplx r = 1.0 / (1.0 - X);
+      d[0] += std::log(1.0 - X);
+      d[1] -= s * 2.0 * kI * X * r;
+      if (derivatives >= 2) {
+        d[2] += 4.0 * X * r * r;
+        d[3] += s * 8.0 * kI * X * (1.0 + X) * r * r * r;
+      }
+    }
   }
 }
 
 cplx RealLattice::zeta(cplx u) const {
   const double c = kPi / (2 * omega1_);
-  cplx log, derivative;
-  log_theta1(c * u, &log, &derivative);
-  return eta1_ * u / omega1_ + c * derivative;
+  cplx d[4];
+  log_theta1(c * u, 1, d);
+  return eta1_ * u / omega1_ + c * d[1];
 }
 
 cplx RealLattice::log_sigma(cplx u) const {
-  cplx log, derivative;
-  log_theta1(kPi / (2 * omega1_) * u, &log, &derivative);
-  return eta1_ * u * u / (2 * omega1_) + log;
+  cplx d[4];
+  log_theta1(kPi / (2 * omega1_) * u, 1, d);
+  return eta1_ * u * u / (2 * omega1_) + d[0];
+}
+
+std::pair<cplx, cplx> RealLattice::p_and_derivative(cplx u) const {
+  const double c = kPi / (2 * omega1_);
+  cplx d[4];
+  log_theta1(c * u, 3, d);
+  return {-eta1_ / omega1_ - c * c * d[2], -c * c * c * d[3]};
 }
 
 cplx RealLattice::p_prime_of_inverse(cplx p) const {

@@ -17,6 +17,7 @@
 // (and the mirror for Im v < 0), every argument in the right half-plane for |Im v| < π Im τ, so ln σ
 // is continuous along horizontal lines: the precession angle needs no unwrapping.
 #include <complex>
+#include <utility>
 
 #include "tumble/integrate/jacobi_elliptic.hpp"
 
@@ -29,7 +30,7 @@ class RealLattice {
  public:
   /// Throws InvalidArgument when Δ = g₂³ − 27g₃² is zero to rounding (a degenerate lattice: the
   /// gyrostat's separatrix or a steady spin, which gyrostat_flow.cpp handles before it gets here).
-  RealLattice(double g2, double g3);
+  RealLattice(long double g2, long double g3);
 
   bool rectangular() const { return rectangular_; }
   double period() const { return 2 * omega1_; }  ///< the real period 2ω₁
@@ -55,6 +56,10 @@ class RealLattice {
   /// ln σ(u) without its constant (which cancels in every difference the flow takes), continuous in
   /// Re u for fixed Im u ≠ 0, |Im u| ≤ Im ω₃.
   cplx log_sigma(cplx u) const;
+  /// ℘(u) and ℘′(u) at complex u, |Im u| ≤ Im ω₃, Im u ≠ 0 (from θ₁: ℘ = −η₁/ω₁ − c² (ln θ₁)″(v),
+  /// ℘′ = −c³ (ln θ₁)‴(v), c = π/2ω₁).
+  std::pair<cplx, cplx> p_and_derivative(cplx u) const;
+  double g2() const { return g2_; }
   /// ℘′(u) at a point u where ℘(u) = p: its two values are ±√(4p³ − g₂p − g₃); this is the one of
   /// u = inverse(p) (the principal Carlson R_F below), −2 √(p − e₁)√(p − e₂)√(p − e₃).
   cplx p_prime_of_inverse(cplx p) const;
@@ -64,12 +69,12 @@ class RealLattice {
   cplx reduce(cplx u) const;
 
  private:
-  /// ln θ₁(v) (without its constant) and its derivative d/dv ln θ₁(v), Im v ≠ 0.
-  void log_theta1(cplx v, cplx* log, cplx* derivative) const;
+  /// ln θ₁(v) (without its constant) and its first three derivatives in v, Im v ≠ 0 (d[0] … d[3]).
+  void log_theta1(cplx v, int derivatives, cplx d[4]) const;
 
   bool rectangular_;
   cplx e_[3];  ///< e₁, e₂, e₃ (rectangular: real, descending; rhombic: e₂ real, e₁ = ē₃, Im e₁ > 0)
-  double omega1_, eta1_, m1_;
+  double g2_, omega1_, eta1_, m1_;
   cplx omega3_;
   double lambda_;  ///< λ (rectangular) or 2√H (rhombic): the Jacobi argument per unit t
   double a_;       ///< e₁ − e₃ (rectangular) or H (rhombic)
