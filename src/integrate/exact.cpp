@@ -1,8 +1,9 @@
 // exact: the analytic motion, evaluated at each step's end from one anchor; no stepping.
 //
 // When every force is a uniform field g (none, or uniform gravity) no torque acts about any centre of
-// mass, so each body's rotation is the Euler–Poinsot motion from its initial state (EulerPoinsot), and
-// its centre of mass, like each particle, follows the parabola
+// mass, so each body's rotation is the Euler–Poinsot motion from its initial state (EulerPoinsot) —
+// or, for a body whose rotors' motors hold their speeds (constant h), the torque-free gyrostat's
+// (GyrostatFlow) — and its centre of mass, like each particle, follows the parabola
 //   o(t) = o₀ + v₀ τ + ½ g τ²,  v(t) = v₀ + g τ,  τ = t − t₀.
 // Every state is evaluated from the anchor (t₀ and the state there), so a sample at 100 s carries the
 // rounding of one evaluation, not of 10⁵ steps: the timestep only sets where a run may stop. A state
@@ -12,13 +13,16 @@
 
 #include <cmath>
 #include <cstring>
+#include <map>
 #include <vector>
 
 #include "engine.hpp"
 #include "free_flow_tangent.hpp"
+#include "gyrostat_flow.hpp"
 #include "methods.hpp"
 #include "saved_state.hpp"
 #include "tumble/error.hpp"
+#include "tumble/forces/rotors.hpp"
 #include "tumble/integrate/euler_poinsot.hpp"
 
 namespace tumble {
@@ -37,6 +41,11 @@ class Exact final : public Integrator {
   void step_tangent(const Model& model, Formulation F, TangentCoordinates& x, double h) override {
     using T = TangentScalar;
     check(model);
+    if (rotors_of(model) != nullptr) {
+      throw InvalidArgument(
+          "integrator 'exact' has no derivatives through rotors (the gyrostat's exact flow is not "
+          "differentiated); use 'splitting' or 'rk4' for sensitivities of a body with rotors");
+    }
     const size_t n = x.bodies.size();
     if (tangent_model_ != &model || F != tangent_formulation_ || tangent_flows_.size() != n ||
         !(std::abs(x.t - tangent_t_) <= 1e-9 * std::abs(h))) {
@@ -81,6 +90,15 @@ class Exact final : public Integrator {
   }
   void check(const Model& model) const override {
     for (const auto& force : model.forces) {
+      if (const auto* rotors = dynamic_cast<const Rotors*>(force.get())) {
+        if (rotors->motors_work() || rotors->input_interval() > 0) {
+          throw InvalidArgument(
+              "integrator 'exact' solves a body with rotors only while their motors hold their speeds "
+              "(constant h: no motor torque, table or controller); with motors working use "
+              "'splitting' (second order, total angular momentum kept to rounding) or 'rk4'");
+        }
+        continue;
+      }
       if (!force->uniform_acceleration()) {
         throw InvalidArgument(fmt::format(
             "integrator 'exact' solves torque-free motion only (no forces, or uniform gravity), but the "
@@ -158,12 +176,16 @@ class Exact final : public Integrator {
     g_.setZero();
     for (const auto& force : model.forces) g_ += *force->uniform_acceleration();
     flows_.clear();
+    gyrostats_.clear();
     o0_.clear();
     v0_.clear();
+    const Rotors* rotors = rotors_of(model);
     for (size_t i = 0; i < x.bodies.size(); ++i) {
       const Coordinates<double> c = x.bodies.load(i);
       // ^bω and world v in the formulation's own variables, without a rotation where they already are.
       const Vec3 w_b = F == Formulation::world ? Vec3(c.q.conjugate() * c.omega) : c.omega;
+      const Vec3 h = rotors != nullptr ? rotors->momentum(i, x.t).first : Vec3::Zero();
+      if (h != Vec3::Zero()) gyrostats_.emplace(i, GyrostatFlow(model.bodies[i].Lambda(), h, c.q, w_b));
       flows_.emplace_back(model.bodies[i].Lambda(), c.q, w_b);
       o0_.push_back(c.o);
       v0_.push_back(F == Formulation::body ? Vec3(c.q * c.v) : c.v);
@@ -178,8 +200,16 @@ class Exact final : public Integrator {
     engine_.for_each_block(n, [&](const engine::Block& blk) {
       for (size_t i = blk.begin; i < std::min(blk.end, n); ++i) {
         Coordinates<double> c;
-        c.q = flows_[i].q(tau);
-        const Vec3 w_b = flows_[i].omega_b(tau);
+        Vec3 w_b;
+        if (const auto g = gyrostats_.find(i); g != gyrostats_.end()) {
+          const GyrostatFlow::State s = g->second.state(tau);
+          // q or −q, the one nearer the last state's: the output stays continuous.
+          c.q = s.q.dot(x.bodies.load(i).q) < 0 ? Quat(-s.q.coeffs()) : s.q;
+          w_b = s.omega_b;
+        } else {
+          c.q = flows_[i].q(tau);
+          w_b = flows_[i].omega_b(tau);
+        }
         const Vec3 v_w = v0_[i] + tau * g_;
         c.o = o0_[i] + tau * v0_[i] + (0.5 * tau * tau) * g_;
         c.v = F == Formulation::body ? Vec3(c.q.conjugate() * v_w) : v_w;
@@ -200,6 +230,7 @@ class Exact final : public Integrator {
   double t0_ = 0.0;
   Vec3 g_ = Vec3::Zero();
   std::vector<EulerPoinsot> flows_;  // per body, from the anchor
+  std::map<size_t, GyrostatFlow> gyrostats_;  // the bodies with rotors (h ≠ 0), from the anchor
   std::vector<Vec3> o0_, v0_;        // centre of mass and its velocity (world) at the anchor
   std::vector<ParticleState> particles0_;
   SystemCoordinates anchor_;  // the state anchored at

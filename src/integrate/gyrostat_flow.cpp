@@ -8,6 +8,7 @@
 
 #include "free_body_taylor.hpp"
 #include "tumble/error.hpp"
+#include "tumble/integrate/euler_poinsot.hpp"
 
 namespace tumble {
 
@@ -77,6 +78,16 @@ GyrostatFlow::GyrostatFlow(const Vec3& Lambda, const Vec3& h_b, const Quat& q0, 
   if (M0_.cross(omega_b0).norm() <= 16 * kEps * m_ * omega_b0.norm()) {
     regime_ = Regime::steady;
     return;
+  }
+  // Two moments equal (to EulerPoinsot's tolerance) and h on the third axis, to rounding.
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    if (std::abs(Lambda(i) - Lambda(j)) <= EulerPoinsot::kEqualMomentsTolerance * Lambda.maxCoeff() &&
+        std::hypot(h_b(i), h_b(j)) <= 16 * kEps * h_b.norm()) {
+      regime_ = Regime::axisymmetric;
+      axis_ = k;
+      return;
+    }
   }
   const Vec3 n0 = M0_ / m_;
   try {
@@ -279,6 +290,14 @@ GyrostatFlow::State GyrostatFlow::state(double t) const {
     }
     case Regime::series:
       return series_state(t);
+    case Regime::axisymmetric: {
+      const int k = axis_, i = (k + 1) % 3;
+      const double A = Lambda_(i), c = omega0_(k) - M0_(k) / A;
+      const Vec3 e = Vec3::Unit(k), L_w = q0_ * M0_;
+      const Quat q = Quat(Eigen::AngleAxisd(m_ * t / A, L_w / m_)) * q0_ * Quat(Eigen::AngleAxisd(c * t, e));
+      const Vec3 M = Eigen::AngleAxisd(-c * t, e) * M0_;
+      return {q.normalized(), (M - h_).cwiseQuotient(Lambda_)};
+    }
     case Regime::closed_form:
       break;
   }

@@ -17,10 +17,13 @@
 //       ψ(t) = ψ₀ + C₀t − Σₖ Im[ln σ(t − uₖ) − ln σ(−uₖ)]
 //     over the four points uₖ of the curve where z = 0 or z = ∞ (Abel's map: ℘(uₖ) from the point,
 //     uₖ = ℘⁻¹ by Carlson's R_F).
-// No regime needs a branch of its own (h along an axis, h = 0, any ordering of the moments) but two of
-// measure zero, where the lattice degenerates: a steady spin (Ṁ = 0: ω constant, R = R₀ exp(t[ω]×)),
-// and the separatrix between polhode families to rounding, where the motion is integrated by its
-// Taylor series instead (series: exact to rounding per step, its cost growing with t).
+// No regime needs a branch of its own (h along an axis, h = 0, any ordering of the moments) but those
+// where the lattice degenerates: a steady spin (Ṁ = 0: ω constant, R = R₀ exp(t[ω]×)); an
+// axisymmetric body (A, A, C about axis k) with h along its axis, where ω = M/A + c e_k with
+// c = ω_k − M_k/A constant, so M_b turns about e_k at −c and R(t) = Rot(L, |L|t/A) R₀ Rot(e_k, ct)
+// (the classical dual-spin satellite); and the separatrix between polhode families to rounding, where
+// the motion is integrated by its Taylor series instead (series: exact to rounding per step, its cost
+// growing with t).
 #include <array>
 
 #include "tumble/math/types.hpp"
@@ -37,8 +40,9 @@ class GyrostatFlow {
     across_momentum,  ///< perpendicular to M(0): for short times (a splitting's step)
   };
   enum class Regime {
-    closed_form,  ///< the elliptic solution above
-    steady,       ///< Ṁ = 0: a uniform rotation
+    closed_form,   ///< the elliptic solution above
+    steady,        ///< Ṁ = 0: a uniform rotation
+    axisymmetric,  ///< two equal moments, h on the third axis: ω = M/A + c e_k, a regular precession
     series,       ///< a degenerate lattice (separatrix): the Taylor series, step by step
   };
 
@@ -78,6 +82,7 @@ class GyrostatFlow {
   State series_state(double t) const;
 
   Vec3 Lambda_, h_, M0_, omega0_;
+  int axis_ = 0;  ///< axisymmetric: the symmetry axis k
   Quat q0_;
   double m_ = 0.0, two_E_ = 0.0;
   Regime regime_ = Regime::closed_form;
