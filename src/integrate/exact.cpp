@@ -174,7 +174,7 @@ class Exact final : public Integrator {
     formulation_ = F;
     t0_ = x.t;
     g_.setZero();
-    for (const auto& force : model.forces) g_ += *force->uniform_acceleration();
+    for (const auto& force : model.forces) g_ += force->uniform_acceleration().value_or(Vec3::Zero());  // rotors: none
     flows_.clear();
     gyrostats_.clear();
     o0_.clear();

@@ -41,9 +41,13 @@ class FreeBodyTaylorT {
   }
   /// A gyrostat: rotors of constant momentum h relative to the body (principal axes), whose equation
   /// Λ ω̇ = (Λω + h) × ω adds the linear term Λ⁻¹(h × ω):  ω[n+1] += Λ⁻¹(h × ω[n])/(n+1).
-  FreeBodyTaylorT(const Vec3& I, const Vec3& h, int order) : FreeBodyTaylorT(I, order) {
-    h_ = {Real(h(0)), Real(h(1)), Real(h(2))};
-    gyrostat_ = h != Vec3::Zero();
+  FreeBodyTaylorT(const Vec3& I, const Vec3& h, int order)
+      : FreeBodyTaylorT(std::array<Real, 3>{Real(I(0)), Real(I(1)), Real(I(2))},
+                        std::array<Real, 3>{Real(h(0)), Real(h(1)), Real(h(2))}, order) {}
+  /// The same in Real (a pack of bodies, or dual numbers).
+  FreeBodyTaylorT(const std::array<Real, 3>& I, const std::array<Real, 3>& h, int order) : FreeBodyTaylorT(I, order) {
+    h_ = h;
+    gyrostat_ = true;
   }
   /// aᵢ = (I_j − I_k)/Iᵢ: ω̇ᵢ = aᵢ ω_j ω_k.
   const std::array<Real, 3>& a() const { return a_; }

@@ -88,6 +88,11 @@ class RotorSplit {
   /// h of body i at time k (0 start, 1 middle, 2 end), as a pack of bodies i … i + W − 1 or alone.
   template <class T>
   Vec3T<T> h(int k, size_t i) const;
+  /// Whether the motors of body i (or of each body of the pack from i) hold its rotors' speeds over the
+  /// step: h the same, and not zero, at the three times. Such a body drifts by the gyrostat's own flow
+  /// (gyrostat_series.hpp) instead of G D₁ G.
+  template <class T>
+  auto held(size_t i) const;
 
  private:
   const Rotors* rotors_ = nullptr;
@@ -106,6 +111,14 @@ Vec3T<T> RotorSplit::h(int k, size_t i) const {
   } else {
     return {T(*column(0)), T(*column(1)), T(*column(2))};
   }
+}
+
+template <class T>
+auto RotorSplit::held(size_t i) const {
+  const Vec3T<T> h0 = h<T>(0, i), h1 = h<T>(1, i), h2 = h<T>(2, i);
+  auto same = h0(0) != T(0.0) || h0(1) != T(0.0) || h0(2) != T(0.0);
+  for (int k = 0; k < 3; ++k) same = same && h0(k) == h1(k) && h1(k) == h2(k);
+  return same;
 }
 
 }  // namespace tumble::gyrostat

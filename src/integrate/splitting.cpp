@@ -78,6 +78,7 @@
 #include "engine.hpp"
 #include "euler_poinsot_flows.hpp"
 #include "free_flow_tangent.hpp"
+#include "gyrostat_series.hpp"
 #include "gyrostat_split.hpp"
 #include "methods.hpp"
 #include "saved_state.hpp"
@@ -335,6 +336,7 @@ class Strang {
     Drift d;
     begin_kick_drift(F, xr, h, d, i, n);
     evaluate_flows(d, i);
+    held_rotor_drifts(F, d, h, i);
     end_drift(F, d, i);
     leave_rotors(F, d.c, h, i);
     xr.store(i, d.c);
@@ -345,6 +347,8 @@ class Strang {
     begin_kick_drift(F, xr, h, d0, i, n);
     begin_kick_drift(F, xr, h, d1, i + kWidth, n);
     evaluate_flows(d0, d1, i);
+    held_rotor_drifts(F, d0, h, i);
+    held_rotor_drifts(F, d1, h, i + kWidth);
     end_drift(F, d0, i);
     end_drift(F, d1, i + kWidth);
     leave_rotors(F, d0.c, h, i);
@@ -379,7 +383,7 @@ class Strang {
     if (!rotor_split_.active()) return;
     const int first = entering ? 0 : 1;
     const Vec3T<Pack> h_a = rotor_split_.h<Pack>(first, i), h_b = rotor_split_.h<Pack>(first + 1, i);
-    const auto spins = nonzero(h_a) || nonzero(h_b);
+    const auto spins = (nonzero(h_a) || nonzero(h_b)) && !rotor_split_.held<Pack>(i);
     if (!xsimd::any(spins)) return;
     Coordinates<Pack> g = c;
     const MassConstants<Pack> mass = engine_.mass<Pack>(i);
@@ -389,6 +393,28 @@ class Strang {
       gyrostat::leave<Pack>(F, g, h_a, h_b, mass.Lambda, mass.Lambda_inv, Pack(0.5 * h));
     }
     blend(spins, g, c);
+  }
+  /// The lanes whose rotors' speeds are held over the step drift by the torque-free gyrostat's flow
+  /// from the kicked state (gyrostat_series.hpp), exact to rounding: the splitting is then exact for
+  /// them without external torque, as for a free body.
+  void held_rotor_drifts(Formulation F, Drift& d, double h, size_t i) const {
+    if (!rotor_split_.active()) return;
+    const Mask which = rotor_split_.held<Pack>(i) && d.real;
+    if (!xsimd::any(which)) return;
+    const MassConstants<Pack> mass = engine_.mass<Pack>(i);
+    const Vec3T<Pack> h_b = rotor_split_.h<Pack>(0, i);
+    const Coordinates<Pack>& c = d.c;
+    const Vec3T<Pack> w_b = F == Formulation::world ? Vec3T<Pack>(c.q.conjugate() * c.omega) : c.omega;
+    const Pack rate = xsimd::sqrt(w_b.squaredNorm()) + xsimd::sqrt(h_b.cwiseProduct(mass.Lambda_inv).squaredNorm());
+    const Pack n = select(which, xsimd::max(Pack(1.0), xsimd::ceil(xsimd::abs(Pack(h) * rate) / Pack(gyrostat::kSeriesReach))),
+                          Pack(1.0));
+    alignas(64) double counts[kWidth];
+    n.store_aligned(counts);
+    const double n_max = *std::max_element(counts, counts + kWidth);
+    const FlowState<Pack> s = gyrostat::series_flow<Pack, Pack>(mass.Lambda, h_b, c.q, w_b, h, n, n_max);
+    d.flow.q = QuatT<Pack>(select(which, s.q.w(), d.flow.q.w()), select(which, s.q.x(), d.flow.q.x()),
+                           select(which, s.q.y(), d.flow.q.y()), select(which, s.q.z(), d.flow.q.z()));
+    for (Eigen::Index k = 0; k < 3; ++k) d.flow.omega_b(k) = select(which, s.omega_b(k), d.flow.omega_b(k));
   }
   static Mask nonzero(const Vec3T<Pack>& v) {
     return v.x() != Pack(0.0) || v.y() != Pack(0.0) || v.z() != Pack(0.0);
@@ -668,13 +694,16 @@ class StrangTangent {
       }
       kick_all(0.5 * hs, loads_);
       if (rotor_split_.active()) rotor_split_.momenta(x.t, hs);
-      // Whether body i has rotors turning it (h ≠ 0 at the step's start or middle, or middle or end).
+      // Whether body i has rotors turning it by G (h ≠ 0 at the step's start or middle, or middle or
+      // end, and not held: a held h drifts with the body by the gyrostat's series flow).
       const auto spins = [&](size_t i, int first) {
-        return !(rotor_split_.h<double>(first, i).isZero(0.0) && rotor_split_.h<double>(1, i).isZero(0.0));
+        return !(rotor_split_.h<double>(first, i).isZero(0.0) && rotor_split_.h<double>(1, i).isZero(0.0)) &&
+               !rotor_split_.held<double>(i);
       };
       for (size_t i = 0; i < x.bodies.size(); ++i) {
         Coordinates<T>& c = x.bodies[i];
         const MassConstants<T> mass = mass_constants<T>(x.m[i], x.Lambda[i]);
+        const bool held = rotor_split_.active() && rotor_split_.held<double>(i);
         if (rotor_split_.active() && spins(i, 0)) {
           gyrostat::enter<T>(F, c, rotor_split_.h<T>(0, i), rotor_split_.h<T>(1, i), mass.Lambda,
                              mass.Lambda_inv, T(0.5 * hs));
@@ -682,7 +711,8 @@ class StrangTangent {
         const Vec3T<T> v_w = F == Formulation::body ? rotate<T>(c.q, c.v) : c.v;
         c.o += T(hs) * v_w;
         const Vec3T<T> w_b = F == Formulation::world ? rotate_inverse<T>(c.q, c.omega) : c.omega;
-        const detail::FlowState<T> flow = FreeFlowTangent(x.Lambda[i], c.q, w_b).at(hs);
+        const detail::FlowState<T> flow = held ? held_rotor_flow(c, w_b, mass, i, hs)
+                                               : FreeFlowTangent(x.Lambda[i], c.q, w_b).at(hs);
         c.q = flow.q;
         c.omega = F == Formulation::world ? rotate<T>(c.q, flow.omega_b) : flow.omega_b;
         if (F == Formulation::body) c.v = rotate_inverse<T>(c.q, v_w);
@@ -701,6 +731,17 @@ class StrangTangent {
   }
 
  private:
+  /// The drift of a body whose rotors' speeds are held: the series flow, as the steps on packs take it.
+  detail::FlowState<TangentScalar> held_rotor_flow(const Coordinates<TangentScalar>& c,
+                                                   const Vec3T<TangentScalar>& w_b,
+                                                   const MassConstants<TangentScalar>& mass, size_t i, double hs) const {
+    using T = TangentScalar;
+    const Vec3T<T> h_b = rotor_split_.h<T>(0, i);
+    const double rate = std::sqrt(w_b.squaredNorm().v) + std::sqrt(h_b.cwiseProduct(mass.Lambda_inv).squaredNorm().v);
+    const double n = gyrostat::series_substeps(hs * rate);
+    return gyrostat::series_flow<T, double>(mass.Lambda, h_b, c.q, w_b, hs, n, n);
+  }
+
   /// Whether x is, value for value, the state the last substep left (at the same time).
   bool same(const TangentCoordinates& x) const {
     if (!(x.t == t_) || x.bodies.size() != left_.size()) return false;
