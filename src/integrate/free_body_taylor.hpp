@@ -15,8 +15,10 @@
 // across a flip, measured with this reference in two precisions): there the reference runs in __float128 (ε = 1.9e-34).
 #include <algorithm>
 #include <array>
+#include <type_traits>
 #include <vector>
 
+#include "tumble/math/lanes.hpp"
 #include "tumble/math/types.hpp"
 
 namespace tumble {
@@ -53,8 +55,13 @@ class FreeBodyTaylorT {
   const std::array<Real, 3>& a() const { return a_; }
 
   /// One step of size h.
-  FreeBodyStateT<Real> step(const FreeBodyStateT<Real>& s, Real h) const {
-    const int P = order_;
+  FreeBodyStateT<Real> step(const FreeBodyStateT<Real>& s, Real h) const { return step(s, h, order_, order_); }
+
+  /// One step of size h with the series truncated after the term of order `lane_order` (a number, or a
+  /// pack of them, one per lane), P ≥ each: the terms above a lane's order are left out of its sum, so a
+  /// lane computes, bit for bit, what a series of its own order gives (Horner from zeros: 0·h + c = c).
+  template <class Order>
+  FreeBodyStateT<Real> step(const FreeBodyStateT<Real>& s, Real h, const Order& lane_order, int P) const {
     std::array<std::array<Real, 3>, kMaxOrder + 1> w;
     std::array<std::array<Real, 4>, kMaxOrder + 1> q;
     w[0] = s.w;
@@ -87,8 +94,14 @@ class FreeBodyTaylorT {
     }
     FreeBodyStateT<Real> out{{0, 0, 0}, {0, 0, 0, 0}};
     for (int n = P; n >= 0; --n) {  // Horner
-      for (int i = 0; i < 3; ++i) out.w[i] = out.w[i] * h + w[n][i];
-      for (int i = 0; i < 4; ++i) out.q[i] = out.q[i] * h + q[n][i];
+      if constexpr (std::is_same_v<Order, int>) {
+        for (int i = 0; i < 3; ++i) out.w[i] = out.w[i] * h + w[n][i];
+        for (int i = 0; i < 4; ++i) out.q[i] = out.q[i] * h + q[n][i];
+      } else {
+        const auto in = Order(n) <= lane_order;
+        for (int i = 0; i < 3; ++i) out.w[i] = out.w[i] * h + select(in, w[n][i], Real(0));
+        for (int i = 0; i < 4; ++i) out.q[i] = out.q[i] * h + select(in, q[n][i], Real(0));
+      }
     }
     return out;
   }

@@ -405,13 +405,9 @@ class Strang {
     const Vec3T<Pack> h_b = rotor_split_.h<Pack>(0, i);
     const Coordinates<Pack>& c = d.c;
     const Vec3T<Pack> w_b = F == Formulation::world ? Vec3T<Pack>(c.q.conjugate() * c.omega) : c.omega;
-    const Pack rate = xsimd::sqrt(w_b.squaredNorm()) + xsimd::sqrt(h_b.cwiseProduct(mass.Lambda_inv).squaredNorm());
-    const Pack n = select(which, xsimd::max(Pack(1.0), xsimd::ceil(xsimd::abs(Pack(h) * rate) / Pack(gyrostat::kSeriesReach))),
-                          Pack(1.0));
-    alignas(64) double counts[kWidth];
-    n.store_aligned(counts);
-    const double n_max = *std::max_element(counts, counts + kWidth);
-    const FlowState<Pack> s = gyrostat::series_flow<Pack, Pack>(mass.Lambda, h_b, c.q, w_b, h, n, n_max);
+    // Lanes not held: rate 0, one substep of the fewest terms (their result is not used).
+    const Pack rate = select(which, gyrostat::series_rate<Pack>(w_b, h_b, mass.Lambda), Pack(0.0));
+    const FlowState<Pack> s = gyrostat::series_flow<Pack, Pack>(mass.Lambda, h_b, c.q, w_b, h, rate);
     d.flow.q = QuatT<Pack>(select(which, s.q.w(), d.flow.q.w()), select(which, s.q.x(), d.flow.q.x()),
                            select(which, s.q.y(), d.flow.q.y()), select(which, s.q.z(), d.flow.q.z()));
     for (Eigen::Index k = 0; k < 3; ++k) d.flow.omega_b(k) = select(which, s.omega_b(k), d.flow.omega_b(k));
@@ -737,9 +733,8 @@ class StrangTangent {
                                                    const MassConstants<TangentScalar>& mass, size_t i, double hs) const {
     using T = TangentScalar;
     const Vec3T<T> h_b = rotor_split_.h<T>(0, i);
-    const double rate = std::sqrt(w_b.squaredNorm().v) + std::sqrt(h_b.cwiseProduct(mass.Lambda_inv).squaredNorm().v);
-    const double n = gyrostat::series_substeps(hs * rate);
-    return gyrostat::series_flow<T, double>(mass.Lambda, h_b, c.q, w_b, hs, n, n);
+    const double rate = gyrostat::series_rate<T>(w_b, h_b, mass.Lambda).v;
+    return gyrostat::series_flow<T, double>(mass.Lambda, h_b, c.q, w_b, hs, rate);
   }
 
   /// Whether x is, value for value, the state the last substep left (at the same time).

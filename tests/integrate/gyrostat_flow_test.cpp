@@ -11,6 +11,7 @@
 
 #include "integrate/free_body_taylor.hpp"
 #include "integrate/gyrostat_flow.hpp"
+#include "integrate/gyrostat_series.hpp"
 
 namespace tumble {
 namespace {
@@ -127,6 +128,31 @@ TEST(GyrostatFlow, SteadySpinsAndTheSeparatrixHaveTheirOwnRegimes) {
   // Rounding of 200 steps of 0.1 rad in double: ~200 ε |ω| (about 3e-14).
   EXPECT_LT((s.omega_b - r.omega_b).norm(), 1e-13);
   EXPECT_LT(Eigen::AngleAxisd(s.q * r.q.conjugate()).angle(), 1e-13);
+}
+
+TEST(GyrostatFlow, TheSplittingsSeriesDriftAgreesWithTheClosedForm) {
+  // The splittings' drift for held rotors (integrate/gyrostat_series.hpp) against the closed form, from
+  // random states, over steps from 1e-3 s to 3 s: the substeps at their full reach and the order the
+  // drift picks for short ones. Measured: worst 1.1e-14 relative in ω, 1.6e-14 rad.
+  std::mt19937_64 rng(2612);
+  std::uniform_real_distribution<double> moment(0.5, 3.0), unit(-1.0, 1.0);
+  double worst[2] = {0, 0};
+  for (int k = 0; k < 60; ++k) {
+    const Vec3 I(moment(rng), moment(rng), moment(rng)), h = 2.0 * Vec3(unit(rng), unit(rng), unit(rng));
+    const Vec3 w0(unit(rng), unit(rng), unit(rng));
+    const Quat q0 = Quat(unit(rng), unit(rng), unit(rng), unit(rng)).normalized();
+    const GyrostatFlow flow(I, h, q0, w0);
+    for (const double tau : {1e-3, 0.05, 0.4, 3.0}) {
+      const detail::FlowState<double> s =
+          gyrostat::series_flow<double, double>(I, h, q0, w0, tau, gyrostat::series_rate<double>(w0, h, I));
+      const GyrostatFlow::State r = flow.state(tau);
+      const double ew = (s.omega_b - r.omega_b).norm() / w0.norm(), eR = Eigen::AngleAxisd(s.q * r.q.conjugate()).angle();
+      worst[0] = std::max(worst[0], ew), worst[1] = std::max(worst[1], eR);
+      EXPECT_LT(ew, 1e-13) << "case " << k << ", tau " << tau;
+      EXPECT_LT(eR, 1e-13) << "case " << k << ", tau " << tau;
+    }
+  }
+  std::printf("series drift: worst relative omega error %.2e, attitude %.2e rad\n", worst[0], worst[1]);
 }
 
 }  // namespace
