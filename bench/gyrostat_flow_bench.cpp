@@ -18,7 +18,8 @@ const Quat kQ0(0.8, 0.2, -0.4, 0.4);
 struct Body {
   Vec3 h, omega;
 };
-const Body kBodies[] = {{Vec3(0.3, -0.4, 0.5), Vec3(0.7, 0.2, -0.4)}, {Vec3(0.0, 1.5, 0.0), Vec3(0.01, 1.0, 0.02)}};
+const Body kBodies[] = {{Vec3(0.3, -0.4, 0.5), Vec3(0.7, 0.2, -0.4)},
+                        {Vec3(0.0, 1.5, 0.0), Vec3(0.01, 1.0, 0.02)}};
 
 void BM_SetUp(benchmark::State& state) {
   const Body& b = kBodies[state.range(0)];

@@ -68,9 +68,10 @@ int main(int argc, char** argv) {
   std::sort(a.begin(), a.end());
   std::sort(b.begin(), b.end());
   const auto median = [](const std::vector<double>& v) { return v[v.size() / 2]; };
-  fmt::print("rotor_throughput: {} boxes, {}, motor torque {} N m, h = 1e-3 s, 100 steps, one thread; {}; {} "
-             "hardware threads\n",
-             n, integrator, torque, bench::cpu_model(), std::thread::hardware_concurrency());
+  fmt::print(
+      "rotor_throughput: {} boxes, {}, motor torque {} N m, h = 1e-3 s, 100 steps, one thread; {}; {} "
+      "hardware threads\n",
+      n, integrator, torque, bench::cpu_model(), std::thread::hardware_concurrency());
   fmt::print("  no rotors:       {:.4g} body-steps/s (median), {:.4g} (best)\n", body_steps / median(a),
              body_steps / a.front());
   fmt::print("  three wheels:    {:.4g} body-steps/s (median), {:.4g} (best)   target >= 1e7\n",

@@ -174,7 +174,8 @@ class Exact final : public Integrator {
     formulation_ = F;
     t0_ = x.t;
     g_.setZero();
-    for (const auto& force : model.forces) g_ += force->uniform_acceleration().value_or(Vec3::Zero());  // rotors: none
+    for (const auto& force : model.forces)
+      g_ += force->uniform_acceleration().value_or(Vec3::Zero());  // rotors: none
     flows_.clear();
     gyrostats_.clear();
     o0_.clear();
@@ -229,9 +230,9 @@ class Exact final : public Integrator {
   Formulation formulation_ = Formulation::mixed;
   double t0_ = 0.0;
   Vec3 g_ = Vec3::Zero();
-  std::vector<EulerPoinsot> flows_;  // per body, from the anchor
+  std::vector<EulerPoinsot> flows_;           // per body, from the anchor
   std::map<size_t, GyrostatFlow> gyrostats_;  // the bodies with rotors (h ≠ 0), from the anchor
-  std::vector<Vec3> o0_, v0_;        // centre of mass and its velocity (world) at the anchor
+  std::vector<Vec3> o0_, v0_;                 // centre of mass and its velocity (world) at the anchor
   std::vector<ParticleState> particles0_;
   SystemCoordinates anchor_;  // the state anchored at
   BodyColumns last_;          // what the last step produced

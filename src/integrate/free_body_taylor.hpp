@@ -47,7 +47,8 @@ class FreeBodyTaylorT {
       : FreeBodyTaylorT(std::array<Real, 3>{Real(I(0)), Real(I(1)), Real(I(2))},
                         std::array<Real, 3>{Real(h(0)), Real(h(1)), Real(h(2))}, order) {}
   /// The same in Real (a pack of bodies, or dual numbers).
-  FreeBodyTaylorT(const std::array<Real, 3>& I, const std::array<Real, 3>& h, int order) : FreeBodyTaylorT(I, order) {
+  FreeBodyTaylorT(const std::array<Real, 3>& I, const std::array<Real, 3>& h, int order)
+      : FreeBodyTaylorT(I, order) {
     h_ = h;
     gyrostat_ = true;
   }
@@ -55,7 +56,9 @@ class FreeBodyTaylorT {
   const std::array<Real, 3>& a() const { return a_; }
 
   /// One step of size h.
-  FreeBodyStateT<Real> step(const FreeBodyStateT<Real>& s, Real h) const { return step(s, h, order_, order_); }
+  FreeBodyStateT<Real> step(const FreeBodyStateT<Real>& s, Real h) const {
+    return step(s, h, order_, order_);
+  }
 
   /// One step of size h with the series truncated after the term of order `lane_order` (a number, or a
   /// pack of them, one per lane), P ≥ each: the terms above a lane's order are left out of its sum, so a

@@ -63,12 +63,14 @@ GyrostatFlow::GyrostatFlow(const Vec3& Lambda, const Vec3& h_b, const Quat& q0, 
                            Pole pole)
     : Lambda_(Lambda), h_(h_b), omega0_(omega_b0) {
   if (!(Lambda.minCoeff() > 0) || !Lambda.allFinite()) {
-    throw InvalidArgument(fmt::format("gyrostat: principal moments must be positive and finite, got ({}, {}, {})",
-                                      Lambda(0), Lambda(1), Lambda(2)));
+    throw InvalidArgument(
+        fmt::format("gyrostat: principal moments must be positive and finite, got ({}, {}, {})", Lambda(0),
+                    Lambda(1), Lambda(2)));
   }
   if (!h_b.allFinite() || !omega_b0.allFinite() || !q0.coeffs().allFinite() || q0.norm() == 0) {
-    throw InvalidArgument("gyrostat: the rotor momentum, the angular velocity and the orientation must be finite, "
-                          "and the quaternion non-zero");
+    throw InvalidArgument(
+        "gyrostat: the rotor momentum, the angular velocity and the orientation must be finite, "
+        "and the quaternion non-zero");
   }
   q0_ = q0.normalized();
   M0_ = Lambda.cwiseProduct(omega_b0) + h_b;
@@ -120,7 +122,8 @@ void GyrostatFlow::set_up_curve(const Vec3& b) {
   const LD m = std::sqrt(LD(M_aux(0)) * M_aux(0) + LD(M_aux(1)) * M_aux(1) + LD(M_aux(2)) * M_aux(2));
   LD two_E = 0;
   for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) two_E += (LD(M_aux(i)) - h_aux_(i)) * Jinv_(i, j) * (LD(M_aux(j)) - h_aux_(j));
+    for (int j = 0; j < 3; ++j)
+      two_E += (LD(M_aux(i)) - h_aux_(i)) * Jinv_(i, j) * (LD(M_aux(j)) - h_aux_(j));
   }
   // V(z, w) = m N(z, w) − (1 + zw) h′, N = (z + w, −i(z − w), zw − 1): M′ = V/(1 + zw) on the sphere.
   const C i(0, 1);
@@ -223,7 +226,9 @@ void GyrostatFlow::set_up_attitude() {
   const cplx c = P_[2] / 24.0, kappa = -kI / (4 * m_);
   const cplx PP3 = P_[0] * P_[3] / 24.0, PP4 = P_[0] * P_[4] / 48.0;
   auto numerator = [&](cplx p, cplx p_prime) { return -zdot0_ * p_prime + 0.5 * P_[1] * (p - c) + PP3; };
-  auto z_of = [&](cplx p, cplx p_prime) { return z0_ + numerator(p, p_prime) / (2.0 * (p - c) * (p - c) - PP4); };
+  auto z_of = [&](cplx p, cplx p_prime) {
+    return z0_ + numerator(p, p_prime) / (2.0 * (p - c) * (p - c) - PP4);
+  };
   // The four points where M′₃ = ±m with residue +i/2 (the other four, w = 0 and w = ∞, are their
   // conjugates): ℘ there from the point, u = ℘⁻¹ and of ±u the one the point is on.
   int k = 0;
@@ -250,7 +255,7 @@ void GyrostatFlow::set_up_attitude() {
       const cplx N = numerator(p, dp), dN = -zdot0_ * ddp + 0.5 * P_[1] * dp;
       const cplx D = 2.0 * (p - c) * (p - c) - PP4, dD = 4.0 * (p - c) * dp;
       u_[j] -= j < 2 ? (N + (z0_ * D)) * D / (dN * D - N * dD)  // z = z₀ + N/D: z/z′
-                     : D * N / (dD * N - D * dN);              // (D/N)/(D/N)′
+                     : D * N / (dD * N - D * dN);               // (D/N)/(D/N)′
     }
   }
   const Vec3 M_aux0 = S_ * M0_;

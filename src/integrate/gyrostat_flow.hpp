@@ -43,7 +43,7 @@ class GyrostatFlow {
     closed_form,   ///< the elliptic solution above
     steady,        ///< Ṁ = 0: a uniform rotation
     axisymmetric,  ///< two equal moments, h on the third axis: ω = M/A + c e_k, a regular precession
-    series,       ///< a degenerate lattice (separatrix): the Taylor series, step by step
+    series,        ///< a degenerate lattice (separatrix): the Taylor series, step by step
   };
 
   /// Principal moments `Lambda` (kg·m², > 0), rotor momentum `h_b` (kg·m²/s, principal axes, constant),
@@ -94,7 +94,7 @@ class GyrostatFlow {
   detail::cplx z0_, zdot0_, P_[5];                ///< z(0), ż(0), P⁽ᵏ⁾(z₀)
   detail::RealLattice lattice_{1.0, 0.0};
   // The attitude.
-  std::array<detail::cplx, 4> u_{}, log_sigma0_{};  ///< the poles uₖ and ln σ(−uₖ)
+  std::array<detail::cplx, 4> u_{}, log_sigma0_{};   ///< the poles uₖ and ln σ(−uₖ)
   double C0_ = 0.0, psi0_ = 0.0, psi_period_ = 0.0;  ///< C₀, ψ(0), ψ(T) − ψ(0)
   Mat3 W_;                                           ///< world frame, e₃ along L
 };

@@ -53,7 +53,8 @@ detail::FlowState<T> series_flow(const Vec3T<T>& Lambda, const Vec3T<T>& h, cons
   using std::abs, std::ceil, std::log, std::max, std::min, std::sqrt;
   const N n = max(N(1.0), ceil(abs(N(tau) * rate) / N(kSeriesReach)));
   const N reach = abs(N(tau) * rate) / n;
-  const N order = min(N(kSeriesOrder), max(N(2.0), ceil(N(std::log(0.125 * 2.220446049250313e-16)) / log(reach)) - N(1.0)));
+  const N order = min(N(kSeriesOrder),
+                      max(N(2.0), ceil(N(std::log(0.125 * 2.220446049250313e-16)) / log(reach)) - N(1.0)));
   const FreeBodyTaylorT<T> taylor(std::array<T, 3>{Lambda(0), Lambda(1), Lambda(2)},
                                   std::array<T, 3>{h(0), h(1), h(2)}, kSeriesOrder);
   FreeBodyStateT<T> s{{w_b(0), w_b(1), w_b(2)}, {q.w(), q.x(), q.y(), q.z()}};
@@ -67,7 +68,8 @@ detail::FlowState<T> series_flow(const Vec3T<T>& Lambda, const Vec3T<T>& h, cons
     for (int i = 0; i < 4; ++i) s.q[i] = select(live, next.q[i], s.q[i]);
   }
   const T norm = sqrt(s.q[0] * s.q[0] + s.q[1] * s.q[1] + s.q[2] * s.q[2] + s.q[3] * s.q[3]);
-  return {QuatT<T>(s.q[0] / norm, s.q[1] / norm, s.q[2] / norm, s.q[3] / norm), Vec3T<T>(s.w[0], s.w[1], s.w[2])};
+  return {QuatT<T>(s.q[0] / norm, s.q[1] / norm, s.q[2] / norm, s.q[3] / norm),
+          Vec3T<T>(s.w[0], s.w[1], s.w[2])};
 }
 
 }  // namespace tumble::gyrostat

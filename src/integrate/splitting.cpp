@@ -730,7 +730,8 @@ class StrangTangent {
   /// The drift of a body whose rotors' speeds are held: the series flow, as the steps on packs take it.
   detail::FlowState<TangentScalar> held_rotor_flow(const Coordinates<TangentScalar>& c,
                                                    const Vec3T<TangentScalar>& w_b,
-                                                   const MassConstants<TangentScalar>& mass, size_t i, double hs) const {
+                                                   const MassConstants<TangentScalar>& mass, size_t i,
+                                                   double hs) const {
     using T = TangentScalar;
     const Vec3T<T> h_b = rotor_split_.h<T>(0, i);
     const double rate = gyrostat::series_rate<T>(w_b, h_b, mass.Lambda).v;

@@ -48,7 +48,8 @@ RealLattice::RealLattice(long double g2, long double g3) : g2_(static_cast<doubl
   const LD Delta = g2 * g2 * g2 - 27 * g3 * g3;
   const LD scale = std::max(std::abs(g2 * g2 * g2), 27 * g3 * g3);
   if (!std::isfinite(Delta) || !(std::abs(Delta) > 64 * std::numeric_limits<LD>::epsilon() * scale)) {
-    throw InvalidArgument(fmt::format("a degenerate Weierstrass lattice: g2 = {}, g3 = {}", double(g2), double(g3)));
+    throw InvalidArgument(
+        fmt::format("a degenerate Weierstrass lattice: g2 = {}, g3 = {}", double(g2), double(g3)));
   }
   rectangular_ = Delta > 0;
   if (rectangular_) {
@@ -56,7 +57,7 @@ RealLattice::RealLattice(long double g2, long double g3) : g2_(static_cast<doubl
     // differences of the roots as products of sines (no cancellation near coincident roots).
     const LD r = 2 * std::sqrt(g2 / 12);
     const LD c3 = std::clamp(g3 / (r * r * r), LD(-1), LD(1));  // cos 3φ, as 4x³ − 3r²x = r³ cos 3φ
-    const LD phi = std::acos(c3) / 3;                            // φ ∈ [0, π/3]
+    const LD phi = std::acos(c3) / 3;                           // φ ∈ [0, π/3]
     e_[0] = double(r * std::cos(phi));
     e_[1] = double(r * std::cos(phi - 2 * pi / 3));
     e_[2] = double(r * std::cos(phi + 2 * pi / 3));
@@ -93,7 +94,11 @@ RealLattice::RealLattice(long double g2, long double g3) : g2_(static_cast<doubl
   m1_ = jacobi_.m1();
   // Factors of the θ-product to keep: the largest, |q²ⁿ e^{2|Im v|}| ≤ |q|^(2n−1), below ε/4.
   const double abs_q = std::sqrt(std::abs(q2_));
-  terms_ = abs_q <= 0 ? 0 : std::min(20000, static_cast<int>(std::ceil((std::log(0.25 * 2.220446049250313e-16) / std::log(abs_q) + 1) / 2)) + 1);
+  terms_ = abs_q <= 0
+               ? 0
+               : std::min(20000, static_cast<int>(std::ceil(
+                                     (std::log(0.25 * 2.220446049250313e-16) / std::log(abs_q) + 1) / 2)) +
+                                     1);
   // η₁ = (π²/12ω₁)(1 − 24 Σ q²ⁿ/(1 − q²ⁿ)²): θ₁‴(0)/θ₁′(0) from the product's v² coefficient.
   double sum = 0.0, qn = 1.0;
   for (int n = 1; n <= terms_; ++n) {

@@ -76,10 +76,10 @@ class RealLattice {
   cplx e_[3];  ///< e₁, e₂, e₃ (rectangular: real, descending; rhombic: e₂ real, e₁ = ē₃, Im e₁ > 0)
   double g2_, omega1_, eta1_, m1_;
   cplx omega3_;
-  double lambda_;  ///< λ (rectangular) or 2√H (rhombic): the Jacobi argument per unit t
-  double a_;       ///< e₁ − e₃ (rectangular) or H (rhombic)
-  double q2_;      ///< q², real on a real lattice
-  int terms_;      ///< θ-product factors kept: |q|^(2n) below rounding
+  double lambda_;                    ///< λ (rectangular) or 2√H (rhombic): the Jacobi argument per unit t
+  double a_;                         ///< e₁ − e₃ (rectangular) or H (rhombic)
+  double q2_;                        ///< q², real on a real lattice
+  int terms_;                        ///< θ-product factors kept: |q|^(2n) below rounding
   JacobiElliptic jacobi_{0.0, 1.0};  ///< sn, cn, dn of parameter m on the real period
 };
 

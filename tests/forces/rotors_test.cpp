@@ -164,9 +164,11 @@ TEST(Rotors, TheSplittingsKeepTheirOrderAndTheTotalMomentumExactly) {
   // measured 1.3e-12 over 2000 steps) the bound 8 n ε allows.
   const ThreeWheels w;
   for (const Formulation F : {Formulation::world, Formulation::mixed, Formulation::body}) {
-    for (const auto& [name, h] : {std::pair{"splitting", 5e-3}, std::pair{"splitting4", 2.5e-2}, std::pair{"splitting", 0.5}}) {
+    for (const auto& [name, h] :
+         {std::pair{"splitting", 5e-3}, std::pair{"splitting4", 2.5e-2}, std::pair{"splitting", 0.5}}) {
       const SystemState end = simulate(w.model, w.s0, end_only(name, 10.0, h, F));
-      const double error = std::max((end.bodies[0].omega_b() - w.omega_ref).norm(), w.attitude_error(end.bodies[0]));
+      const double error =
+          std::max((end.bodies[0].omega_b() - w.omega_ref).norm(), w.attitude_error(end.bodies[0]));
       const double drifts = (10.0 / h) * (std::string(name) == "splitting4" ? 3 : 1);  // Yoshida: 3 a step
       const double bound = F == Formulation::world ? 8 * drifts * 2.220446049250313e-16 : 1e-13;
       EXPECT_LT(error, std::max(bound, 1e-13)) << name << ", h = " << h << ", formulation " << int(F);
@@ -182,12 +184,14 @@ TEST(Rotors, TheSplittingsKeepTheirOrderAndTheTotalMomentumExactly) {
                          {"wheel_z", 0, Vec3::UnitZ(), 0.01, 50.0, 0.0, 0.0, 0.0, {}}},
       driven.bodies)};
   for (const Formulation F : {Formulation::world, Formulation::mixed, Formulation::body}) {
-    for (const auto& [name, order, h0] : {std::tuple{"splitting", 2, 2e-2}, std::tuple{"splitting4", 4, 1e-1}}) {
+    for (const auto& [name, order, h0] :
+         {std::tuple{"splitting", 2, 2e-2}, std::tuple{"splitting4", 4, 1e-1}}) {
       SystemState end[3];
       for (int k = 0; k < 3; ++k) end[k] = simulate(driven, w.s0, end_only(name, 10.0, h0 / (1 << k), F));
       auto difference = [&](int k) {
-        return std::max((end[k].bodies[0].omega_b() - end[k + 1].bodies[0].omega_b()).norm(),
-                        Eigen::AngleAxisd(end[k].bodies[0].R() * end[k + 1].bodies[0].R().transpose()).angle());
+        return std::max(
+            (end[k].bodies[0].omega_b() - end[k + 1].bodies[0].omega_b()).norm(),
+            Eigen::AngleAxisd(end[k].bodies[0].R() * end[k + 1].bodies[0].R().transpose()).angle());
       };
       const double ratio = difference(0) / difference(1), expected = std::pow(2.0, order);
       EXPECT_GT(ratio, expected / 1.6) << name << ": differences " << difference(0) << ", " << difference(1);
@@ -344,23 +348,26 @@ TEST(Rotors, ABodyStepsTheSameOnPacksOfManyAsAlone) {
     }
   }
   all.forces.push_back(std::make_shared<const Rotors>(wheels, all.bodies));
-  for (const auto& [name, h] : {std::pair{"rk4", 1e-3}, std::pair{"splitting", 1e-3}, std::pair{"splitting", 0.1}}) {
-  const RunSettings settings = end_only(name, 0.5, h);
-  const SystemState together = simulate(all, s_all, settings);
-  for (size_t b = 0; b < 13; ++b) {
-    Model one;
-    one.add_body(all.bodies[b]);
-    std::vector<Rotor> own;
-    for (Rotor w : wheels) {
-      if (w.body != b) continue;
-      w.body = 0;
-      own.push_back(w);
+  for (const auto& [name, h] :
+       {std::pair{"rk4", 1e-3}, std::pair{"splitting", 1e-3}, std::pair{"splitting", 0.1}}) {
+    const RunSettings settings = end_only(name, 0.5, h);
+    const SystemState together = simulate(all, s_all, settings);
+    for (size_t b = 0; b < 13; ++b) {
+      Model one;
+      one.add_body(all.bodies[b]);
+      std::vector<Rotor> own;
+      for (Rotor w : wheels) {
+        if (w.body != b) continue;
+        w.body = 0;
+        own.push_back(w);
+      }
+      if (!own.empty()) one.forces.push_back(std::make_shared<const Rotors>(own, one.bodies));
+      const SystemState alone = simulate(one, SystemState{0.0, {s_all.bodies[b]}, {}}, settings);
+      EXPECT_EQ(alone.bodies[0].q.coeffs(), together.bodies[b].q.coeffs())
+          << name << ", h = " << h << ", body " << b;
+      EXPECT_EQ(alone.bodies[0].omega_w, together.bodies[b].omega_w)
+          << name << ", h = " << h << ", body " << b;
     }
-    if (!own.empty()) one.forces.push_back(std::make_shared<const Rotors>(own, one.bodies));
-    const SystemState alone = simulate(one, SystemState{0.0, {s_all.bodies[b]}, {}}, settings);
-    EXPECT_EQ(alone.bodies[0].q.coeffs(), together.bodies[b].q.coeffs()) << name << ", h = " << h << ", body " << b;
-    EXPECT_EQ(alone.bodies[0].omega_w, together.bodies[b].omega_w) << name << ", h = " << h << ", body " << b;
-  }
   }
 }
 
