@@ -33,12 +33,6 @@ namespace tumble {
 
 class GyrostatFlow {
  public:
-  /// Where the stereographic coordinate's pole b lies; the formulas lose accuracy as 1/(1 − |n·b|)
-  /// where the body's momentum direction n = M/m passes near ±b.
-  enum class Pole {
-    sampled,          ///< the best of a few candidates over a whole polhode (any t)
-    across_momentum,  ///< perpendicular to M(0): for short times (a splitting's step)
-  };
   enum class Regime {
     closed_form,   ///< the elliptic solution above
     steady,        ///< Ṁ = 0: a uniform rotation
@@ -49,8 +43,9 @@ class GyrostatFlow {
   /// Principal moments `Lambda` (kg·m², > 0), rotor momentum `h_b` (kg·m²/s, principal axes, constant),
   /// orientation q0 (body → world) and ω_b(0). Throws InvalidArgument for non-positive or non-finite
   /// moments, non-finite h or ω, or a zero quaternion.
-  GyrostatFlow(const Vec3& Lambda, const Vec3& h_b, const Quat& q0, const Vec3& omega_b0,
-               Pole pole = Pole::sampled);
+  /// The stereographic coordinate's pole b is the best of a few candidates over a whole polhode: the
+  /// formulas lose accuracy as 1/(1 − |n·b|) where the momentum's direction n = M/m passes near ±b.
+  GyrostatFlow(const Vec3& Lambda, const Vec3& h_b, const Quat& q0, const Vec3& omega_b0);
 
   struct State {
     Quat q;        ///< orientation (body → world)
