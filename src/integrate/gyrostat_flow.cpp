@@ -113,17 +113,14 @@ void GyrostatFlow::set_up_curve(const Vec3& b) {
   // lattice's shape follows (weierstrass.cpp). m and 2E are this data's own.
   using LD = long double;
   using C = std::complex<LD>;
-  const LD m = std::sqrt(LD(M_aux(0)) * M_aux(0) + LD(M_aux(1)) * M_aux(1) + LD(M_aux(2)) * M_aux(2));
-  LD two_E = 0;
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j)
-      two_E += (LD(M_aux(i)) - h_aux_(i)) * Jinv_(i, j) * (LD(M_aux(j)) - h_aux_(j));
-  }
+  const Eigen::Matrix<LD, 3, 1> M = M_aux.cast<LD>(), hp = h_aux_.cast<LD>();
+  const Eigen::Matrix<LD, 3, 3> J = Jinv_.cast<LD>();
+  const LD m = M.norm(), two_E = (M - hp).dot(J * (M - hp));
   // V(z, w) = m N(z, w) − (1 + zw) h′, N = (z + w, −i(z − w), zw − 1): M′ = V/(1 + zw) on the sphere.
   const C i(0, 1);
   const std::array<C, 3> V[2][2] = {
-      {std::array<C, 3>{-LD(h_aux_(0)), -LD(h_aux_(1)), -m - h_aux_(2)}, std::array<C, 3>{m, i * m, 0}},
-      {std::array<C, 3>{m, -i * m, 0}, std::array<C, 3>{-LD(h_aux_(0)), -LD(h_aux_(1)), m - h_aux_(2)}}};
+      {std::array<C, 3>{-hp(0), -hp(1), -m - hp(2)}, std::array<C, 3>{m, i * m, 0}},
+      {std::array<C, 3>{m, -i * m, 0}, std::array<C, 3>{-hp(0), -hp(1), m - hp(2)}}};
   // The energy integral F(z, w) = Vᵀ J V − 2E (1 + zw)² = 0, J = Λ⁻¹ in the pole frame.
   std::array<std::array<C, 3>, 3> F{};
   for (int a1 = 0; a1 < 2; ++a1) {
@@ -131,7 +128,7 @@ void GyrostatFlow::set_up_curve(const Vec3& b) {
       for (int a2 = 0; a2 < 2; ++a2) {
         for (int b2 = 0; b2 < 2; ++b2) {
           for (int r = 0; r < 3; ++r) {
-            for (int c = 0; c < 3; ++c) F[a1 + a2][b1 + b2] += V[a1][b1][r] * LD(Jinv_(r, c)) * V[a2][b2][c];
+            for (int c = 0; c < 3; ++c) F[a1 + a2][b1 + b2] += V[a1][b1][r] * J(r, c) * V[a2][b2][c];
           }
         }
       }

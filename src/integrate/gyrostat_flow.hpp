@@ -87,7 +87,7 @@ class GyrostatFlow {
   Vec3 h_aux_;
   std::array<std::array<detail::cplx, 3>, 3> F_;  ///< F(z, w) = Σ F[i][j] zⁱ wʲ, the energy integral
   detail::cplx z0_, zdot0_, P_[5];                ///< z(0), ż(0), P⁽ᵏ⁾(z₀)
-  detail::RealLattice lattice_{1.0, 0.0};
+  detail::RealLattice lattice_{1.0L, 0.0L};
   // The attitude.
   std::array<detail::cplx, 4> u_{}, log_sigma0_{};   ///< the poles uₖ and ln σ(−uₖ)
   double C0_ = 0.0, psi0_ = 0.0, psi_period_ = 0.0;  ///< C₀, ψ(0), ψ(T) − ψ(0)

@@ -9,7 +9,7 @@
 #include <random>
 #include <string>
 
-#include "integrate/free_body_taylor.hpp"
+#include "free_body_taylor.hpp"
 #include "integrate/gyrostat_flow.hpp"
 #include "integrate/gyrostat_series.hpp"
 
@@ -138,11 +138,10 @@ TEST(GyrostatFlow, AgreesWithFortyDigitReferencesOverAHundredSeconds) {
 /// order 30, |ω| ≤ 3 rad/s: truncation ~0.06³⁰, far below its rounding, ~1e-18 per step).
 GyrostatFlow::State taylor_state(const Vec3& I, const Vec3& h, const Quat& q0, const Vec3& w0, double tau) {
   const FreeBodyTaylorT<long double> taylor(I, h, 30);
-  FreeBodyStateT<long double> s{{w0(0), w0(1), w0(2)}, {q0.w(), q0.x(), q0.y(), q0.z()}};
+  FreeBodyStateT<long double> s = test::to_ld(q0, w0);
   const int steps = static_cast<int>(std::ceil(std::abs(tau) / 0.02));
   for (int i = 0; i < steps; ++i) s = taylor.step(s, static_cast<long double>(tau) / steps);
-  return {Quat(double(s.q[0]), double(s.q[1]), double(s.q[2]), double(s.q[3])).normalized(),
-          Vec3(double(s.w[0]), double(s.w[1]), double(s.w[2]))};
+  return {test::quat_of(s), test::omega_of(s)};
 }
 
 TEST(GyrostatFlow, AgreesWithTheTaylorSeriesFromRandomStates) {
