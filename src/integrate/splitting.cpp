@@ -14,6 +14,9 @@
 // gyrostat splits into two exact flows instead, the free one of ω₁ = ω + Λ⁻¹h and a turn about −Λ⁻¹h
 // (gyrostat_split.hpp), so that the step stays second order and keeps L to rounding: the kicks load the
 // bodies with the model's other forces, and the drift of a body with rotors is wrapped in those turns.
+// A body whose motors hold its rotors' speeds over the step (h constant) needs no split: it drifts by the
+// torque-free gyrostat's own flow, its Taylor series to rounding (gyrostat_series.hpp), and the
+// splitting is exact for it without external torque, as for a free body.
 // splitting4 is Yoshida's fourth-order composition S(w₁h) S(w₀h) S(w₁h), w₁ = 1/(2 − 2^⅓),
 // w₀ = 1 − 2w₁ (the middle step runs backwards in time; the exact flow handles that).
 //
